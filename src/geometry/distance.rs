@@ -1,0 +1,184 @@
+//! Exact distance from a point to a set of closed polygons, through a uniform grid
+//! of segment buckets. This is the plain-geometry oracle: the gouge check and the
+//! tracer's contact test use it, never the potential field.
+
+use super::Vec2;
+
+/// Closed polygons with a bucket grid over their edges.
+#[derive(Clone, Debug)]
+pub struct DistanceIndex {
+    edges: Vec<(Vec2, Vec2)>,
+    origin: Vec2,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    /// Edge indices per cell, row-major; `starts[c]..starts[c+1]` index into `items`.
+    starts: Vec<u32>,
+    items: Vec<u32>,
+}
+
+fn seg_dist2(p: Vec2, a: Vec2, b: Vec2) -> (f64, Vec2) {
+    let ab = b - a;
+    let l2 = ab.norm2();
+    let t = if l2 > 0.0 {
+        ((p - a).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let q = a + ab * t;
+    ((p - q).norm2(), q)
+}
+
+impl DistanceIndex {
+    /// Index over the edges of the given closed polygons (each joins last to first).
+    pub fn new(polys: &[Vec<Vec2>]) -> DistanceIndex {
+        let mut edges = Vec::new();
+        for poly in polys {
+            let n = poly.len();
+            for i in 0..n {
+                edges.push((poly[i], poly[(i + 1) % n]));
+            }
+        }
+        let (mut lo, mut hi) = (Vec2::new(f64::MAX, f64::MAX), Vec2::new(f64::MIN, f64::MIN));
+        for &(a, _) in &edges {
+            lo = Vec2::new(lo.x.min(a.x), lo.y.min(a.y));
+            hi = Vec2::new(hi.x.max(a.x), hi.y.max(a.y));
+        }
+        if edges.is_empty() {
+            lo = Vec2::ZERO;
+            hi = Vec2::new(1.0, 1.0);
+        }
+        let ext = hi - lo;
+        // About two edges per cell on average keeps both the scan and the ring search short.
+        let area = (ext.x.max(1e-9)) * (ext.y.max(1e-9));
+        let cell = (area / (edges.len().max(1) as f64 / 2.0))
+            .sqrt()
+            .max(ext.x.max(ext.y) / 2048.0)
+            .max(1e-9);
+        let nx = ((ext.x / cell).floor() as usize + 1).max(1);
+        let ny = ((ext.y / cell).floor() as usize + 1).max(1);
+        let mut counts = vec![0u32; nx * ny + 1];
+        let cell_range = |a: Vec2, b: Vec2| {
+            let i0 = (((a.x.min(b.x) - lo.x) / cell).floor().max(0.0) as usize).min(nx - 1);
+            let i1 = (((a.x.max(b.x) - lo.x) / cell).floor().max(0.0) as usize).min(nx - 1);
+            let j0 = (((a.y.min(b.y) - lo.y) / cell).floor().max(0.0) as usize).min(ny - 1);
+            let j1 = (((a.y.max(b.y) - lo.y) / cell).floor().max(0.0) as usize).min(ny - 1);
+            (i0, i1, j0, j1)
+        };
+        for &(a, b) in &edges {
+            let (i0, i1, j0, j1) = cell_range(a, b);
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    counts[j * nx + i + 1] += 1;
+                }
+            }
+        }
+        for c in 1..counts.len() {
+            counts[c] += counts[c - 1];
+        }
+        let starts = counts.clone();
+        let mut fill = counts;
+        let mut items = vec![0u32; *starts.last().unwrap_or(&0) as usize];
+        for (e, &(a, b)) in edges.iter().enumerate() {
+            let (i0, i1, j0, j1) = cell_range(a, b);
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let c = j * nx + i;
+                    items[fill[c] as usize] = e as u32;
+                    fill[c] += 1;
+                }
+            }
+        }
+        DistanceIndex {
+            edges,
+            origin: lo,
+            cell,
+            nx,
+            ny,
+            starts,
+            items,
+        }
+    }
+
+    /// Number of edges indexed.
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// Distance from `p` to the nearest edge and the nearest point on it.
+    pub fn nearest(&self, p: Vec2) -> (f64, Vec2) {
+        if self.edges.is_empty() {
+            return (f64::INFINITY, p);
+        }
+        let fx = (p.x - self.origin.x) / self.cell;
+        let fy = (p.y - self.origin.y) / self.cell;
+        let ci = (fx.floor().max(0.0) as usize).min(self.nx - 1) as isize;
+        let cj = (fy.floor().max(0.0) as usize).min(self.ny - 1) as isize;
+        let mut best = f64::INFINITY;
+        let mut best_q = p;
+        let max_ring = self.nx.max(self.ny) as isize;
+        let mut ring = 0isize;
+        loop {
+            // Distance from p to the outside of the square of cells searched so far.
+            for j in (cj - ring)..=(cj + ring) {
+                if j < 0 || j >= self.ny as isize {
+                    continue;
+                }
+                let on_edge_row = j == cj - ring || j == cj + ring;
+                let step = if on_edge_row { 1 } else { (2 * ring).max(1) };
+                let mut i = ci - ring;
+                while i <= ci + ring {
+                    if i >= 0 && i < self.nx as isize {
+                        let c = j as usize * self.nx + i as usize;
+                        for &e in &self.items[self.starts[c] as usize..self.starts[c + 1] as usize]
+                        {
+                            let (a, b) = self.edges[e as usize];
+                            let (d2, q) = seg_dist2(p, a, b);
+                            if d2 < best {
+                                best = d2;
+                                best_q = q;
+                            }
+                        }
+                    }
+                    i += step;
+                }
+            }
+            // Everything not yet searched is at least this far away.
+            let lx = (fx - (ci - ring) as f64).min((ci + ring + 1) as f64 - fx);
+            let ly = (fy - (cj - ring) as f64).min((cj + ring + 1) as f64 - fy);
+            let reach = lx.min(ly).max(0.0) * self.cell;
+            if best.is_finite() && reach * reach >= best {
+                break;
+            }
+            ring += 1;
+            if ring > max_ring + 2 {
+                break;
+            }
+        }
+        if !best.is_finite() {
+            // p far outside the grid: fall back to a full scan.
+            for &(a, b) in &self.edges {
+                let (d2, q) = seg_dist2(p, a, b);
+                if d2 < best {
+                    best = d2;
+                    best_q = q;
+                }
+            }
+        }
+        (best.sqrt(), best_q)
+    }
+
+    /// Distance from `p` to the nearest edge.
+    pub fn distance(&self, p: Vec2) -> f64 {
+        self.nearest(p).0
+    }
+
+    /// Distance by scanning every edge (for tests of the grid search).
+    pub fn distance_brute(&self, p: Vec2) -> f64 {
+        self.edges
+            .iter()
+            .map(|&(a, b)| seg_dist2(p, a, b).0)
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    }
+}

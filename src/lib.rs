@@ -1,0 +1,11 @@
+//! pfcam: potential-field CNC tool paths for GRBL milling machines.
+//!
+//! The pipeline (see `docs/architecture.md`): job → shape → field → tool path →
+//! G-code / preview. Each stage is a module; the library never prints, never exits
+//! and never panics on user input.
+
+pub mod field;
+pub mod geometry;
+pub mod job;
+pub mod pipeline;
+pub mod toolpath;

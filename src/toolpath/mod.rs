@@ -1,0 +1,148 @@
+//! Tool paths: the one intermediate representation that G-code, previews, time
+//! estimates and the gouge check all read (see `docs/architecture.md`).
+
+/// A point in machine coordinates, millimetres.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Vec3 {
+    /// X
+    pub x: f64,
+    /// Y
+    pub y: f64,
+    /// Z
+    pub z: f64,
+}
+
+impl Vec3 {
+    /// A new point.
+    pub const fn new(x: f64, y: f64, z: f64) -> Self {
+        Vec3 { x, y, z }
+    }
+    /// Distance to another point.
+    pub fn dist(self, o: Vec3) -> f64 {
+        ((self.x - o.x).powi(2) + (self.y - o.y).powi(2) + (self.z - o.z).powi(2)).sqrt()
+    }
+}
+
+/// One move of the tool centre. Every move starts where the previous one ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Move {
+    /// Rapid (G0) to `to`.
+    Rapid {
+        /// end point
+        to: Vec3,
+    },
+    /// Straight feed move (G1) to `to` at `feed` mm/min.
+    Linear {
+        /// end point
+        to: Vec3,
+        /// feed rate, mm/min
+        feed: f64,
+    },
+    /// Circular feed move in the XY plane (G2 clockwise, G3 counter-clockwise) to
+    /// `to`, about the absolute centre (`cx`, `cy`), with a linear change of Z.
+    Arc {
+        /// end point
+        to: Vec3,
+        /// centre X, absolute
+        cx: f64,
+        /// centre Y, absolute
+        cy: f64,
+        /// true for counter-clockwise (G3)
+        ccw: bool,
+        /// feed rate, mm/min
+        feed: f64,
+    },
+}
+
+impl Move {
+    /// End point of the move.
+    pub fn to(&self) -> Vec3 {
+        match *self {
+            Move::Rapid { to } | Move::Linear { to, .. } | Move::Arc { to, .. } => to,
+        }
+    }
+}
+
+/// A labelled run of moves (one pass of one contour at one depth, or a link).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Section {
+    /// What this is, for G-code comments and reports, e.g. `outside M (1), z -1.000`.
+    pub label: String,
+    /// The cutting depth of this section (mm).
+    pub z: f64,
+    /// The moves.
+    pub moves: Vec<Move>,
+}
+
+/// A whole tool path in machine coordinates.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Toolpath {
+    /// Where the tool is when the program starts (XY at the origin, Z at safe height).
+    pub start: Vec3,
+    /// The sections, in cutting order.
+    pub sections: Vec<Section>,
+}
+
+/// Lengths and time of a tool path.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct PathStats {
+    /// Length of feed moves, mm.
+    pub cut_length: f64,
+    /// Length of rapid moves, mm.
+    pub rapid_length: f64,
+    /// Estimated time in seconds: feed moves at their feed, rapids at the given
+    /// rapid rate, acceleration ignored.
+    pub time_s: f64,
+}
+
+impl Toolpath {
+    /// Every move in order.
+    pub fn moves(&self) -> impl Iterator<Item = &Move> {
+        self.sections.iter().flat_map(|s| s.moves.iter())
+    }
+
+    /// Lengths and estimated time, with rapids at `rapid_rate` mm/min.
+    pub fn stats(&self, rapid_rate: f64) -> PathStats {
+        let mut st = PathStats::default();
+        let mut at = self.start;
+        for m in self.moves() {
+            match *m {
+                Move::Rapid { to } => {
+                    let l = at.dist(to);
+                    st.rapid_length += l;
+                    st.time_s += l / rapid_rate * 60.0;
+                }
+                Move::Linear { to, feed } => {
+                    let l = at.dist(to);
+                    st.cut_length += l;
+                    st.time_s += l / feed * 60.0;
+                }
+                Move::Arc {
+                    to,
+                    cx,
+                    cy,
+                    ccw,
+                    feed,
+                } => {
+                    let l = arc_length(at, to, cx, cy, ccw);
+                    st.cut_length += l;
+                    st.time_s += l / feed * 60.0;
+                }
+            }
+            at = m.to();
+        }
+        st
+    }
+}
+
+/// Length of a helical arc from `a` to `b` about (`cx`, `cy`).
+pub fn arc_length(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool) -> f64 {
+    let r = (a.x - cx).hypot(a.y - cy);
+    let a0 = (a.y - cy).atan2(a.x - cx);
+    let a1 = (b.y - cy).atan2(b.x - cx);
+    let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
+    if sweep <= 1e-12 {
+        sweep += std::f64::consts::TAU;
+    }
+    (r * sweep).hypot(b.z - a.z)
+}
