@@ -1,6 +1,197 @@
 //! Potential fields by the method of fundamental solutions (the paper's Sections 2–4).
 
+pub mod mfs;
+pub mod setup;
+
+pub use mfs::{kernel, Condition, Field, Problem, Solution};
+pub use setup::{Boundary, Layout, Prepared, Sink};
+
+use crate::geometry::{glyphs, polygon_winding_number, Contour, Vec2};
+use rayon::prelude::*;
 use serde::Serialize;
+
+/// Default share of the free singularities given to corner clusters (measured on
+/// the convergence study of the letter I; see docs/method.md).
+pub const DEFAULT_CORNER_FRACTION: f64 = 0.4;
+
+/// Corner fractions tried by `solve_best`: the error depends on how the integer
+/// number of charges per corner falls, so the best of three is kept.
+pub const CORNER_FRACTIONS: [f64; 3] = [0.3, 0.4, 0.5];
+
+/// Number of distances tried in the coarse scan of the pseudo-boundary distance.
+pub const DISTANCE_SCAN: usize = 8;
+
+/// Golden-section steps after the scan.
+pub const DISTANCE_REFINE: usize = 8;
+
+/// A solve with the layout that was chosen.
+#[derive(Clone, Debug)]
+pub struct Solved {
+    /// The solution.
+    pub solution: Solution,
+    /// The layout used (with the chosen distance).
+    pub layout: Layout,
+    /// Number of solves spent choosing the distance.
+    pub solves: usize,
+    /// Collocation points M.
+    pub m: usize,
+}
+
+/// Solve one layout.
+pub fn solve_layout(prep: &Prepared, layout: &Layout) -> Result<(Solution, usize), FieldError> {
+    let problem = prep.problem(layout)?;
+    let sol = mfs::solve(&problem)?;
+    Ok((sol, problem.colloc.len()))
+}
+
+/// Solve with N singularities, the pseudo-boundary distance either given or chosen
+/// to minimise the max boundary error: a log-spaced scan of `DISTANCE_SCAN` values
+/// in [h/4, 8h] (h the mean spacing of the uniform singularities), in parallel,
+/// then `DISTANCE_REFINE` golden-section steps in log d around the best. The paper
+/// scanned 200 values of d; this takes 16 solves.
+pub fn solve_auto(prep: &Prepared, n_total: usize, distance: Option<f64>, corner_clusters: bool) -> Result<Solved, FieldError> {
+    let base = Layout { n_total, distance: 1.0, corner_clusters, corner_fraction: DEFAULT_CORNER_FRACTION };
+    solve_with(prep, base, distance)
+}
+
+/// As `solve_auto` with the distance chosen, trying each of `CORNER_FRACTIONS` and
+/// keeping the layout with the smallest max boundary error.
+pub fn solve_best(prep: &Prepared, n_total: usize) -> Result<Solved, FieldError> {
+    let mut best: Option<Solved> = None;
+    let mut last_err = None;
+    let mut solves = 0;
+    for f in CORNER_FRACTIONS {
+        let base = Layout { n_total, distance: 1.0, corner_clusters: true, corner_fraction: f };
+        match solve_with(prep, base, None) {
+            Ok(s) => {
+                solves += s.solves;
+                if best.as_ref().is_none_or(|b| s.solution.max_error < b.solution.max_error) {
+                    best = Some(s);
+                }
+            }
+            Err(e) => last_err = Some(e),
+        }
+    }
+    match best {
+        Some(mut b) => {
+            b.solves = solves;
+            Ok(b)
+        }
+        None => Err(last_err.unwrap_or(FieldError::Invalid("no layout could be solved".into()))),
+    }
+}
+
+/// As `solve_auto`, for a given layout (its `distance` is ignored unless fixed).
+pub fn solve_with(prep: &Prepared, base: Layout, distance: Option<f64>) -> Result<Solved, FieldError> {
+    let n_total = base.n_total;
+    if let Some(d) = distance {
+        let layout = Layout { distance: d, ..base };
+        let (solution, m) = solve_layout(prep, &layout)?;
+        return Ok(Solved { solution, layout, solves: 1, m });
+    }
+    let h = prep.perimeter() / n_total as f64;
+    let (lo, hi) = ((h / 4.0).ln(), (8.0 * h).ln());
+    let xs: Vec<f64> = (0..DISTANCE_SCAN).map(|i| lo + (hi - lo) * i as f64 / (DISTANCE_SCAN - 1) as f64).collect();
+    let eval = |x: f64| -> Result<(f64, Solution, usize), FieldError> {
+        let layout = Layout { distance: x.exp(), ..base };
+        let (sol, m) = solve_layout(prep, &layout)?;
+        Ok((sol.max_error, sol, m))
+    };
+    let scan: Vec<Result<(f64, Solution, usize), FieldError>> = xs.par_iter().map(|&x| eval(x)).collect();
+    let mut best: Option<(f64, f64, Solution, usize)> = None;
+    let mut errors = vec![f64::INFINITY; xs.len()];
+    let mut first_err = None;
+    for (i, r) in scan.into_iter().enumerate() {
+        match r {
+            Ok((e, sol, m)) => {
+                errors[i] = e;
+                if best.as_ref().is_none_or(|b| e < b.0) {
+                    best = Some((e, xs[i], sol, m));
+                }
+            }
+            Err(e) => {
+                first_err.get_or_insert(e);
+            }
+        }
+    }
+    let Some(mut best) = best else {
+        return Err(first_err.unwrap_or(FieldError::Invalid("no distance could be solved".into())));
+    };
+    let ib = xs.iter().position(|&x| x == best.1).unwrap_or(0);
+    let (mut a, mut b) = (xs[ib.saturating_sub(1)], xs[(ib + 1).min(xs.len() - 1)]);
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    let mut solves = DISTANCE_SCAN;
+    let mut c = b - g * (b - a);
+    let mut d = a + g * (b - a);
+    let mut fc = eval(c).map(|r| r.0).unwrap_or(f64::INFINITY);
+    let mut fd = eval(d).map(|r| r.0).unwrap_or(f64::INFINITY);
+    solves += 2;
+    for _ in 2..DISTANCE_REFINE {
+        if fc < fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = eval(c).map(|r| r.0).unwrap_or(f64::INFINITY);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = eval(d).map(|r| r.0).unwrap_or(f64::INFINITY);
+        }
+        solves += 1;
+    }
+    let x = if fc < fd { c } else { d };
+    if fc.min(fd) < best.0 {
+        if let Ok((e, sol, m)) = eval(x) {
+            solves += 1;
+            best = (e, x, sol, m);
+        }
+    }
+    Ok(Solved { solution: best.2, layout: Layout { distance: best.1.exp(), ..base }, solves, m: best.3 })
+}
+
+/// Area centroid of the material bounded by the contours (outlines counter-clockwise
+/// count positive, counters clockwise negative), from their flattenings.
+pub fn centroid(contours: &[Contour], tol: f64) -> Vec2 {
+    let (mut a, mut cx, mut cy) = (0.0, 0.0, 0.0);
+    for c in contours {
+        let p = c.flatten(tol);
+        let n = p.len();
+        for i in 0..n {
+            let (u, v) = (p[i], p[(i + 1) % n]);
+            let w = u.cross(v);
+            a += w;
+            cx += (u.x + v.x) * w;
+            cy += (u.y + v.y) * w;
+        }
+    }
+    if a.abs() > 0.0 {
+        Vec2::new(cx / (3.0 * a), cy / (3.0 * a))
+    } else {
+        Vec2::ZERO
+    }
+}
+
+/// The boundary of a built-in glyph in font units as in the paper's Section 3:
+/// outer circle of radius 1e4 about the barycentre.
+pub fn paper_boundary(ch: char) -> Result<Boundary, FieldError> {
+    let g = glyphs::paper_glyph(ch).map_err(|e| FieldError::Invalid(e.to_string()))?;
+    let mut contours = g.outlines.clone();
+    let mut is_counter = vec![false; contours.len()];
+    for c in &g.counters {
+        contours.push(c.clone());
+        is_counter.push(true);
+    }
+    let centre = centroid(&contours, 0.01);
+    Ok(Boundary { contours, is_counter, centre, radius: 1e4, flat_tol: 0.01 })
+}
+
+/// Is `p` inside the closed polygon? (winding number ≠ 0, Appendix I)
+pub fn inside(poly: &[Vec2], p: Vec2) -> bool {
+    polygon_winding_number(poly, p) != 0
+}
 
 /// What can go wrong building or solving a field.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
@@ -33,6 +224,11 @@ pub struct ConvergenceRow {
 /// radius 1e4 about the barycentre) for each N, M = 2N, the distance chosen to
 /// minimise the max boundary error.
 pub fn convergence_table(glyph: char, ns: &[usize]) -> Result<Vec<ConvergenceRow>, FieldError> {
-    let _ = (glyph, ns);
-    Err(FieldError::Invalid("the MFS solver is being built".into()))
+    let prep = Prepared::new(paper_boundary(glyph)?)?;
+    ns.iter()
+        .map(|&n| {
+            let s = solve_best(&prep, n)?;
+            Ok(ConvergenceRow { n, m: s.m, distance: s.layout.distance, max_error: s.solution.max_error })
+        })
+        .collect()
 }

@@ -1,0 +1,344 @@
+//! Building the MFS problem (2.1)/(2.5) for a shape: collocation points on every
+//! contour, singularities inside the material, an outer circle with u = 0, a sink
+//! with u = 0 inside every counter, and the check points.
+
+use super::mfs::{Condition, Problem};
+use super::FieldError;
+use crate::geometry::{polygon_winding_number, Contour, DistanceIndex, Sample, Vec2};
+use std::f64::consts::TAU;
+
+/// Turning angle (radians) above which a join is a corner for the check points.
+pub const CORNER_TURN: f64 = 0.05;
+
+/// Turning angle (radians) above which a convex corner of the material gets a
+/// cluster of singularities: there the domain angle α = π + turn exceeds π and
+/// u − 1 ~ r^(π/α) is singular in its gradient.
+pub const SINGULAR_TURN: f64 = 0.15;
+
+/// Outer singularities sit on a circle of this many times the outer radius R: far
+/// enough that the ring's own aliasing term, (1/3)^8 / 8 ≈ 2e-5 of its charge for
+/// eight charges, stays well under the errors we aim for.
+pub const OUTER_CHARGE_FACTOR: f64 = 3.0;
+
+/// Number of singularities on the outer circle (u = 0 there). The field at radius R
+/// is a monopole plus multipoles decaying like (glyph size / R)^k, so few suffice.
+pub const OUTER_CHARGES: usize = 8;
+
+/// Number of singularities inside each counter's sink circle.
+pub const SINK_CHARGES: usize = 6;
+
+/// Exponential clustering of corner charges, δⱼ = δ_max exp(−σ(√n − √j)), j = 1..n
+/// (the tapered spacing of Gopal & Trefethen's lightning solvers, σ = 4 there).
+pub const CLUSTER_SIGMA: f64 = 4.0;
+
+/// The generating boundary of a field: contours with the material on their left
+/// (outlines counter-clockwise, counters clockwise), u = `value` on each.
+#[derive(Clone, Debug)]
+pub struct Boundary {
+    /// The contours, material on the left.
+    pub contours: Vec<Contour>,
+    /// For each contour, true when it is a counter (a hole: gets a sink).
+    pub is_counter: Vec<bool>,
+    /// Centre of the outer circle (u = 0 there).
+    pub centre: Vec2,
+    /// Radius of the outer circle.
+    pub radius: f64,
+    /// Flattening tolerance for geometric queries (ray casts, sinks).
+    pub flat_tol: f64,
+}
+
+/// How singularities are laid out.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layout {
+    /// Total singularities N (outer, sinks, corners and pseudo-boundary).
+    pub n_total: usize,
+    /// Pseudo-boundary distance d: uniform singularities sit d inside the material
+    /// (less where the material is thinner, see `Prepared::inward_charge`).
+    pub distance: f64,
+    /// Cluster singularities toward convex corners of the material.
+    pub corner_clusters: bool,
+    /// Fraction of the free singularities (after outer and sinks) given to corner clusters.
+    pub corner_fraction: f64,
+}
+
+/// A sink inside a counter: u = 0 on the circle (centre, radius).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sink {
+    /// Centre.
+    pub centre: Vec2,
+    /// Radius.
+    pub radius: f64,
+}
+
+/// Geometry precomputed once per boundary and reused for every layout.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    /// The boundary.
+    pub boundary: Boundary,
+    polys: Vec<Vec<Vec2>>,
+    index: DistanceIndex,
+    lengths: Vec<f64>,
+    /// Convex corners of the material, (contour, arc length, point, bisector into material, max depth).
+    corners: Vec<(usize, f64, Vec2, Vec2, f64)>,
+    /// All corners (for check points): (contour, arc length).
+    all_corners: Vec<(usize, f64)>,
+    /// Sinks, one per counter.
+    pub sinks: Vec<Sink>,
+}
+
+/// Distance from `p` along unit direction `dir` to the first crossing of any polygon
+/// edge (ignoring crossings closer than `skip`).
+fn ray_cast(polys: &[Vec<Vec2>], p: Vec2, dir: Vec2, skip: f64) -> f64 {
+    let mut best = f64::INFINITY;
+    for poly in polys {
+        let n = poly.len();
+        for i in 0..n {
+            let a = poly[i];
+            let b = poly[(i + 1) % n];
+            let e = b - a;
+            let den = dir.cross(e);
+            if den.abs() < 1e-300 {
+                continue;
+            }
+            let ap = a - p;
+            let t = ap.cross(e) / den;
+            let u = ap.cross(dir) / den;
+            if t > skip && (0.0..=1.0).contains(&u) && t < best {
+                best = t;
+            }
+        }
+    }
+    best
+}
+
+impl Prepared {
+    /// Precompute flattenings, the distance index, corners and sinks.
+    pub fn new(boundary: Boundary) -> Result<Prepared, FieldError> {
+        if boundary.contours.is_empty() {
+            return Err(FieldError::Invalid("the shape has no contours".into()));
+        }
+        let polys: Vec<Vec<Vec2>> = boundary.contours.iter().map(|c| c.flatten(boundary.flat_tol)).collect();
+        let index = DistanceIndex::new(&polys);
+        let lengths: Vec<f64> = boundary.contours.iter().map(Contour::length).collect();
+        let mut corners = Vec::new();
+        let mut all_corners = Vec::new();
+        for (ci, c) in boundary.contours.iter().enumerate() {
+            for k in c.corners(CORNER_TURN) {
+                all_corners.push((ci, k.s));
+                if k.turn > SINGULAR_TURN {
+                    let b = (k.t_out - k.t_in).normalized();
+                    let b = if b.norm2() > 0.5 { b } else { k.t_in.perp() };
+                    let depth = ray_cast(&polys, k.p, b, 1e-9 * boundary.radius);
+                    corners.push((ci, k.s, k.p, b, 0.5 * depth.min(lengths[ci] / 4.0)));
+                }
+            }
+        }
+        let mut sinks = Vec::new();
+        for (ci, c) in boundary.contours.iter().enumerate() {
+            if boundary.is_counter[ci] {
+                sinks.push(sink_for(c, &polys[ci], &index)?);
+            }
+        }
+        Ok(Prepared { boundary, polys, index, lengths, corners, all_corners, sinks })
+    }
+
+    /// Total length of the glyph contours.
+    pub fn perimeter(&self) -> f64 {
+        self.lengths.iter().sum()
+    }
+
+    /// Number of convex material corners (each gets a cluster when enabled).
+    pub fn singular_corners(&self) -> usize {
+        self.corners.len()
+    }
+
+    /// The flattened contours.
+    pub fn polygons(&self) -> &[Vec<Vec2>] {
+        &self.polys
+    }
+
+    /// Point `d` inside the material from sample `s` on contour `ci`, pulled back
+    /// where the material is thin so the charge stays at most 45 % of the way
+    /// across it and at least half its depth away from every other boundary part.
+    fn inward_charge(&self, s: &Sample, d: f64) -> Vec2 {
+        let n = s.t.perp();
+        let across = ray_cast(&self.polys, s.p, n, 1e-9 * self.boundary.radius);
+        let mut depth = d.min(0.45 * across);
+        for _ in 0..12 {
+            let q = s.p + n * depth;
+            if self.index.distance(q) >= 0.5 * depth {
+                return q;
+            }
+            depth *= 0.7;
+        }
+        s.p + n * depth
+    }
+
+    /// True when `p` lies in the material (inside an outline, outside its counters).
+    pub fn in_material(&self, p: Vec2) -> bool {
+        self.polys.iter().map(|poly| polygon_winding_number(poly, p)).sum::<i32>() > 0
+    }
+
+    /// Build the discrete problem for a layout: M = 2N collocation points.
+    pub fn problem(&self, layout: &Layout) -> Result<Problem, FieldError> {
+        let b = &self.boundary;
+        let n_sinks = self.sinks.len() * SINK_CHARGES;
+        let n_outer = OUTER_CHARGES;
+        let fixed = n_outer + n_sinks;
+        if layout.n_total < fixed + 4 * b.contours.len() {
+            return Err(FieldError::Invalid(format!(
+                "{} singularities are too few for this shape (at least {} needed)",
+                layout.n_total,
+                fixed + 4 * b.contours.len()
+            )));
+        }
+        let free = layout.n_total - fixed;
+        let n_corner_each = if layout.corner_clusters && !self.corners.is_empty() {
+            ((layout.corner_fraction * free as f64) / self.corners.len() as f64).floor() as usize
+        } else {
+            0
+        };
+        let n_corner_total = n_corner_each * self.corners.len();
+        let n_pb = free - n_corner_total;
+
+        let mut pr = Problem::default();
+        // Contours: uniform charges and collocation, shared out by length.
+        let total_len = self.perimeter();
+        let mut shares: Vec<usize> =
+            self.lengths.iter().map(|l| ((l / total_len) * n_pb as f64).floor().max(2.0) as usize).collect();
+        // Hand out the remainder to the longest contours so Σ = n_pb exactly.
+        let mut assigned: usize = shares.iter().sum();
+        let mut order: Vec<usize> = (0..shares.len()).collect();
+        order.sort_by(|&i, &j| self.lengths[j].total_cmp(&self.lengths[i]));
+        let mut k = 0;
+        while assigned < n_pb {
+            shares[order[k % order.len()]] += 1;
+            assigned += 1;
+            k += 1;
+        }
+        while assigned > n_pb {
+            let i = order[k % order.len()];
+            if shares[i] > 2 {
+                shares[i] -= 1;
+                assigned -= 1;
+            }
+            k += 1;
+        }
+        let mut colloc_s: Vec<Vec<f64>> = vec![Vec::new(); b.contours.len()];
+        for (ci, c) in b.contours.iter().enumerate() {
+            let nc = shares[ci];
+            let h = self.lengths[ci] / nc as f64;
+            for s in c.sample_uniform(nc, 0.0) {
+                pr.charges.push(self.inward_charge(&s, layout.distance));
+            }
+            let cum = c.cumulative_lengths();
+            for j in 0..2 * nc {
+                let s = (j as f64 + 0.5) * h / 2.0;
+                pr.colloc.push(Condition { p: c.sample_at(&cum, s).p, value: 1.0 });
+                colloc_s[ci].push(s);
+            }
+        }
+        // Corner clusters: charges along the bisector, two collocation points per
+        // charge, one on each side of the corner at the same distance.
+        if n_corner_each > 0 {
+            for &(ci, s0, p, dir, dmax) in &self.corners {
+                let c = &b.contours[ci];
+                let cum = c.cumulative_lengths();
+                let nn = n_corner_each as f64;
+                for j in 1..=n_corner_each {
+                    let delta = dmax * (-CLUSTER_SIGMA * (nn.sqrt() - (j as f64).sqrt())).exp();
+                    pr.charges.push(p + dir * delta);
+                    for side in [-1.0, 1.0] {
+                        let s = (s0 + side * delta).rem_euclid(self.lengths[ci]);
+                        pr.colloc.push(Condition { p: c.sample_at(&cum, s).p, value: 1.0 });
+                        colloc_s[ci].push(s);
+                    }
+                }
+            }
+        }
+        // Check points: 4 between every pair of neighbouring collocation points on
+        // each contour, plus every corner.
+        for (ci, c) in b.contours.iter().enumerate() {
+            let cum = c.cumulative_lengths();
+            let mut ss = colloc_s[ci].clone();
+            ss.sort_by(f64::total_cmp);
+            let l = self.lengths[ci];
+            for w in 0..ss.len() {
+                let a = ss[w];
+                let bnext = if w + 1 < ss.len() { ss[w + 1] } else { ss[0] + l };
+                for q in 1..=4 {
+                    let s = a + (bnext - a) * q as f64 / 5.0;
+                    pr.checks.push(Condition { p: c.sample_at(&cum, s).p, value: 1.0 });
+                }
+            }
+        }
+        for &(ci, s) in &self.all_corners {
+            let c = &b.contours[ci];
+            let cum = c.cumulative_lengths();
+            pr.checks.push(Condition { p: c.sample_at(&cum, s).p, value: 1.0 });
+        }
+        // Circles: outer (u = 0) and sinks (u = 0).
+        let circle = |centre: Vec2, radius: f64, charge_radius: f64, n: usize, pr: &mut Problem| {
+            for j in 0..n {
+                let a = TAU * (j as f64 + 0.25) / n as f64;
+                pr.charges.push(centre + Vec2::new(a.cos(), a.sin()) * charge_radius);
+            }
+            for j in 0..2 * n {
+                let a = TAU * j as f64 / (2 * n) as f64;
+                pr.colloc.push(Condition { p: centre + Vec2::new(a.cos(), a.sin()) * radius, value: 0.0 });
+                for q in 1..=4 {
+                    let a = TAU * (j as f64 + q as f64 / 5.0) / (2 * n) as f64;
+                    pr.checks.push(Condition { p: centre + Vec2::new(a.cos(), a.sin()) * radius, value: 0.0 });
+                }
+            }
+        };
+        circle(b.centre, b.radius, b.radius * OUTER_CHARGE_FACTOR, n_outer, &mut pr);
+        for sink in &self.sinks {
+            circle(sink.centre, sink.radius, sink.radius * 0.5, SINK_CHARGES, &mut pr);
+        }
+        debug_assert_eq!(pr.charges.len(), layout.n_total);
+        debug_assert_eq!(pr.colloc.len(), 2 * layout.n_total);
+        Ok(pr)
+    }
+}
+
+/// A sink for a counter: centred at the point of the counter farthest from its
+/// boundary (found on a grid, then refined), radius a quarter of that distance.
+fn sink_for(c: &Contour, poly: &[Vec2], index: &DistanceIndex) -> Result<Sink, FieldError> {
+    let (lo, hi) = c.bbox().ok_or_else(|| FieldError::Invalid("empty counter".into()))?;
+    let mut best = (0.0, lo);
+    let g = 40;
+    for i in 0..=g {
+        for j in 0..=g {
+            let p = Vec2::new(lo.x + (hi.x - lo.x) * i as f64 / g as f64, lo.y + (hi.y - lo.y) * j as f64 / g as f64);
+            if polygon_winding_number(poly, p) != 0 {
+                let d = index.distance(p);
+                if d > best.0 {
+                    best = (d, p);
+                }
+            }
+        }
+    }
+    if best.0 <= 0.0 {
+        return Err(FieldError::Invalid("a counter has no interior".into()));
+    }
+    // Refine by pattern search.
+    let mut step = (hi - lo).norm() / g as f64;
+    while step > best.0 * 1e-4 {
+        let mut moved = false;
+        for dir in [Vec2::new(1.0, 0.0), Vec2::new(-1.0, 0.0), Vec2::new(0.0, 1.0), Vec2::new(0.0, -1.0)] {
+            let p = best.1 + dir * step;
+            if polygon_winding_number(poly, p) != 0 {
+                let d = index.distance(p);
+                if d > best.0 {
+                    best = (d, p);
+                    moved = true;
+                }
+            }
+        }
+        if !moved {
+            step *= 0.5;
+        }
+    }
+    Ok(Sink { centre: best.1, radius: 0.25 * best.0 })
+}
