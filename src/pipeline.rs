@@ -1,7 +1,24 @@
 //! The whole run: job → shape → field → tool path, with the gouge check.
 
-use crate::job::Job;
+use crate::field::{self, Boundary, FieldError, Layout, Prepared};
+use crate::geometry::{build_shape, DistanceIndex, Shape};
+use crate::job::{Direction, Job};
+use crate::toolpath::gouge::{self, GougeReport};
+use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
 use crate::toolpath::Toolpath;
+
+/// Singularities per region when `field.singularities = "auto"`: enough for a
+/// navigation field with boundary error around 1e-3 on the paper's letters.
+pub const AUTO_N_PER_REGION: usize = 110;
+
+/// The outer circle (u = 0) has this many times the shape's bounding-box diagonal
+/// as radius: the paper's R = 1e4 font units is about 14 diagonals of its letter I.
+pub const OUTER_RADIUS_FACTOR: f64 = 14.0;
+
+/// The part is flattened for contact and gouge checks within this fraction of the
+/// job tolerance (the flattening's chords lie inside convex arcs, so this much of
+/// the tolerance is spent on them).
+pub const FLATTEN_FRACTION: f64 = 0.05;
 
 /// One MFS solve, as reported to the user.
 #[derive(Clone, Debug, PartialEq)]
@@ -54,13 +71,142 @@ pub enum PipelineError {
     /// The shape source is bad.
     #[error("shape: {0}")]
     Geometry(#[from] crate::geometry::GeometryError),
-    /// Anything else (filled in as the stages land).
+    /// The field could not be built or solved.
+    #[error("field: {0}")]
+    Field(#[from] FieldError),
+    /// A tool path could not be traced.
+    #[error("tool path: {0}")]
+    Profile(#[from] ProfileError),
+    /// The independent gouge check failed: the G-code is not written.
+    #[error("gouge check failed: a tool position at ({:.3}, {:.3}, {:.3}) is {:.4} mm closer to the part than the tool radius (tolerance {tol} mm)", at.x, at.y, at.z, -clearance)]
+    Gouge {
+        /// min clearance found (negative)
+        clearance: f64,
+        /// where
+        at: crate::toolpath::Vec3,
+        /// the tolerance
+        tol: f64,
+    },
+    /// Anything else.
     #[error("{0}")]
     Other(String),
 }
 
+/// The field set-up for a shape in mm.
+pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineError> {
+    let mut contours = Vec::new();
+    let mut is_counter = Vec::new();
+    for r in &shape.regions {
+        contours.push(r.outline.clone());
+        is_counter.push(false);
+        for c in &r.counters {
+            contours.push(c.clone());
+            is_counter.push(true);
+        }
+    }
+    if contours.is_empty() {
+        return Err(PipelineError::Other(
+            "the shape is empty: nothing to cut".into(),
+        ));
+    }
+    let (lo, hi) = shape
+        .bbox()
+        .ok_or_else(|| PipelineError::Other("the shape is empty".into()))?;
+    let centre = field::centroid(&contours, flat_tol);
+    let radius = OUTER_RADIUS_FACTOR * (hi - lo).norm();
+    Ok(Boundary {
+        contours,
+        is_counter,
+        centre,
+        radius,
+        flat_tol,
+    })
+}
+
 /// Run a job to a tool path.
 pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
-    let _ = (job, progress);
-    Err(PipelineError::Other("the pipeline is being built".into()))
+    let shape = build_shape(&job.shape)?;
+    let tol = job.operation.tolerance;
+    let flat_tol = tol * FLATTEN_FRACTION;
+    let boundary = boundary_for(&shape, flat_tol)?;
+    let n_total = job
+        .field
+        .singularities
+        .unwrap_or(AUTO_N_PER_REGION * shape.regions.len() + field::setup::OUTER_CHARGES);
+    progress(Progress::Stage {
+        name: "solving the potential field".into(),
+        total: 1,
+    });
+    let prep = Prepared::new(boundary)?;
+    let n_total = n_total + prep.sinks.len() * field::setup::SINK_CHARGES;
+    let base = Layout {
+        n_total,
+        distance: 1.0,
+        corner_clusters: true,
+        corner_fraction: field::DEFAULT_CORNER_FRACTION,
+    };
+    let solved = field::solve_with(&prep, base, job.field.pseudo_boundary)?;
+    progress(Progress::Step);
+    let solves = vec![SolveReport {
+        label: shape
+            .regions
+            .iter()
+            .map(|r| r.name.clone())
+            .collect::<Vec<_>>()
+            .join(" "),
+        n: solved.layout.n_total,
+        m: solved.m,
+        distance: solved.layout.distance,
+        max_error: solved.solution.max_error,
+    }];
+
+    let polys: Vec<Vec<_>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
+    let part = DistanceIndex::new(&polys);
+    let params = ProfileParams {
+        radius: job.tool.diameter / 2.0,
+        tol,
+        climb: job.operation.direction == Direction::Climb,
+        top: job.stock.top,
+        depth: job.operation.depth,
+        stepdown: job.tool.stepdown,
+        safe_z: job.stock.safe_z,
+        feed: job.tool.feed,
+        plunge_feed: job.tool.plunge_feed,
+    };
+    let mut warnings = Vec::new();
+    progress(Progress::Stage {
+        name: "tracing the tool path".into(),
+        total: 1,
+    });
+    let loops: Vec<Loop> = profile::trace_loops(
+        &shape,
+        &polys,
+        &part,
+        &solved.solution.field,
+        &params,
+        &mut warnings,
+    )?;
+    progress(Progress::Step);
+    let fallbacks: usize = loops.iter().map(|l| l.fallbacks).sum();
+    if fallbacks > 0 {
+        warnings.push(format!(
+            "{fallbacks} tracing steps used the geometric normal where the field gradient turned away from the part (near saddles of u)"
+        ));
+    }
+    let toolpath = profile::link(&loops, &params);
+    let report: GougeReport = gouge::check(&toolpath, &part, params.radius, params.top);
+    if !report.passes(tol) {
+        return Err(PipelineError::Gouge {
+            clearance: report.min_clearance,
+            at: report.at,
+            tol,
+        });
+    }
+    Ok(RunOutput {
+        toolpath,
+        solves,
+        min_clearance: report.min_clearance,
+        warnings,
+        glyphs: shape.regions.iter().map(|r| r.name.clone()).collect(),
+    })
 }

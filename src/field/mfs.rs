@@ -161,7 +161,11 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
         rmax = rmax.max(v);
         rmin = rmin.min(v);
     }
-    let condition = if rmin > 0.0 { rmax / rmin } else { f64::INFINITY };
+    let condition = if rmin > 0.0 {
+        rmax / rmin
+    } else {
+        f64::INFINITY
+    };
     if !(condition < MAX_CONDITION) {
         return Err(FieldError::IllConditioned { cond: condition });
     }
@@ -171,13 +175,24 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     if coef.iter().any(|c| !c.is_finite()) {
         return Err(FieldError::IllConditioned { cond: condition });
     }
-    let field = Field { charges: problem.charges.clone(), coef };
+    let field = Field {
+        charges: problem.charges.clone(),
+        coef,
+    };
     let max_error = max_error(&field, &problem.checks);
-    Ok(Solution { field, max_error, condition })
+    Ok(Solution {
+        field,
+        max_error,
+        condition,
+    })
 }
 
 /// max |u(P) − g(P)| over the given points.
 pub fn max_error(field: &Field, checks: &[Condition]) -> f64 {
     use rayon::prelude::*;
-    checks.par_iter().with_min_len(256).map(|c| (field.value(c.p) - c.value).abs()).reduce(|| 0.0, f64::max)
+    checks
+        .par_iter()
+        .with_min_len(256)
+        .map(|c| (field.value(c.p) - c.value).abs())
+        .reduce(|| 0.0, f64::max)
 }

@@ -49,8 +49,18 @@ pub fn solve_layout(prep: &Prepared, layout: &Layout) -> Result<(Solution, usize
 /// in [h/4, 8h] (h the mean spacing of the uniform singularities), in parallel,
 /// then `DISTANCE_REFINE` golden-section steps in log d around the best. The paper
 /// scanned 200 values of d; this takes 16 solves.
-pub fn solve_auto(prep: &Prepared, n_total: usize, distance: Option<f64>, corner_clusters: bool) -> Result<Solved, FieldError> {
-    let base = Layout { n_total, distance: 1.0, corner_clusters, corner_fraction: DEFAULT_CORNER_FRACTION };
+pub fn solve_auto(
+    prep: &Prepared,
+    n_total: usize,
+    distance: Option<f64>,
+    corner_clusters: bool,
+) -> Result<Solved, FieldError> {
+    let base = Layout {
+        n_total,
+        distance: 1.0,
+        corner_clusters,
+        corner_fraction: DEFAULT_CORNER_FRACTION,
+    };
     solve_with(prep, base, distance)
 }
 
@@ -61,11 +71,19 @@ pub fn solve_best(prep: &Prepared, n_total: usize) -> Result<Solved, FieldError>
     let mut last_err = None;
     let mut solves = 0;
     for f in CORNER_FRACTIONS {
-        let base = Layout { n_total, distance: 1.0, corner_clusters: true, corner_fraction: f };
+        let base = Layout {
+            n_total,
+            distance: 1.0,
+            corner_clusters: true,
+            corner_fraction: f,
+        };
         match solve_with(prep, base, None) {
             Ok(s) => {
                 solves += s.solves;
-                if best.as_ref().is_none_or(|b| s.solution.max_error < b.solution.max_error) {
+                if best
+                    .as_ref()
+                    .is_none_or(|b| s.solution.max_error < b.solution.max_error)
+                {
                     best = Some(s);
                 }
             }
@@ -82,22 +100,40 @@ pub fn solve_best(prep: &Prepared, n_total: usize) -> Result<Solved, FieldError>
 }
 
 /// As `solve_auto`, for a given layout (its `distance` is ignored unless fixed).
-pub fn solve_with(prep: &Prepared, base: Layout, distance: Option<f64>) -> Result<Solved, FieldError> {
+pub fn solve_with(
+    prep: &Prepared,
+    base: Layout,
+    distance: Option<f64>,
+) -> Result<Solved, FieldError> {
     let n_total = base.n_total;
     if let Some(d) = distance {
-        let layout = Layout { distance: d, ..base };
+        let layout = Layout {
+            distance: d,
+            ..base
+        };
         let (solution, m) = solve_layout(prep, &layout)?;
-        return Ok(Solved { solution, layout, solves: 1, m });
+        return Ok(Solved {
+            solution,
+            layout,
+            solves: 1,
+            m,
+        });
     }
     let h = prep.perimeter() / n_total as f64;
     let (lo, hi) = ((h / 4.0).ln(), (8.0 * h).ln());
-    let xs: Vec<f64> = (0..DISTANCE_SCAN).map(|i| lo + (hi - lo) * i as f64 / (DISTANCE_SCAN - 1) as f64).collect();
+    let xs: Vec<f64> = (0..DISTANCE_SCAN)
+        .map(|i| lo + (hi - lo) * i as f64 / (DISTANCE_SCAN - 1) as f64)
+        .collect();
     let eval = |x: f64| -> Result<(f64, Solution, usize), FieldError> {
-        let layout = Layout { distance: x.exp(), ..base };
+        let layout = Layout {
+            distance: x.exp(),
+            ..base
+        };
         let (sol, m) = solve_layout(prep, &layout)?;
         Ok((sol.max_error, sol, m))
     };
-    let scan: Vec<Result<(f64, Solution, usize), FieldError>> = xs.par_iter().map(|&x| eval(x)).collect();
+    let scan: Vec<Result<(f64, Solution, usize), FieldError>> =
+        xs.par_iter().map(|&x| eval(x)).collect();
     let mut best: Option<(f64, f64, Solution, usize)> = None;
     let mut errors = vec![f64::INFINITY; xs.len()];
     let mut first_err = None;
@@ -149,7 +185,15 @@ pub fn solve_with(prep: &Prepared, base: Layout, distance: Option<f64>) -> Resul
             best = (e, x, sol, m);
         }
     }
-    Ok(Solved { solution: best.2, layout: Layout { distance: best.1.exp(), ..base }, solves, m: best.3 })
+    Ok(Solved {
+        solution: best.2,
+        layout: Layout {
+            distance: best.1.exp(),
+            ..base
+        },
+        solves,
+        m: best.3,
+    })
 }
 
 /// Area centroid of the material bounded by the contours (outlines counter-clockwise
@@ -185,7 +229,13 @@ pub fn paper_boundary(ch: char) -> Result<Boundary, FieldError> {
         is_counter.push(true);
     }
     let centre = centroid(&contours, 0.01);
-    Ok(Boundary { contours, is_counter, centre, radius: 1e4, flat_tol: 0.01 })
+    Ok(Boundary {
+        contours,
+        is_counter,
+        centre,
+        radius: 1e4,
+        flat_tol: 0.01,
+    })
 }
 
 /// Is `p` inside the closed polygon? (winding number ≠ 0, Appendix I)
@@ -228,7 +278,12 @@ pub fn convergence_table(glyph: char, ns: &[usize]) -> Result<Vec<ConvergenceRow
     ns.iter()
         .map(|&n| {
             let s = solve_best(&prep, n)?;
-            Ok(ConvergenceRow { n, m: s.m, distance: s.layout.distance, max_error: s.solution.max_error })
+            Ok(ConvergenceRow {
+                n,
+                m: s.m,
+                distance: s.layout.distance,
+                max_error: s.solution.max_error,
+            })
         })
         .collect()
 }

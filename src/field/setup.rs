@@ -117,7 +117,11 @@ impl Prepared {
         if boundary.contours.is_empty() {
             return Err(FieldError::Invalid("the shape has no contours".into()));
         }
-        let polys: Vec<Vec<Vec2>> = boundary.contours.iter().map(|c| c.flatten(boundary.flat_tol)).collect();
+        let polys: Vec<Vec<Vec2>> = boundary
+            .contours
+            .iter()
+            .map(|c| c.flatten(boundary.flat_tol))
+            .collect();
         let index = DistanceIndex::new(&polys);
         let lengths: Vec<f64> = boundary.contours.iter().map(Contour::length).collect();
         let mut corners = Vec::new();
@@ -139,7 +143,15 @@ impl Prepared {
                 sinks.push(sink_for(c, &polys[ci], &index)?);
             }
         }
-        Ok(Prepared { boundary, polys, index, lengths, corners, all_corners, sinks })
+        Ok(Prepared {
+            boundary,
+            polys,
+            index,
+            lengths,
+            corners,
+            all_corners,
+            sinks,
+        })
     }
 
     /// Total length of the glyph contours.
@@ -176,7 +188,11 @@ impl Prepared {
 
     /// True when `p` lies in the material (inside an outline, outside its counters).
     pub fn in_material(&self, p: Vec2) -> bool {
-        self.polys.iter().map(|poly| polygon_winding_number(poly, p)).sum::<i32>() > 0
+        self.polys
+            .iter()
+            .map(|poly| polygon_winding_number(poly, p))
+            .sum::<i32>()
+            > 0
     }
 
     /// Build the discrete problem for a layout: M = 2N collocation points.
@@ -204,8 +220,11 @@ impl Prepared {
         let mut pr = Problem::default();
         // Contours: uniform charges and collocation, shared out by length.
         let total_len = self.perimeter();
-        let mut shares: Vec<usize> =
-            self.lengths.iter().map(|l| ((l / total_len) * n_pb as f64).floor().max(2.0) as usize).collect();
+        let mut shares: Vec<usize> = self
+            .lengths
+            .iter()
+            .map(|l| ((l / total_len) * n_pb as f64).floor().max(2.0) as usize)
+            .collect();
         // Hand out the remainder to the longest contours so Σ = n_pb exactly.
         let mut assigned: usize = shares.iter().sum();
         let mut order: Vec<usize> = (0..shares.len()).collect();
@@ -234,7 +253,10 @@ impl Prepared {
             let cum = c.cumulative_lengths();
             for j in 0..2 * nc {
                 let s = (j as f64 + 0.5) * h / 2.0;
-                pr.colloc.push(Condition { p: c.sample_at(&cum, s).p, value: 1.0 });
+                pr.colloc.push(Condition {
+                    p: c.sample_at(&cum, s).p,
+                    value: 1.0,
+                });
                 colloc_s[ci].push(s);
             }
         }
@@ -250,7 +272,10 @@ impl Prepared {
                     pr.charges.push(p + dir * delta);
                     for side in [-1.0, 1.0] {
                         let s = (s0 + side * delta).rem_euclid(self.lengths[ci]);
-                        pr.colloc.push(Condition { p: c.sample_at(&cum, s).p, value: 1.0 });
+                        pr.colloc.push(Condition {
+                            p: c.sample_at(&cum, s).p,
+                            value: 1.0,
+                        });
                         colloc_s[ci].push(s);
                     }
                 }
@@ -265,36 +290,65 @@ impl Prepared {
             let l = self.lengths[ci];
             for w in 0..ss.len() {
                 let a = ss[w];
-                let bnext = if w + 1 < ss.len() { ss[w + 1] } else { ss[0] + l };
+                let bnext = if w + 1 < ss.len() {
+                    ss[w + 1]
+                } else {
+                    ss[0] + l
+                };
                 for q in 1..=4 {
                     let s = a + (bnext - a) * q as f64 / 5.0;
-                    pr.checks.push(Condition { p: c.sample_at(&cum, s).p, value: 1.0 });
+                    pr.checks.push(Condition {
+                        p: c.sample_at(&cum, s).p,
+                        value: 1.0,
+                    });
                 }
             }
         }
         for &(ci, s) in &self.all_corners {
             let c = &b.contours[ci];
             let cum = c.cumulative_lengths();
-            pr.checks.push(Condition { p: c.sample_at(&cum, s).p, value: 1.0 });
+            pr.checks.push(Condition {
+                p: c.sample_at(&cum, s).p,
+                value: 1.0,
+            });
         }
         // Circles: outer (u = 0) and sinks (u = 0).
         let circle = |centre: Vec2, radius: f64, charge_radius: f64, n: usize, pr: &mut Problem| {
             for j in 0..n {
                 let a = TAU * (j as f64 + 0.25) / n as f64;
-                pr.charges.push(centre + Vec2::new(a.cos(), a.sin()) * charge_radius);
+                pr.charges
+                    .push(centre + Vec2::new(a.cos(), a.sin()) * charge_radius);
             }
             for j in 0..2 * n {
                 let a = TAU * j as f64 / (2 * n) as f64;
-                pr.colloc.push(Condition { p: centre + Vec2::new(a.cos(), a.sin()) * radius, value: 0.0 });
+                pr.colloc.push(Condition {
+                    p: centre + Vec2::new(a.cos(), a.sin()) * radius,
+                    value: 0.0,
+                });
                 for q in 1..=4 {
                     let a = TAU * (j as f64 + q as f64 / 5.0) / (2 * n) as f64;
-                    pr.checks.push(Condition { p: centre + Vec2::new(a.cos(), a.sin()) * radius, value: 0.0 });
+                    pr.checks.push(Condition {
+                        p: centre + Vec2::new(a.cos(), a.sin()) * radius,
+                        value: 0.0,
+                    });
                 }
             }
         };
-        circle(b.centre, b.radius, b.radius * OUTER_CHARGE_FACTOR, n_outer, &mut pr);
+        circle(
+            b.centre,
+            b.radius,
+            b.radius * OUTER_CHARGE_FACTOR,
+            n_outer,
+            &mut pr,
+        );
         for sink in &self.sinks {
-            circle(sink.centre, sink.radius, sink.radius * 0.5, SINK_CHARGES, &mut pr);
+            circle(
+                sink.centre,
+                sink.radius,
+                sink.radius * 0.5,
+                SINK_CHARGES,
+                &mut pr,
+            );
         }
         debug_assert_eq!(pr.charges.len(), layout.n_total);
         debug_assert_eq!(pr.colloc.len(), 2 * layout.n_total);
@@ -305,12 +359,17 @@ impl Prepared {
 /// A sink for a counter: centred at the point of the counter farthest from its
 /// boundary (found on a grid, then refined), radius a quarter of that distance.
 fn sink_for(c: &Contour, poly: &[Vec2], index: &DistanceIndex) -> Result<Sink, FieldError> {
-    let (lo, hi) = c.bbox().ok_or_else(|| FieldError::Invalid("empty counter".into()))?;
+    let (lo, hi) = c
+        .bbox()
+        .ok_or_else(|| FieldError::Invalid("empty counter".into()))?;
     let mut best = (0.0, lo);
     let g = 40;
     for i in 0..=g {
         for j in 0..=g {
-            let p = Vec2::new(lo.x + (hi.x - lo.x) * i as f64 / g as f64, lo.y + (hi.y - lo.y) * j as f64 / g as f64);
+            let p = Vec2::new(
+                lo.x + (hi.x - lo.x) * i as f64 / g as f64,
+                lo.y + (hi.y - lo.y) * j as f64 / g as f64,
+            );
             if polygon_winding_number(poly, p) != 0 {
                 let d = index.distance(p);
                 if d > best.0 {
@@ -326,7 +385,12 @@ fn sink_for(c: &Contour, poly: &[Vec2], index: &DistanceIndex) -> Result<Sink, F
     let mut step = (hi - lo).norm() / g as f64;
     while step > best.0 * 1e-4 {
         let mut moved = false;
-        for dir in [Vec2::new(1.0, 0.0), Vec2::new(-1.0, 0.0), Vec2::new(0.0, 1.0), Vec2::new(0.0, -1.0)] {
+        for dir in [
+            Vec2::new(1.0, 0.0),
+            Vec2::new(-1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(0.0, -1.0),
+        ] {
             let p = best.1 + dir * step;
             if polygon_winding_number(poly, p) != 0 {
                 let d = index.distance(p);
@@ -340,5 +404,8 @@ fn sink_for(c: &Contour, poly: &[Vec2], index: &DistanceIndex) -> Result<Sink, F
             step *= 0.5;
         }
     }
-    Ok(Sink { centre: best.1, radius: 0.25 * best.0 })
+    Ok(Sink {
+        centre: best.1,
+        radius: 0.25 * best.0,
+    })
 }

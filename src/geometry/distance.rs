@@ -181,4 +181,51 @@ impl DistanceIndex {
             .fold(f64::INFINITY, f64::min)
             .sqrt()
     }
+
+    /// Smallest distance between the segment `a`–`b` and any indexed edge (exact:
+    /// segment–segment distances over the edges in the cells the segment's box,
+    /// grown by `reach`, overlaps; edges further than `reach` may be missed, so the
+    /// result is exact whenever it is below `reach`).
+    pub fn segment_distance(&self, a: Vec2, b: Vec2, reach: f64) -> f64 {
+        if self.edges.is_empty() {
+            return f64::INFINITY;
+        }
+        let cell_of =
+            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        let i0 = cell_of(a.x.min(b.x) - reach, self.origin.x, self.nx);
+        let i1 = cell_of(a.x.max(b.x) + reach, self.origin.x, self.nx);
+        let j0 = cell_of(a.y.min(b.y) - reach, self.origin.y, self.ny);
+        let j1 = cell_of(a.y.max(b.y) + reach, self.origin.y, self.ny);
+        let mut best = f64::INFINITY;
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let c = j * self.nx + i;
+                for &e in &self.items[self.starts[c] as usize..self.starts[c + 1] as usize] {
+                    let (p, q) = self.edges[e as usize];
+                    best = best.min(seg_seg_dist(a, b, p, q));
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Distance between segments `a`–`b` and `p`–`q` (0 when they cross).
+pub fn seg_seg_dist(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> f64 {
+    let d1 = b - a;
+    let d2 = q - p;
+    let den = d1.cross(d2);
+    if den != 0.0 {
+        let t = (p - a).cross(d2) / den;
+        let u = (p - a).cross(d1) / den;
+        if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+            return 0.0;
+        }
+    }
+    seg_dist2(a, p, q)
+        .0
+        .min(seg_dist2(b, p, q).0)
+        .min(seg_dist2(p, a, b).0)
+        .min(seg_dist2(q, a, b).0)
+        .sqrt()
 }

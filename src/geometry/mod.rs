@@ -9,7 +9,7 @@ pub mod text;
 mod vec2;
 
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};
-pub use distance::DistanceIndex;
+pub use distance::{seg_seg_dist, DistanceIndex};
 pub use segment::Segment;
 pub use text::build_shape;
 pub use vec2::Vec2;

@@ -1,6 +1,10 @@
 //! Tool paths: the one intermediate representation that G-code, previews, time
 //! estimates and the gouge check all read (see `docs/architecture.md`).
 
+pub mod gouge;
+pub mod profile;
+pub mod trace;
+
 /// A point in machine coordinates, millimetres.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Vec3 {

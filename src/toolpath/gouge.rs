@@ -1,0 +1,92 @@
+//! The independent gouge check: plain geometry on the flattened part, never the
+//! field. Every feed move below the stock top is a straight segment in XY (arcs
+//! are checked on their flattening); its smallest distance to the part must be at
+//! least r − tolerance.
+
+use super::{Move, Toolpath, Vec3};
+use crate::geometry::{DistanceIndex, Vec2};
+
+/// The result of a gouge check.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GougeReport {
+    /// Smallest (distance to the part − r) over every cutting move, mm.
+    pub min_clearance: f64,
+    /// Where it was found (XY of the closest move's nearer end, and its Z).
+    pub at: Vec3,
+    /// Number of cutting moves checked.
+    pub moves_checked: usize,
+}
+
+impl GougeReport {
+    /// True when no move comes closer to the part than r − `tol`.
+    pub fn passes(&self, tol: f64) -> bool {
+        self.min_clearance >= -tol
+    }
+}
+
+/// Check every feed move below `top` against the part. Moves above `top` are in
+/// air and not checked.
+pub fn check(path: &Toolpath, part: &DistanceIndex, radius: f64, top: f64) -> GougeReport {
+    let mut rep = GougeReport {
+        min_clearance: f64::INFINITY,
+        at: path.start,
+        moves_checked: 0,
+    };
+    let mut at = path.start;
+    for m in path.moves() {
+        let to = m.to();
+        let below = at.z.min(to.z) < top - 1e-9;
+        match *m {
+            Move::Linear { .. } if below => {
+                let d = part.segment_distance(
+                    Vec2::new(at.x, at.y),
+                    Vec2::new(to.x, to.y),
+                    radius * 2.0,
+                );
+                let c = d.min(2.0 * radius) - radius;
+                rep.moves_checked += 1;
+                if c < rep.min_clearance {
+                    rep.min_clearance = c;
+                    rep.at = to;
+                }
+            }
+            Move::Arc { cx, cy, ccw, .. } if below => {
+                for (a, b) in flatten_arc(at, to, cx, cy, ccw, 1e-4) {
+                    let d = part.segment_distance(a, b, radius * 2.0);
+                    let c = d.min(2.0 * radius) - radius;
+                    if c < rep.min_clearance {
+                        rep.min_clearance = c;
+                        rep.at = to;
+                    }
+                }
+                rep.moves_checked += 1;
+            }
+            _ => {}
+        }
+        at = to;
+    }
+    rep
+}
+
+/// Chords of an XY arc within `tol` of it.
+fn flatten_arc(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, tol: f64) -> Vec<(Vec2, Vec2)> {
+    let r = (a.x - cx).hypot(a.y - cy);
+    let a0 = (a.y - cy).atan2(a.x - cx);
+    let a1 = (b.y - cy).atan2(b.x - cx);
+    let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
+    if sweep <= 1e-12 {
+        sweep += std::f64::consts::TAU;
+    }
+    let dth = 2.0
+        * (1.0 - tol / r.max(tol * 2.0))
+            .clamp(-1.0, 1.0)
+            .acos()
+            .max(1e-3);
+    let n = ((sweep / dth).ceil() as usize).clamp(1, 10_000);
+    let s = if ccw { 1.0 } else { -1.0 };
+    let pt = |k: usize| {
+        let th = a0 + s * sweep * k as f64 / n as f64;
+        Vec2::new(cx + r * th.cos(), cy + r * th.sin())
+    };
+    (0..n).map(|k| (pt(k), pt(k + 1))).collect()
+}

@@ -1,0 +1,221 @@
+//! The profile operation: the tool centre traced around every outline (outside)
+//! and inside every counter the tool fits into, cut in passes of at most
+//! `stepdown` from the stock top to the depth.
+
+use super::trace::{trace, Navigator, TraceError, TraceParams};
+use super::{Move, Section, Toolpath, Vec3};
+use crate::geometry::{polygon_winding_number, DistanceIndex, Shape, Vec2};
+
+/// Settings of a profile, mm and mm/min.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProfileParams {
+    /// Tool radius.
+    pub radius: f64,
+    /// Chord tolerance.
+    pub tol: f64,
+    /// Climb milling (material on the tool's right with an M3 spindle).
+    pub climb: bool,
+    /// Stock top Z.
+    pub top: f64,
+    /// Depth below the top.
+    pub depth: f64,
+    /// Largest depth per pass.
+    pub stepdown: f64,
+    /// Safe Z for rapids.
+    pub safe_z: f64,
+    /// Cutting feed.
+    pub feed: f64,
+    /// Plunge feed.
+    pub plunge_feed: f64,
+}
+
+/// One traced loop.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Loop {
+    /// e.g. `outside A (1)` or `counter 1 of A (1)`.
+    pub label: String,
+    /// Centre positions, closed (last = first).
+    pub points: Vec<Vec2>,
+    /// Field fallbacks (see `Traced::fallbacks`).
+    pub fallbacks: usize,
+}
+
+/// Why a profile failed.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum ProfileError {
+    /// Tracing one loop failed.
+    #[error("tracing {label}: {source}")]
+    Trace {
+        /// which loop
+        label: String,
+        /// why
+        source: TraceError,
+    },
+}
+
+/// Z of every pass: equal steps of at most `stepdown`, the last exactly at the depth.
+pub fn pass_depths(top: f64, depth: f64, stepdown: f64) -> Vec<f64> {
+    let n = ((depth / stepdown) - 1e-9).ceil().max(1.0) as usize;
+    (1..=n).map(|k| top - depth * k as f64 / n as f64).collect()
+}
+
+/// The point inside a closed polygon farthest from `part` (grid search then
+/// pattern refinement), with that distance.
+pub fn deepest_point(poly: &[Vec2], part: &DistanceIndex) -> (Vec2, f64) {
+    let (mut lo, mut hi) = (poly[0], poly[0]);
+    for p in poly {
+        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let mut best = (lo, -1.0);
+    let g = 48;
+    for i in 0..=g {
+        for j in 0..=g {
+            let p = Vec2::new(
+                lo.x + (hi.x - lo.x) * i as f64 / g as f64,
+                lo.y + (hi.y - lo.y) * j as f64 / g as f64,
+            );
+            if polygon_winding_number(poly, p) != 0 {
+                let d = part.distance(p);
+                if d > best.1 {
+                    best = (p, d);
+                }
+            }
+        }
+    }
+    if best.1 < 0.0 {
+        return best;
+    }
+    let mut step = (hi - lo).norm() / g as f64;
+    while step > 1e-6 {
+        let mut moved = false;
+        for dir in [
+            Vec2::new(1.0, 0.0),
+            Vec2::new(-1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(0.0, -1.0),
+        ] {
+            let p = best.0 + dir * step;
+            if polygon_winding_number(poly, p) != 0 {
+                let d = part.distance(p);
+                if d > best.1 {
+                    best = (p, d);
+                    moved = true;
+                }
+            }
+        }
+        if !moved {
+            step *= 0.5;
+        }
+    }
+    best
+}
+
+/// Trace every loop of the shape: for each region, its counters (inside first, so
+/// the part is still held while its holes are cut), then its outline.
+/// `polys[i]` is the flattening of the i-th contour of `shape.contours()`.
+pub fn trace_loops<N: Navigator + Sync>(
+    shape: &Shape,
+    polys: &[Vec<Vec2>],
+    part: &DistanceIndex,
+    nav: &N,
+    p: &ProfileParams,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Loop>, ProfileError> {
+    use rayon::prelude::*;
+    let r = p.radius;
+    let tp = TraceParams {
+        radius: r,
+        tol: p.tol,
+        part_on_left: !p.climb,
+    };
+    // (label, start point) for every loop, in cutting order.
+    let mut jobs: Vec<(String, Vec2)> = Vec::new();
+    let mut k = 0;
+    for region in &shape.regions {
+        let outline_poly = &polys[k];
+        k += 1;
+        for (ci, _) in region.counters.iter().enumerate() {
+            let poly = &polys[k];
+            k += 1;
+            let label = format!("counter {} of {}", ci + 1, region.name);
+            let (deep, room) = deepest_point(poly, part);
+            if room < r + p.tol {
+                warnings.push(format!(
+                    "{label} is too small for the tool (largest inscribed radius {room:.3} mm, tool radius {r:.3} mm): not cut"
+                ));
+                continue;
+            }
+            jobs.push((label, deep));
+        }
+        // Outside: start below the lowest point of the outline.
+        let low = outline_poly.iter().copied().fold(outline_poly[0], |a, b| {
+            if b.y < a.y || (b.y == a.y && b.x < a.x) {
+                b
+            } else {
+                a
+            }
+        });
+        jobs.push((
+            format!("outside {}", region.name),
+            low - Vec2::new(0.0, 2.0 * r + 1.0),
+        ));
+    }
+    jobs.par_iter()
+        .map(|(label, start)| {
+            trace(nav, part, *start, tp)
+                .map(|t| Loop {
+                    label: label.clone(),
+                    points: t.points,
+                    fallbacks: t.fallbacks,
+                })
+                .map_err(|source| ProfileError::Trace {
+                    label: label.clone(),
+                    source,
+                })
+        })
+        .collect()
+}
+
+/// Link the loops into a tool path: for each loop, rapid above its start at safe Z,
+/// rapid down to 1 mm above the stock, plunge to each pass depth at the plunge feed
+/// and cut the loop at the feed (the loop closes at its start, so the next pass
+/// plunges in place), then retract to safe Z.
+pub fn link(loops: &[Loop], p: &ProfileParams) -> Toolpath {
+    let depths = pass_depths(p.top, p.depth, p.stepdown);
+    let start = Vec3::new(0.0, 0.0, p.safe_z);
+    let approach = (p.top + 1.0).min(p.safe_z);
+    let mut sections = Vec::new();
+    for lp in loops {
+        let s0 = lp.points[0];
+        let mut moves = vec![
+            Move::Rapid {
+                to: Vec3::new(s0.x, s0.y, p.safe_z),
+            },
+            Move::Rapid {
+                to: Vec3::new(s0.x, s0.y, approach),
+            },
+        ];
+        for &z in &depths {
+            moves.push(Move::Linear {
+                to: Vec3::new(s0.x, s0.y, z),
+                feed: p.plunge_feed,
+            });
+            for q in &lp.points[1..] {
+                moves.push(Move::Linear {
+                    to: Vec3::new(q.x, q.y, z),
+                    feed: p.feed,
+                });
+            }
+        }
+        moves.push(Move::Rapid {
+            to: Vec3::new(s0.x, s0.y, p.safe_z),
+        });
+        sections.push(Section {
+            label: lp.label.clone(),
+            z: p.top - p.depth,
+            moves,
+        });
+    }
+    Toolpath { start, sections }
+}
