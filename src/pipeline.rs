@@ -123,9 +123,36 @@ pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineEr
     })
 }
 
-/// Run a job to a tool path.
-pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
-    let shape = build_shape(&job.shape)?;
+/// Everything computed before linking: the shape, its field, the traced loops.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    /// The shape in mm.
+    pub shape: Shape,
+    /// The flattened contours (in `shape.contours()` order) used for contact and checks.
+    pub polys: Vec<Vec<crate::geometry::Vec2>>,
+    /// The solved field.
+    pub field: field::Field,
+    /// One report per MFS solve.
+    pub solves: Vec<SolveReport>,
+    /// The traced loops of the tool centre, in cutting order.
+    pub loops: Vec<Loop>,
+    /// Profile settings derived from the job.
+    pub params: ProfileParams,
+    /// Warnings for the user.
+    pub warnings: Vec<String>,
+}
+
+/// Shape, field and traced loops for a job.
+pub fn plan(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<Plan, PipelineError> {
+    plan_shape(build_shape(&job.shape)?, job, progress)
+}
+
+/// As `plan`, for a shape already built (the job's shape source is not read).
+pub fn plan_shape(
+    shape: Shape,
+    job: &Job,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Plan, PipelineError> {
     let tol = job.operation.tolerance;
     let flat_tol = tol * FLATTEN_FRACTION;
     let boundary = boundary_for(&shape, flat_tol)?;
@@ -138,7 +165,11 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
         total: 1,
     });
     let prep = Prepared::new(boundary)?;
-    let n_total = n_total + prep.sinks.len() * field::setup::SINK_CHARGES;
+    let n_total = if job.field.singularities.is_some() {
+        n_total
+    } else {
+        n_total + prep.sinks.len() * field::setup::SINK_CHARGES
+    };
     let base = Layout {
         n_total,
         distance: 1.0,
@@ -159,7 +190,6 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
         distance: solved.layout.distance,
         max_error: solved.solution.max_error,
     }];
-
     let polys: Vec<Vec<_>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
     let part = DistanceIndex::new(&polys);
     let params = ProfileParams {
@@ -178,23 +208,35 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
         name: "tracing the tool path".into(),
         total: 1,
     });
-    let loops: Vec<Loop> = profile::trace_loops(
-        &shape,
-        &polys,
-        &part,
-        &solved.solution.field,
-        &params,
-        &mut warnings,
-    )?;
+    let field = solved.solution.field;
+    let loops: Vec<Loop> =
+        profile::trace_loops(&shape, &polys, &part, &field, &params, &mut warnings)?;
     progress(Progress::Step);
     let fallbacks: usize = loops.iter().map(|l| l.fallbacks).sum();
     if fallbacks > 0 {
         warnings.push(format!(
-            "{fallbacks} tracing steps used the geometric normal where the field gradient turned away from the part (near saddles of u)"
+            "{fallbacks} tracing steps were started from the geometric normal where the field gradient did not point at the part"
         ));
     }
-    let toolpath = profile::link(&loops, &params);
-    let report: GougeReport = gouge::check(&toolpath, &part, params.radius, params.top);
+    Ok(Plan {
+        shape,
+        polys,
+        field,
+        solves,
+        loops,
+        params,
+        warnings,
+    })
+}
+
+/// Run a job to a tool path: plan, link, and the independent gouge check (a
+/// failing check is an error: no tool path is returned).
+pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
+    let plan = plan(job, progress)?;
+    let toolpath = profile::link(&plan.loops, &plan.params);
+    let part = DistanceIndex::new(&plan.polys);
+    let report: GougeReport = gouge::check(&toolpath, &part, plan.params.radius, plan.params.top);
+    let tol = plan.params.tol;
     if !report.passes(tol) {
         return Err(PipelineError::Gouge {
             clearance: report.min_clearance,
@@ -204,9 +246,9 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
     }
     Ok(RunOutput {
         toolpath,
-        solves,
+        solves: plan.solves,
         min_clearance: report.min_clearance,
-        warnings,
-        glyphs: shape.regions.iter().map(|r| r.name.clone()).collect(),
+        warnings: plan.warnings,
+        glyphs: plan.shape.regions.iter().map(|r| r.name.clone()).collect(),
     })
 }

@@ -153,6 +153,9 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
             a[(i, j)] *= sj;
         }
     }
+    // Sequential QR: the result must not depend on the thread count (same job,
+    // same G-code); pfcam parallelises over whole solves and loops instead.
+    faer::set_global_parallelism(faer::Par::Seq);
     let qr = a.qr();
     let r = qr.thin_R();
     let (mut rmax, mut rmin) = (0.0_f64, f64::INFINITY);
@@ -166,7 +169,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     } else {
         f64::INFINITY
     };
-    if !(condition < MAX_CONDITION) {
+    if condition.is_nan() || condition >= MAX_CONDITION {
         return Err(FieldError::IllConditioned { cond: condition });
     }
     let rhs = Mat::<f64>::from_fn(m, 1, |i, _| problem.colloc[i].value);

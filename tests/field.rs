@@ -1,0 +1,220 @@
+//! The MFS field against what it claims: derivatives, an exact solution, the
+//! reported boundary error, and the paper's Table 3.2.
+
+use pfcam::field::{self, mfs, Boundary, Field, Layout, Prepared};
+use pfcam::geometry::{Contour, Segment, Vec2};
+
+/// A fixed-seed generator (no rand crate needed).
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn paper_i_field(n: usize) -> (Prepared, field::Solved) {
+    let prep = Prepared::new(field::paper_boundary('I').unwrap()).unwrap();
+    let solved = field::solve_auto(&prep, n, None, true).unwrap();
+    (prep, solved)
+}
+
+#[test]
+fn gradient_and_hessian_match_finite_differences() {
+    let (prep, solved) = paper_i_field(148);
+    let f: &Field = &solved.solution.field;
+    let mut rng = Lcg(7);
+    let mut checked = 0;
+    let mut worst_g: f64 = 0.0;
+    let mut worst_h: f64 = 0.0;
+    while checked < 200 {
+        // Points in the void around the letter (font units), away from the charges.
+        let p = Vec2::new(-300.0 + 900.0 * rng.next(), -300.0 + 1300.0 * rng.next());
+        if prep.in_material(p) || f.charges().iter().any(|q| q.dist(p) < 20.0) {
+            continue;
+        }
+        checked += 1;
+        let h = 1e-3;
+        let dx = Vec2::new(h, 0.0);
+        let dy = Vec2::new(0.0, h);
+        let fd = Vec2::new(
+            (f.value(p + dx) - f.value(p - dx)) / (2.0 * h),
+            (f.value(p + dy) - f.value(p - dy)) / (2.0 * h),
+        );
+        let g = f.grad(p);
+        let (v, g2) = f.value_grad(p);
+        assert!((v - f.value(p)).abs() <= 1e-14 * v.abs().max(1.0));
+        assert!((g - g2).norm() <= 1e-14 * g.norm().max(1e-12));
+        worst_g = worst_g.max((g - fd).norm() / g.norm().max(1e-12));
+        let hs = f.hessian(p);
+        let gx = (f.grad(p + dx) - f.grad(p - dx)) / (2.0 * h);
+        let gy = (f.grad(p + dy) - f.grad(p - dy)) / (2.0 * h);
+        let scale = gx.norm().max(gy.norm()).max(1e-14);
+        worst_h = worst_h
+            .max((hs[0][0] - gx.x).abs() / scale)
+            .max((hs[0][1] - gx.y).abs() / scale)
+            .max((hs[1][1] - gy.y).abs() / scale);
+        // u is harmonic: the Laplacian by finite differences of u vanishes.
+        let lap = (f.value(p + dx) + f.value(p - dx) + f.value(p + dy) + f.value(p - dy)
+            - 4.0 * f.value(p))
+            / (h * h);
+        assert!(
+            lap.abs() <= 1e-3 * scale.max(1e-9) + 1e-6,
+            "laplacian {lap} at {p:?}"
+        );
+    }
+    assert!(
+        worst_g < 1e-6,
+        "gradient vs finite differences: {worst_g:e}"
+    );
+    assert!(worst_h < 1e-5, "hessian vs finite differences: {worst_h:e}");
+}
+
+fn circle_contour(c: Vec2, r: f64, ccw: bool) -> Contour {
+    // 32 cubic arcs with handles 4/3·tan(θ/4)·r: radial deviation about 1e-10·r.
+    let n = 32;
+    let th = std::f64::consts::TAU / n as f64;
+    let k = 4.0 / 3.0 * (th / 4.0).tan() * r;
+    let at = |i: usize| {
+        let a = th * i as f64;
+        (
+            Vec2::new(a.cos(), a.sin()) * r,
+            Vec2::new(-a.sin(), a.cos()),
+        )
+    };
+    let segs: Vec<Segment> = (0..n)
+        .map(|i| {
+            let (a, ta) = at(i);
+            let (b, tb) = at(i + 1);
+            Segment::Cubic {
+                p0: c + a,
+                p1: c + a + ta * k,
+                p2: c + b - tb * k,
+                p3: c + b,
+            }
+        })
+        .collect();
+    let contour = Contour::new(segs).unwrap();
+    if ccw {
+        contour
+    } else {
+        contour.reversed()
+    }
+}
+
+#[test]
+fn annulus_matches_the_exact_solution() {
+    // u = 1 on a circle of radius a, u = 0 on radius R: u = ln(R/r)/ln(R/a).
+    let (a, big) = (10.0, 1000.0);
+    let b = Boundary {
+        contours: vec![circle_contour(Vec2::ZERO, a, true)],
+        is_counter: vec![false],
+        centre: Vec2::ZERO,
+        radius: big,
+        flat_tol: 1e-4,
+    };
+    let prep = Prepared::new(b).unwrap();
+    let solved = field::solve_auto(&prep, 80, None, false).unwrap();
+    let f = &solved.solution.field;
+    assert!(
+        solved.solution.max_error < 1e-3,
+        "max boundary error {}",
+        solved.solution.max_error
+    );
+    for r in [12.0, 20.0, 50.0, 200.0, 900.0] {
+        for k in 0..16 {
+            let th = k as f64 * 0.4;
+            let p = Vec2::new(r * th.cos(), r * th.sin());
+            let exact = (big / r).ln() / (big / a).ln();
+            // By the maximum principle the interior error is bounded by the boundary error.
+            assert!(
+                (f.value(p) - exact).abs() <= solved.solution.max_error * 1.01 + 1e-12,
+                "r {r}: {} vs {exact}",
+                f.value(p)
+            );
+        }
+    }
+}
+
+#[test]
+fn reported_max_error_is_the_boundary_maximum() {
+    // Sample the glyph boundary independently (20 000 points, every segment) and
+    // check that the error found there is not larger than the reported one by more
+    // than a small factor: the check points (4 per collocation interval and every
+    // corner) must catch the maximum.
+    let (prep, solved) = paper_i_field(272);
+    let f = &solved.solution.field;
+    let c = &prep.boundary.contours[0];
+    let mut worst: f64 = 0.0;
+    for seg in &c.segments {
+        for k in 0..=1000 {
+            worst = worst.max((f.value(seg.eval(k as f64 / 1000.0)) - 1.0).abs());
+        }
+    }
+    let reported = solved.solution.max_error;
+    assert!(
+        worst <= 1.25 * reported,
+        "independent max {worst:e} vs reported {reported:e}"
+    );
+    assert!(
+        worst >= 0.5 * reported,
+        "reported {reported:e} but independent max only {worst:e}"
+    );
+}
+
+#[test]
+fn table_3_2_is_reproduced_and_beaten() {
+    // The paper's Table 3.2 (letter I, M = 2N): every error at most the paper's.
+    let paper = [
+        (78, 0.921e-2),
+        (148, 0.504e-2),
+        (272, 0.871e-3),
+        (396, 0.413e-3),
+        (516, 0.255e-3),
+    ];
+    let ns: Vec<usize> = paper.iter().map(|p| p.0).collect();
+    let rows = field::convergence_table('I', &ns).unwrap();
+    for (row, (n, err)) in rows.iter().zip(paper) {
+        assert_eq!(row.n, n);
+        assert_eq!(row.m, 2 * n);
+        assert!(
+            row.max_error <= err,
+            "N = {n}: {:e} > paper {err:e}",
+            row.max_error
+        );
+    }
+}
+
+#[test]
+fn fixed_distance_is_used_as_given() {
+    let prep = Prepared::new(field::paper_boundary('I').unwrap()).unwrap();
+    let s = field::solve_auto(&prep, 148, Some(5.0), true).unwrap();
+    assert_eq!(s.layout.distance, 5.0);
+    assert_eq!(s.solves, 1);
+    let (sol, m) = field::solve_layout(
+        &prep,
+        &Layout {
+            distance: 5.0,
+            ..s.layout
+        },
+    )
+    .unwrap();
+    assert_eq!(m, 296);
+    assert_eq!(sol.max_error, s.solution.max_error);
+}
+
+#[test]
+fn too_few_singularities_is_a_typed_error() {
+    let prep = Prepared::new(field::paper_boundary('A').unwrap()).unwrap();
+    let e = field::solve_auto(&prep, 10, None, true).unwrap_err();
+    assert!(e.to_string().contains("too few"), "{e}");
+}
+
+#[test]
+fn kernel_is_the_fundamental_solution() {
+    let p = Vec2::new(3.0, 4.0);
+    assert!((mfs::kernel(p, Vec2::ZERO) + 5f64.ln() / std::f64::consts::TAU).abs() < 1e-15);
+}
