@@ -5,6 +5,7 @@
 //! and never panics on user input.
 
 pub mod field;
+pub mod gcode;
 pub mod geometry;
 pub mod job;
 pub mod pipeline;
