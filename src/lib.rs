@@ -8,5 +8,6 @@ pub mod field;
 pub mod gcode;
 pub mod geometry;
 pub mod job;
+pub mod output;
 pub mod pipeline;
 pub mod toolpath;
