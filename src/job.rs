@@ -1031,3 +1031,72 @@ depth = 3.0
         assert!(e.to_string().contains("/no/such/job.toml"), "{e}");
     }
 }
+
+#[cfg(test)]
+mod doc_tests {
+    use super::*;
+
+    const DOC: &str = include_str!("../docs/job-format.md");
+
+    #[test]
+    fn every_key_is_documented() {
+        let keys = [
+            "name",
+            "text",
+            "font",
+            "height",
+            "letter_spacing",
+            "origin",
+            "svg_path",
+            "diameter",
+            "feed",
+            "plunge_feed",
+            "spindle",
+            "stepdown",
+            "top",
+            "safe_z",
+            "kind",
+            "side",
+            "depth",
+            "tolerance",
+            "direction",
+            "singularities",
+            "pseudo_boundary",
+            "rapid_rate",
+            "spindle_dwell",
+        ];
+        for k in keys {
+            assert!(
+                DOC.contains(&format!("| `{k}` |")),
+                "{k} is not in docs/job-format.md"
+            );
+        }
+        for t in [
+            "job",
+            "shape",
+            "tool",
+            "stock",
+            "operation",
+            "field",
+            "machine",
+        ] {
+            assert!(
+                DOC.contains(&format!("## `[{t}]`")),
+                "[{t}] is not documented"
+            );
+        }
+    }
+
+    #[test]
+    fn the_documented_example_is_valid() {
+        let start = DOC.find("```toml\n").map(|i| i + 8);
+        let block = start.and_then(|s| DOC[s..].find("```").map(|e| &DOC[s..s + e]));
+        let Some(block) = block else {
+            panic!("no toml example in docs/job-format.md")
+        };
+        match parse_job(block, "x", Path::new(".")) {
+            Ok(j) => assert_eq!(j.name, "mfs-sign"),
+            Err(e) => panic!("docs example: {e}"),
+        }
+    }
+}

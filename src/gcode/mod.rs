@@ -8,7 +8,7 @@ pub mod compare;
 pub mod writer;
 
 pub use compare::{compare_gcode, GcodeDiff, GOLDEN_TOLERANCE};
-pub use writer::{write_gcode, GcodeError, DECIMALS, MAX_LINE_LEN};
+pub use writer::{format_duration, write_gcode, GcodeError, DECIMALS, MAX_LINE_LEN};
 
 /// What every pfcam G-code file's first line starts with.
 pub const HEADER_PREFIX: &str = "(pfcam ";
