@@ -1,7 +1,7 @@
 (pfcam 0.1.0 job hand-rounded-rect)
 (tool: 3.175 mm end mill, feed 800, plunge 200 mm/min, spindle 18000 rpm)
 (stock: top 0, safe z 5 mm)
-(operation: profile outside, depth 2, stepdown 1, tolerance 0.01 mm)
+(operation: profile outside climb, depth 2, stepdown 1, tol 0.01 mm)
 (cut min: X0 Y0 Z-2)
 (cut max: X30 Y20 Z5)
 (length: cut 199.3 mm, rapid 17 mm)

@@ -308,9 +308,9 @@ pub struct RawOperation {
 #[serde(deny_unknown_fields)]
 pub struct RawField {
     /// `singularities`: `"auto"` or a count
-    pub singularities: Option<AutoOr<i64>>,
+    pub singularities: Option<AutoOr>,
     /// `pseudo_boundary`: `"auto"` or a distance in mm
-    pub pseudo_boundary: Option<AutoOr<f64>>,
+    pub pseudo_boundary: Option<AutoOr>,
 }
 
 /// `[machine]`
@@ -323,14 +323,43 @@ pub struct RawMachine {
     pub spindle_dwell: Option<f64>,
 }
 
-/// A value that may also be the word `"auto"`.
-#[derive(Debug, Deserialize)]
-#[serde(untagged)]
-pub enum AutoOr<T> {
-    /// A number.
-    Value(T),
-    /// A word; only `auto` is accepted.
+/// A number, or a word (only `"auto"` is accepted; any other word is reported
+/// with its key by [`RawJob::resolve`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum AutoOr {
+    /// An integer.
+    Int(i64),
+    /// A float.
+    Float(f64),
+    /// A word.
     Word(String),
+}
+
+impl<'de> Deserialize<'de> for AutoOr {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = AutoOr;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("\"auto\" or a number")
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<AutoOr, E> {
+                Ok(AutoOr::Int(v))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<AutoOr, E> {
+                i64::try_from(v)
+                    .map(AutoOr::Int)
+                    .map_err(|_| E::custom(format!("{v} is too large")))
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<AutoOr, E> {
+                Ok(AutoOr::Float(v))
+            }
+            fn visit_str<E>(self, v: &str) -> Result<AutoOr, E> {
+                Ok(AutoOr::Word(v.to_string()))
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 /// Read and resolve a job file. The job name defaults to the file stem, and a font
@@ -612,7 +641,13 @@ impl RawJob {
                     auto_word("field.singularities", &w, "a whole number of singularities")?;
                     None
                 }
-                Some(AutoOr::Value(n)) => {
+                Some(AutoOr::Float(x)) => {
+                    return Err(invalid(
+                        "field.singularities",
+                        format!("must be \"auto\" or a whole number, got {}", show(x)),
+                    ))
+                }
+                Some(AutoOr::Int(n)) => {
                     if n < 1 {
                         return Err(invalid(
                             "field.singularities",
@@ -630,7 +665,8 @@ impl RawJob {
                 auto_word("field.pseudo_boundary", &w, "a distance in mm")?;
                 None
             }
-            Some(AutoOr::Value(d)) => Some(positive("field.pseudo_boundary", d, "mm")?),
+            Some(AutoOr::Int(d)) => Some(positive("field.pseudo_boundary", d as f64, "mm")?),
+            Some(AutoOr::Float(d)) => Some(positive("field.pseudo_boundary", d, "mm")?),
         };
         let field = FieldSpec {
             singularities,
@@ -1007,6 +1043,12 @@ depth = 3.0
             err_key(&with("field", "pseudo_boundary = -2.0")).0,
             "field.pseudo_boundary"
         );
+        let (k, msg) = err_key(&with("field", "singularities = 12.5"));
+        assert_eq!(k, "field.singularities");
+        assert!(msg.contains("whole number"), "{msg}");
+        let (k, msg) = err_key(&with("field", "pseudo_boundary = true"));
+        assert_eq!(k, "field.pseudo_boundary");
+        assert!(msg.contains("\"auto\" or a number"), "{msg}");
     }
 
     #[test]

@@ -19,7 +19,7 @@
 //! only words GRBL 1.1 accepts are written. The output depends on nothing but the
 //! input, so the same job gives byte-identical files.
 
-use crate::job::Job;
+use crate::job::{Direction, Job, OperationKind, Side};
 use crate::toolpath::{Move, Toolpath, Vec3};
 use std::fmt::Write as _;
 
@@ -295,8 +295,18 @@ pub fn write_gcode(tp: &Toolpath, job: &Job) -> Result<String, GcodeError> {
         fmt_num(job.stock.top),
         fmt_num(job.stock.safe_z)
     )));
+    let kind = match job.operation.kind {
+        OperationKind::Profile => "profile",
+    };
+    let side = match job.operation.side {
+        Side::Outside => "outside",
+    };
+    let direction = match job.operation.direction {
+        Direction::Climb => "climb",
+        Direction::Conventional => "conventional",
+    };
     l.push(comment(&format!(
-        "operation: profile outside, depth {}, stepdown {}, tolerance {} mm",
+        "operation: {kind} {side} {direction}, depth {}, stepdown {}, tol {} mm",
         fmt_num(job.operation.depth),
         fmt_num(job.tool.stepdown),
         fmt_num(job.operation.tolerance)
@@ -632,5 +642,60 @@ mod tests {
             write_gcode(&tp, &job()),
             Err(GcodeError::LineTooLong { .. })
         ));
+    }
+
+    /// Arcs at awkward angles and coordinates still pass GRBL 1.1's check that
+    /// the start and the end are at the same distance from the centre (error 33
+    /// when they differ by more than 0.005 mm and 0.1 % of the radius).
+    #[test]
+    fn arcs_pass_grbls_radius_check() {
+        let mut moves = Vec::new();
+        let (cx, cy) = (12.345_678, -7.654_321);
+        for k in 0..40 {
+            let r = 0.3 + 0.731 * k as f64;
+            let a0 = 0.1 + 0.37 * k as f64;
+            let a1 = a0 + 0.05 + 0.29 * k as f64;
+            let at = |a: f64| Vec3::new(cx + r * a.cos(), cy + r * a.sin(), -1.0);
+            moves.push(Move::Linear {
+                to: at(a0),
+                feed: 500.0,
+            });
+            moves.push(Move::Arc {
+                to: at(a1),
+                cx,
+                cy,
+                ccw: k % 2 == 0,
+                feed: 500.0,
+            });
+        }
+        let tp = Toolpath {
+            start: Vec3::new(0.0, 0.0, 5.0),
+            sections: vec![Section {
+                label: "arcs".into(),
+                z: -1.0,
+                moves,
+            }],
+        };
+        let g = write_gcode(&tp, &job()).unwrap();
+        let (mut x, mut y) = (0.0, 0.0);
+        let mut arcs = 0;
+        for line in g.lines().filter(|l| !l.starts_with('(')) {
+            let word = |c: char| {
+                line.split(' ')
+                    .find_map(|w| w.strip_prefix(c).and_then(|n| n.parse::<f64>().ok()))
+            };
+            let (nx, ny) = (word('X').unwrap_or(x), word('Y').unwrap_or(y));
+            if line.starts_with("G2 ") || line.starts_with("G3 ") {
+                let (i, j) = (word('I').unwrap(), word('J').unwrap());
+                let (ccx, ccy) = (x + i, y + j);
+                let r0 = i.hypot(j);
+                let r1 = (nx - ccx).hypot(ny - ccy);
+                let dr = (r0 - r1).abs();
+                assert!(dr <= 0.005 || dr <= 0.001 * r1, "{line}: radii {r0} {r1}");
+                arcs += 1;
+            }
+            (x, y) = (nx, ny);
+        }
+        assert_eq!(arcs, 40);
     }
 }
