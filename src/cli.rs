@@ -90,6 +90,15 @@ pub fn run(args: Args) -> Result<()> {
     }
 }
 
+/// Whether the error is only that our reader went away (`pfcam glyphs | head -1`),
+/// which, as in ripgrep, is not a failure.
+pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
+
 /// The exit status for an error from [`run`].
 pub fn exit_code(e: &anyhow::Error) -> u8 {
     if e.chain().any(|c| c.is::<OutputError>()) {

@@ -21,6 +21,7 @@ fn main() -> ExitCode {
     };
     match cli::run(args) {
         Ok(()) => ExitCode::from(cli::EXIT_OK),
+        Err(e) if cli::is_broken_pipe(&e) => ExitCode::from(cli::EXIT_OK),
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::from(cli::exit_code(&e))
