@@ -1,0 +1,38 @@
+(pfcam 0.1.0 job hand-rounded-rect)
+(tool: 3.175 mm end mill, feed 800, plunge 200 mm/min, spindle 18000 rpm)
+(stock: top 0, safe z 5 mm)
+(operation: profile outside climb, depth 2, stepdown 1, tol 0.01 mm)
+(cut min: X0 Y0 Z-2)
+(cut max: X30 Y20 Z5)
+(length: cut 199.3 mm, rapid 17 mm)
+(estimated time: 19 s, rapids at 1000 mm/min, acceleration ignored)
+G21 G90 G17 G94
+G0 Z5
+G0 X0 Y0
+M3 S18000
+G4 P2
+(rounded rectangle [1], z -1.000)
+G0 X4
+G1 Z-1 F200
+G1 X26 F800
+G3 X30 Y4 I0 J4
+G1 Y16
+G3 X26 Y20 I-4 J0
+G1 X4
+G3 X0 Y16 I0 J-4
+G1 Y4
+G3 X4 Y0 I4 J0
+G0 Z5
+(rounded rectangle [2], z -2.000)
+G1 Z-2 F200
+G1 X26 F800
+G3 X30 Y4 I0 J4
+G1 Y16
+G3 X26 Y20 I-4 J0
+G1 X4
+G3 X0 Y16 I0 J-4
+G1 Y4
+G3 X4 Y0 I4 J0
+G0 Z5
+M5
+M2

@@ -1,0 +1,276 @@
+//! The command line: argument definitions (clap) and one function per command.
+//! Everything here is front end: it calls the library, shows progress, prints
+//! results and turns errors into exit codes (see [`exit_code`]).
+
+use anyhow::{anyhow, bail, Context, Result};
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use pfcam::gcode::{format_duration, write_gcode};
+use pfcam::geometry::{build_shape, glyphs::paper_chars};
+use pfcam::job::{load_job, Job, JobError};
+use pfcam::output::{check_target, write_atomic, OutputError};
+use pfcam::pipeline::{self, Progress, RunOutput};
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+/// Exit status: success.
+pub const EXIT_OK: u8 = 0;
+/// Exit status: the job, its shape or the run failed (the message says where).
+pub const EXIT_FAILED: u8 = 1;
+/// Exit status: the command line itself is wrong (clap's usage errors).
+pub const EXIT_USAGE: u8 = 2;
+/// Exit status: the output file could not be written or would overwrite a file
+/// pfcam did not write (without `--force`).
+pub const EXIT_OUTPUT: u8 = 3;
+
+/// pfcam: potential-field (MFS) CNC tool paths, as G-code for GRBL 1.1.
+#[derive(Debug, Parser)]
+#[command(name = "pfcam", version, about, long_about = None)]
+pub struct Args {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Generate the tool path of a job and write it as G-code to DIR/<name>.nc.
+    Run {
+        /// The job file (TOML, see docs/job-format.md).
+        job: PathBuf,
+        /// Directory for the output file (created if missing).
+        #[arg(long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// Overwrite DIR/<name>.nc even if pfcam did not write it.
+        #[arg(long)]
+        force: bool,
+        /// No progress and no summary (warnings and errors are still printed).
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Check a job file and its shape without running it; prints `ok: <name>`.
+    Validate {
+        /// The job file.
+        job: PathBuf,
+    },
+    /// List the glyphs of the built-in `paper` font.
+    Glyphs,
+    /// The convergence study of the paper's Table 3.2 for a built-in glyph.
+    Convergence {
+        /// The glyph (one of `pfcam glyphs`).
+        #[arg(long)]
+        glyph: char,
+        /// Numbers of singularities N, comma separated (M = 2N).
+        #[arg(long, value_delimiter = ',', default_values_t = [78, 148, 272, 396, 516])]
+        n: Vec<usize>,
+        /// Print a JSON array of {n, m, distance, max_error} instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    // ---------------------------------------------------------------------
+    // `pfcam stream`: the lead adds it here (sending a .nc file to GRBL over a
+    // serial port with pfcam::grbl), with a `Command::Stream { .. } =>` arm in
+    // `run` below. Its errors should map to their own exit code in `exit_code`.
+    // ---------------------------------------------------------------------
+}
+
+/// Run a parsed command line.
+pub fn run(args: Args) -> Result<()> {
+    match args.command {
+        Command::Run {
+            job,
+            out,
+            force,
+            quiet,
+        } => cmd_run(&job, &out, force, quiet),
+        Command::Validate { job } => cmd_validate(&job),
+        Command::Glyphs => cmd_glyphs(),
+        Command::Convergence { glyph, n, json } => cmd_convergence(glyph, &n, json),
+    }
+}
+
+/// Whether the error is only that our reader went away (`pfcam glyphs | head -1`),
+/// which, as in ripgrep, is not a failure.
+pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
+
+/// The exit status for an error from [`run`].
+pub fn exit_code(e: &anyhow::Error) -> u8 {
+    if e.chain().any(|c| c.is::<OutputError>()) {
+        EXIT_OUTPUT
+    } else {
+        EXIT_FAILED
+    }
+}
+
+/// Load a job; errors without the file's name in them get it as context.
+fn load(path: &Path) -> Result<Job> {
+    load_job(path).map_err(|e| match e {
+        JobError::Parse { .. } | JobError::Read { .. } => anyhow!(e),
+        e => anyhow!(e).context(path.display().to_string()),
+    })
+}
+
+fn stdout_line(s: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "{s}").context("writing to standard output")
+}
+
+fn cmd_validate(path: &Path) -> Result<()> {
+    let job = load(path)?;
+    build_shape(&job.shape)
+        .map_err(|e| anyhow!("shape: {e}"))
+        .with_context(|| path.display().to_string())?;
+    stdout_line(&format!("ok: {}", job.name))
+}
+
+fn cmd_run(path: &Path, out_dir: &Path, force: bool, quiet: bool) -> Result<()> {
+    let job = load(path)?;
+    let target = out_dir.join(format!("{}.nc", job.name));
+    // Refuse before the (long) run, and again when writing.
+    check_target(&target, force)?;
+
+    let mut progress = Reporter::new(quiet);
+    let result = pipeline::run(&job, &mut |p| progress.event(p));
+    progress.finish();
+    let output = result
+        .map_err(|e| anyhow!(e))
+        .with_context(|| path.display().to_string())?;
+
+    let gcode = write_gcode(&output.toolpath, &job)?;
+    write_atomic(&target, gcode.as_bytes(), force)?;
+
+    for w in &output.warnings {
+        eprintln!("warning: {w}");
+    }
+    if !quiet {
+        stdout_line(&summary(&job, &output, &target))?;
+    }
+    Ok(())
+}
+
+/// The report printed after a run.
+fn summary(job: &Job, out: &RunOutput, target: &Path) -> String {
+    let mut s = format!("wrote {}\n", target.display());
+    s += &format!("glyphs: {}\n", out.glyphs.join(", "));
+    for r in &out.solves {
+        s += &format!(
+            "solve {}: N {}, M {}, pseudo-boundary {:.3} mm, max boundary error {:.2e}\n",
+            r.label, r.n, r.m, r.distance, r.max_error
+        );
+    }
+    let st = out.toolpath.stats(job.machine.rapid_rate);
+    s += &format!(
+        "path: {:.1} mm cutting, {:.1} mm rapid, estimated time {} (rapids at {} mm/min, acceleration ignored)\n",
+        st.cut_length,
+        st.rapid_length,
+        format_duration(st.time_s),
+        job.machine.rapid_rate
+    );
+    s += &format!(
+        "gouge check: min clearance {:.4} mm (tolerance {} mm)",
+        out.min_clearance, job.operation.tolerance
+    );
+    if !out.warnings.is_empty() {
+        s += &format!("\n{} warning(s), see above", out.warnings.len());
+    }
+    s
+}
+
+/// Shows `Progress` events: a bar when stderr is a terminal, plain lines when it
+/// is not, nothing when quiet.
+struct Reporter {
+    quiet: bool,
+    terminal: bool,
+    bar: Option<ProgressBar>,
+}
+
+impl Reporter {
+    fn new(quiet: bool) -> Self {
+        Reporter {
+            quiet,
+            terminal: std::io::stderr().is_terminal(),
+            bar: None,
+        }
+    }
+
+    fn event(&mut self, p: Progress) {
+        if self.quiet {
+            return;
+        }
+        match p {
+            Progress::Stage { name, total } => {
+                if !self.terminal {
+                    eprintln!("{name} ({total} steps)");
+                    return;
+                }
+                if let Some(b) = self.bar.take() {
+                    b.finish_and_clear();
+                }
+                let style = ProgressStyle::with_template(
+                    "{msg:24} [{bar:32}] {pos}/{len} {elapsed_precise}",
+                )
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> ");
+                self.bar = Some(ProgressBar::new(total).with_style(style).with_message(name));
+            }
+            Progress::Step => {
+                if let Some(b) = &self.bar {
+                    b.inc(1);
+                }
+            }
+        }
+    }
+
+    fn finish(&mut self) {
+        if let Some(b) = self.bar.take() {
+            b.finish_and_clear();
+        }
+    }
+}
+
+fn cmd_glyphs() -> Result<()> {
+    let chars = paper_chars();
+    if chars.is_empty() {
+        bail!(
+            "internal error: the built-in paper font did not load (please report this pfcam bug)"
+        );
+    }
+    let mut s = String::from("font paper (the paper's Times letters, cap height 662 units):");
+    for c in chars {
+        s += &format!("\n{c}");
+    }
+    stdout_line(&s)
+}
+
+fn cmd_convergence(glyph: char, ns: &[usize], json: bool) -> Result<()> {
+    let have = paper_chars();
+    if !have.contains(&glyph) {
+        let list: String = have.iter().collect();
+        bail!("--glyph: the paper font has no glyph {glyph:?} (it has {list})");
+    }
+    if ns.is_empty() || ns.contains(&0) {
+        bail!("--n: give one or more counts >= 1, e.g. --n 78,148,272");
+    }
+    let rows = pfcam::field::convergence_table(glyph, ns)
+        .with_context(|| format!("convergence study of {glyph:?}"))?;
+    if json {
+        return stdout_line(&serde_json::to_string_pretty(&rows)?);
+    }
+    let mut s = format!(
+        "{:>6} {:>6} {:>14} {:>12}",
+        "N", "M", "distance (fu)", "max error"
+    );
+    for r in rows {
+        s += &format!(
+            "\n{:>6} {:>6} {:>14.2} {:>12.3e}",
+            r.n, r.m, r.distance, r.max_error
+        );
+    }
+    stdout_line(&s)
+}

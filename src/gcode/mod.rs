@@ -1,0 +1,45 @@
+//! G-code for GRBL 1.1: the writer, and a token-wise comparator for golden files.
+//!
+//! Every file pfcam writes starts with the line `(pfcam <version> job <name>)`
+//! ([`header_line`]); [`is_pfcam_output`] recognises it, so that a re-run may
+//! replace pfcam's own files but never anyone else's.
+
+pub mod compare;
+pub mod writer;
+
+pub use compare::{compare_gcode, GcodeDiff, GOLDEN_TOLERANCE};
+pub use writer::{format_duration, write_gcode, GcodeError, DECIMALS, MAX_LINE_LEN};
+
+/// What every pfcam G-code file's first line starts with.
+pub const HEADER_PREFIX: &str = "(pfcam ";
+
+/// The first line of a G-code file for job `name`.
+pub fn header_line(name: &str) -> String {
+    format!(
+        "{HEADER_PREFIX}{} job {})",
+        env!("CARGO_PKG_VERSION"),
+        writer::comment_text(name)
+    )
+}
+
+/// Whether `first_line` is the first line of a file pfcam wrote.
+pub fn is_pfcam_output(first_line: &str) -> bool {
+    first_line.starts_with(HEADER_PREFIX) && first_line.trim_end().ends_with(')')
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn header_is_recognised() {
+        let h = header_line("mfs-sign");
+        assert!(
+            h.starts_with("(pfcam ") && h.ends_with(" job mfs-sign)"),
+            "{h}"
+        );
+        assert!(is_pfcam_output(&h));
+        assert!(!is_pfcam_output("G21 G90"));
+        assert!(!is_pfcam_output("(made by hand)"));
+    }
+}

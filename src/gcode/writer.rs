@@ -1,0 +1,701 @@
+//! The GRBL 1.1 G-code writer: a [`Toolpath`] and its [`Job`] to program text.
+//!
+//! Output, line by line:
+//! 1. `(pfcam <version> job <name>)`, then comments: tool, stock and operation,
+//!    cut bounds (min..max of X, Y, Z over every feed move, arcs included), path
+//!    lengths and the estimated time (feed moves at their feed, rapids at
+//!    `machine.rapid_rate`, acceleration ignored);
+//! 2. `G21 G90 G17 G94` (mm, absolute, XY plane, feed per minute);
+//! 3. `G0 Z<safe>`, `G0 X<start> Y<start>`, `M3 S<spindle>`, `G4 P<dwell>` when
+//!    `machine.spindle_dwell` > 0 and the spindle turns;
+//! 4. per section a `(label)` comment, then `G0`/`G1`/`G2`/`G3` moves: an axis word
+//!    only when its written value changes (always X and Y on arcs, which GRBL
+//!    requires), arc centres as `I`/`J` offsets from the arc's start, `F` only when
+//!    the feed changes;
+//! 5. a retract to safe Z if the tool is below it, `M5`, `M2`.
+//!
+//! Numbers have [`DECIMALS`] decimals with trailing zeros removed and never read
+//! `-0`; every line is at most [`MAX_LINE_LEN`] characters (GRBL's line buffer);
+//! only words GRBL 1.1 accepts are written. The output depends on nothing but the
+//! input, so the same job gives byte-identical files.
+
+use crate::job::{Direction, Job, OperationKind, Side};
+use crate::toolpath::{Move, Toolpath, Vec3};
+use std::fmt::Write as _;
+
+/// Decimals written for coordinates and feeds (mm, mm/min): 0.001 mm, finer than
+/// any hobby machine's step.
+pub const DECIMALS: usize = 3;
+
+/// The longest line written: GRBL 1.1's line buffer holds 80 characters.
+pub const MAX_LINE_LEN: usize = 80;
+
+/// A tool path that cannot be written. These are bugs in pfcam (the pipeline
+/// must produce finite coordinates and positive feeds), not input errors.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum GcodeError {
+    /// A coordinate or arc centre is NaN or infinite.
+    #[error("internal error: non-finite coordinate in section `{section}` (please report this pfcam bug)")]
+    NonFinite {
+        /// the section's label
+        section: String,
+    },
+    /// A feed rate that is not a positive number.
+    #[error("internal error: feed {feed} mm/min in section `{section}` is not positive (please report this pfcam bug)")]
+    BadFeed {
+        /// the section's label
+        section: String,
+        /// the feed
+        feed: f64,
+    },
+    /// A line longer than GRBL accepts (coordinates of absurd size).
+    #[error("a G-code line would be {len} characters, more than GRBL's {MAX_LINE_LEN}: {line}")]
+    LineTooLong {
+        /// the line
+        line: String,
+        /// its length
+        len: usize,
+    },
+}
+
+/// `x` with [`DECIMALS`] decimals, trailing zeros and a trailing point removed,
+/// and `-0` written as `0`: `1.5`, `-0.001`, `12`.
+pub fn fmt_num(x: f64) -> String {
+    let s = format!("{x:.DECIMALS$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        s.as_str()
+    };
+    if s == "-0" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
+}
+
+/// Text made safe inside a G-code comment: GRBL ends a comment at the first `)`
+/// and has no nesting, so `(`/`)` become `[`/`]`, `;` becomes `,`, and anything
+/// outside printable ASCII becomes `?`.
+pub fn comment_text(s: &str) -> String {
+    s.chars()
+        .map(|c| match c {
+            '(' => '[',
+            ')' => ']',
+            ';' => ',',
+            c if c.is_ascii_graphic() || c == ' ' => c,
+            _ => '?',
+        })
+        .collect()
+}
+
+/// A whole comment line, cut to fit [`MAX_LINE_LEN`].
+fn comment(s: &str) -> String {
+    let t: String = comment_text(s).chars().take(MAX_LINE_LEN - 2).collect();
+    format!("({t})")
+}
+
+/// `754.2` seconds as `12 min 34 s`; `3725` as `1 h 2 min 5 s`.
+pub fn format_duration(seconds: f64) -> String {
+    let s = if seconds.is_finite() && seconds > 0.0 {
+        seconds.round() as u64
+    } else {
+        0
+    };
+    let (h, m, s) = (s / 3600, (s / 60) % 60, s % 60);
+    if h > 0 {
+        format!("{h} h {m} min {s} s")
+    } else if m > 0 {
+        format!("{m} min {s} s")
+    } else {
+        format!("{s} s")
+    }
+}
+
+/// Min and max corners of every feed move (arcs by their true extent), or `None`
+/// when the path has no feed move.
+pub fn cut_bounds(tp: &Toolpath) -> Option<(Vec3, Vec3)> {
+    let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let mut hi = Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    let mut add = |p: Vec3| {
+        lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+        hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+    };
+    let mut any = false;
+    let mut at = tp.start;
+    for m in tp.moves() {
+        match *m {
+            Move::Rapid { .. } => {}
+            Move::Linear { to, .. } => {
+                add(at);
+                add(to);
+                any = true;
+            }
+            Move::Arc {
+                to, cx, cy, ccw, ..
+            } => {
+                add(at);
+                add(to);
+                any = true;
+                let r = (at.x - cx).hypot(at.y - cy);
+                let a0 = (at.y - cy).atan2(at.x - cx);
+                let a1 = (to.y - cy).atan2(to.x - cx);
+                let tau = std::f64::consts::TAU;
+                let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
+                if sweep <= 1e-12 {
+                    sweep += tau;
+                }
+                for k in 0..4 {
+                    let a = k as f64 * std::f64::consts::FRAC_PI_2;
+                    // Angle travelled from the start to reach `a`, in [0, 2π).
+                    let d = if ccw { a - a0 } else { a0 - a }.rem_euclid(tau);
+                    if d <= sweep {
+                        let (s, c) = a.sin_cos();
+                        add(Vec3::new(cx + r * c, cy + r * s, at.z.min(to.z)));
+                    }
+                }
+            }
+        }
+        at = m.to();
+    }
+    any.then_some((lo, hi))
+}
+
+fn check_finite(tp: &Toolpath) -> Result<(), GcodeError> {
+    let fin = |p: Vec3| p.x.is_finite() && p.y.is_finite() && p.z.is_finite();
+    if !fin(tp.start) {
+        return Err(GcodeError::NonFinite {
+            section: "start".into(),
+        });
+    }
+    for s in &tp.sections {
+        for m in &s.moves {
+            let (ok, feed) = match *m {
+                Move::Rapid { to } => (fin(to), None),
+                Move::Linear { to, feed } => (fin(to), Some(feed)),
+                Move::Arc {
+                    to, cx, cy, feed, ..
+                } => (fin(to) && cx.is_finite() && cy.is_finite(), Some(feed)),
+            };
+            if !ok {
+                return Err(GcodeError::NonFinite {
+                    section: s.label.clone(),
+                });
+            }
+            if let Some(f) = feed {
+                if !(f.is_finite() && f > 0.0) {
+                    return Err(GcodeError::BadFeed {
+                        section: s.label.clone(),
+                        feed: f,
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The modal state of the program as written: each axis's last written value
+/// (as text, so that "changed" means "writes differently"), and the feed.
+struct Modal {
+    axis: [Option<String>; 3],
+    feed: Option<String>,
+    lines: Vec<String>,
+}
+
+impl Modal {
+    /// The written position as numbers (0 for an axis not yet written).
+    fn pos(&self, k: usize) -> f64 {
+        self.axis[k]
+            .as_deref()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(0.0)
+    }
+
+    /// Axis words of `to` that differ from the written position; `force_xy` always
+    /// writes X and Y. Updates the position.
+    fn axis_words(&mut self, to: Vec3, force_xy: bool) -> String {
+        let mut w = String::new();
+        for (k, (letter, v)) in [('X', to.x), ('Y', to.y), ('Z', to.z)]
+            .into_iter()
+            .enumerate()
+        {
+            let s = fmt_num(v);
+            if self.axis[k].as_deref() != Some(s.as_str()) || (force_xy && k < 2) {
+                let _ = write!(w, " {letter}{s}");
+                self.axis[k] = Some(s);
+            }
+        }
+        w
+    }
+
+    fn feed_word(&mut self, feed: f64) -> String {
+        let s = fmt_num(feed);
+        if self.feed.as_deref() == Some(s.as_str()) {
+            String::new()
+        } else {
+            let w = format!(" F{s}");
+            self.feed = Some(s);
+            w
+        }
+    }
+
+    fn rapid(&mut self, to: Vec3) {
+        let w = self.axis_words(to, false);
+        if !w.is_empty() {
+            self.lines.push(format!("G0{w}"));
+        }
+    }
+
+    fn linear(&mut self, to: Vec3, feed: f64) {
+        let w = self.axis_words(to, false);
+        if !w.is_empty() {
+            let f = self.feed_word(feed);
+            self.lines.push(format!("G1{w}{f}"));
+        }
+    }
+
+    fn arc(&mut self, to: Vec3, cx: f64, cy: f64, ccw: bool, feed: f64) {
+        // Offsets from the start as written, so that GRBL's check that the start
+        // and end are at the same radius (within 0.005 mm) sees only rounding.
+        let (sx, sy) = (self.pos(0), self.pos(1));
+        let (i, j) = (fmt_num(cx - sx), fmt_num(cy - sy));
+        if i == "0" && j == "0" {
+            // No radius at the written precision: a straight move does the same.
+            return self.linear(to, feed);
+        }
+        let w = self.axis_words(to, true);
+        let f = self.feed_word(feed);
+        let g = if ccw { "G3" } else { "G2" };
+        self.lines.push(format!("{g}{w} I{i} J{j}{f}"));
+    }
+}
+
+/// The G-code program for `tp`, cut with `job`'s tool, stock and machine settings.
+pub fn write_gcode(tp: &Toolpath, job: &Job) -> Result<String, GcodeError> {
+    check_finite(tp)?;
+    let stats = tp.stats(job.machine.rapid_rate);
+    let safe_z = job.stock.safe_z.max(tp.start.z);
+    let mut out = Modal {
+        axis: [None, None, None],
+        feed: None,
+        lines: Vec::new(),
+    };
+    let l = &mut out.lines;
+    l.push(super::header_line(&job.name));
+    l.push(comment(&format!(
+        "tool: {} mm end mill, feed {}, plunge {} mm/min, spindle {} rpm",
+        fmt_num(job.tool.diameter),
+        fmt_num(job.tool.feed),
+        fmt_num(job.tool.plunge_feed),
+        fmt_num(job.tool.spindle.round()),
+    )));
+    l.push(comment(&format!(
+        "stock: top {}, safe z {} mm",
+        fmt_num(job.stock.top),
+        fmt_num(job.stock.safe_z)
+    )));
+    let kind = match job.operation.kind {
+        OperationKind::Profile => "profile",
+    };
+    let side = match job.operation.side {
+        Side::Outside => "outside",
+    };
+    let direction = match job.operation.direction {
+        Direction::Climb => "climb",
+        Direction::Conventional => "conventional",
+    };
+    l.push(comment(&format!(
+        "operation: {kind} {side} {direction}, depth {}, stepdown {}, tol {} mm",
+        fmt_num(job.operation.depth),
+        fmt_num(job.tool.stepdown),
+        fmt_num(job.operation.tolerance)
+    )));
+    if let Some((lo, hi)) = cut_bounds(tp) {
+        l.push(comment(&format!(
+            "cut min: X{} Y{} Z{}",
+            fmt_num(lo.x),
+            fmt_num(lo.y),
+            fmt_num(lo.z)
+        )));
+        l.push(comment(&format!(
+            "cut max: X{} Y{} Z{}",
+            fmt_num(hi.x),
+            fmt_num(hi.y),
+            fmt_num(hi.z)
+        )));
+    }
+    l.push(comment(&format!(
+        "length: cut {} mm, rapid {} mm",
+        fmt_num((stats.cut_length * 10.0).round() / 10.0),
+        fmt_num((stats.rapid_length * 10.0).round() / 10.0)
+    )));
+    l.push(comment(&format!(
+        "estimated time: {}, rapids at {} mm/min, acceleration ignored",
+        format_duration(stats.time_s),
+        fmt_num(job.machine.rapid_rate)
+    )));
+    l.push("G21 G90 G17 G94".into());
+
+    // Where the machine is is unknown: up to safe Z first, then over the start.
+    let z = fmt_num(safe_z);
+    out.lines.push(format!("G0 Z{z}"));
+    out.axis[2] = Some(z);
+    out.rapid(Vec3::new(tp.start.x, tp.start.y, safe_z));
+    let spindle = job.tool.spindle.round();
+    out.lines.push(format!("M3 S{}", fmt_num(spindle)));
+    if job.machine.spindle_dwell > 0.0 && spindle > 0.0 {
+        out.lines
+            .push(format!("G4 P{}", fmt_num(job.machine.spindle_dwell)));
+    }
+
+    let mut at = Vec3::new(tp.start.x, tp.start.y, safe_z);
+    for s in &tp.sections {
+        out.lines.push(comment(&s.label));
+        for m in &s.moves {
+            match *m {
+                Move::Rapid { to } => out.rapid(to),
+                Move::Linear { to, feed } => out.linear(to, feed),
+                Move::Arc {
+                    to,
+                    cx,
+                    cy,
+                    ccw,
+                    feed,
+                } => out.arc(to, cx, cy, ccw, feed),
+            }
+            at = m.to();
+        }
+    }
+    if at.z < safe_z {
+        out.rapid(Vec3::new(at.x, at.y, safe_z));
+    }
+    out.lines.push("M5".into());
+    out.lines.push("M2".into());
+
+    let mut text = String::new();
+    for line in out.lines {
+        let len = line.chars().count();
+        if len > MAX_LINE_LEN {
+            return Err(GcodeError::LineTooLong { line, len });
+        }
+        text.push_str(&line);
+        text.push('\n');
+    }
+    Ok(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::job::parse_job;
+    use crate::toolpath::Section;
+    use std::path::Path;
+
+    fn job() -> Job {
+        let text = "[job]\nname = \"t\"\n[shape]\ntext = \"I\"\n[tool]\ndiameter = 3.175\nfeed = 800\nplunge_feed = 200\nspindle = 18000\n[operation]\ndepth = 2\n";
+        match parse_job(text, "t", Path::new(".")) {
+            Ok(j) => j,
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    /// A square pass with a quarter-circle arc, a plunge and a retract.
+    fn square() -> Toolpath {
+        let p = Vec3::new;
+        Toolpath {
+            start: p(0.0, 0.0, 5.0),
+            sections: vec![
+                Section {
+                    label: "link (1)".into(),
+                    z: 5.0,
+                    moves: vec![Move::Rapid {
+                        to: p(10.0, 0.0, 5.0),
+                    }],
+                },
+                Section {
+                    label: "outside I (1), z -1.000".into(),
+                    z: -1.0,
+                    moves: vec![
+                        Move::Linear {
+                            to: p(10.0, 0.0, -1.0),
+                            feed: 200.0,
+                        },
+                        Move::Linear {
+                            to: p(20.0, 0.0, -1.0),
+                            feed: 800.0,
+                        },
+                        Move::Arc {
+                            to: p(25.0, 5.0, -1.0),
+                            cx: 20.0,
+                            cy: 5.0,
+                            ccw: true,
+                            feed: 800.0,
+                        },
+                        Move::Linear {
+                            to: p(25.0, 20.0000001, -1.0),
+                            feed: 800.0,
+                        },
+                        Move::Linear {
+                            to: p(-0.0000001, 20.0, -1.0),
+                            feed: 800.0,
+                        },
+                        Move::Linear {
+                            to: p(0.0, 20.0, -1.0),
+                            feed: 800.0,
+                        },
+                        Move::Linear {
+                            to: p(10.0, 0.0, -1.0),
+                            feed: 800.0,
+                        },
+                        Move::Rapid {
+                            to: p(10.0, 0.0, 5.0),
+                        },
+                    ],
+                },
+            ],
+        }
+    }
+
+    fn gcode() -> String {
+        match write_gcode(&square(), &job()) {
+            Ok(g) => g,
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    #[test]
+    fn numbers() {
+        assert_eq!(fmt_num(1.0), "1");
+        assert_eq!(fmt_num(1.5), "1.5");
+        assert_eq!(fmt_num(-0.0), "0");
+        assert_eq!(fmt_num(-0.0001), "0");
+        assert_eq!(fmt_num(-0.0006), "-0.001");
+        assert_eq!(fmt_num(12.3456), "12.346");
+        assert_eq!(fmt_num(100.0), "100");
+        assert_eq!(fmt_num(0.1 + 0.2), "0.3");
+    }
+
+    #[test]
+    fn durations() {
+        assert_eq!(format_duration(45.4), "45 s");
+        assert_eq!(format_duration(754.2), "12 min 34 s");
+        assert_eq!(format_duration(3725.0), "1 h 2 min 5 s");
+        assert_eq!(format_duration(f64::NAN), "0 s");
+    }
+
+    #[test]
+    fn comments_cannot_break_out() {
+        assert_eq!(comment_text("A (1); é"), "A [1], ?");
+        let long = comment(&"x".repeat(200));
+        assert_eq!(long.len(), MAX_LINE_LEN);
+    }
+
+    #[test]
+    fn program_shape() {
+        let g = gcode();
+        let lines: Vec<&str> = g.lines().collect();
+        assert!(lines[0].starts_with("(pfcam ") && lines[0].ends_with(" job t)"));
+        let code: Vec<&str> = lines
+            .iter()
+            .copied()
+            .filter(|l| !l.starts_with('('))
+            .collect();
+        assert_eq!(
+            code,
+            [
+                "G21 G90 G17 G94",
+                "G0 Z5",
+                "G0 X0 Y0",
+                "M3 S18000",
+                "G4 P2",
+                "G0 X10",
+                "G1 Z-1 F200",
+                "G1 X20 F800",
+                "G3 X25 Y5 I0 J5",
+                "G1 Y20",
+                "G1 X0",
+                "G1 X10 Y0",
+                "G0 Z5",
+                "M5",
+                "M2",
+            ]
+        );
+        assert!(g.contains("(outside I [1], z -1.000)\n"), "{g}");
+        assert!(g.contains("(cut min: X0 Y0 Z-1)\n"), "{g}");
+        assert!(g.contains("(cut max: X25 Y20 Z5)\n"), "{g}");
+        assert!(g.contains("(estimated time: "), "{g}");
+        assert!(g.ends_with("M5\nM2\n"));
+    }
+
+    #[test]
+    fn only_grbl_words_and_short_lines() {
+        let g = gcode();
+        for line in g.lines() {
+            assert!(line.len() <= MAX_LINE_LEN, "{line}");
+            if line.starts_with('(') {
+                assert!(line.ends_with(')') && line[1..line.len() - 1].find(['(', ')']).is_none());
+                continue;
+            }
+            for word in line.split(' ') {
+                let (letter, num) = word.split_at(1);
+                assert!("GMXYZIJFSP".contains(letter), "{word}");
+                assert!(num.parse::<f64>().is_ok(), "{word}");
+                assert!(!num.starts_with("-0") || num.starts_with("-0."), "{word}");
+                assert!(!(num.contains('.') && num.ends_with('0')), "{word}");
+                if letter == "G" {
+                    assert!(
+                        ["0", "1", "2", "3", "4", "17", "21", "90", "94"].contains(&num),
+                        "{word}"
+                    );
+                }
+                if letter == "M" {
+                    assert!(["2", "3", "5"].contains(&num), "{word}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn deterministic() {
+        assert_eq!(gcode(), gcode());
+    }
+
+    #[test]
+    fn no_dwell_when_disabled_and_retract_added() {
+        let mut j = job();
+        j.machine.spindle_dwell = 0.0;
+        let mut tp = square();
+        tp.sections[1].moves.pop(); // no final retract
+        let g = write_gcode(&tp, &j).unwrap();
+        assert!(!g.contains("G4"));
+        assert!(g.ends_with("G1 X10 Y0\nG0 Z5\nM5\nM2\n"), "{g}");
+    }
+
+    #[test]
+    fn full_circle_and_degenerate_arc() {
+        let p = Vec3::new;
+        let tp = Toolpath {
+            start: p(0.0, 0.0, 5.0),
+            sections: vec![Section {
+                label: "circle".into(),
+                z: 0.0,
+                moves: vec![
+                    Move::Linear {
+                        to: p(10.0, 0.0, 0.0),
+                        feed: 100.0,
+                    },
+                    Move::Arc {
+                        to: p(10.0, 0.0, 0.0),
+                        cx: 5.0,
+                        cy: 0.0,
+                        ccw: false,
+                        feed: 100.0,
+                    },
+                    Move::Arc {
+                        to: p(10.0, 0.0001, 0.0),
+                        cx: 10.0,
+                        cy: 0.0,
+                        ccw: false,
+                        feed: 100.0,
+                    },
+                ],
+            }],
+        };
+        let g = write_gcode(&tp, &job()).unwrap();
+        assert!(g.contains("\nG2 X10 Y0 I-5 J0\n"), "{g}");
+        // The full circle reaches X0 and Y±5.
+        assert!(g.contains("(cut min: X0 Y-5 Z0)"), "{g}");
+        assert!(g.contains("(cut max: X10 Y5 Z5)"), "{g}");
+        assert_eq!(g.lines().filter(|l| l.starts_with("G2 ")).count(), 1, "{g}");
+    }
+
+    #[test]
+    fn bad_paths_are_errors() {
+        let mut tp = square();
+        tp.sections[1].moves[1] = Move::Linear {
+            to: Vec3::new(f64::NAN, 0.0, 0.0),
+            feed: 800.0,
+        };
+        assert!(matches!(
+            write_gcode(&tp, &job()),
+            Err(GcodeError::NonFinite { .. })
+        ));
+        let mut tp = square();
+        tp.sections[1].moves[1] = Move::Linear {
+            to: Vec3::new(1.0, 0.0, 0.0),
+            feed: 0.0,
+        };
+        assert!(matches!(
+            write_gcode(&tp, &job()),
+            Err(GcodeError::BadFeed { .. })
+        ));
+        let mut tp = square();
+        tp.sections[1].moves[1] = Move::Arc {
+            to: Vec3::new(1e15, 0.0, 0.0),
+            cx: -1e15,
+            cy: -1e15,
+            ccw: true,
+            feed: 1e15,
+        };
+        assert!(matches!(
+            write_gcode(&tp, &job()),
+            Err(GcodeError::LineTooLong { .. })
+        ));
+    }
+
+    /// Arcs at awkward angles and coordinates still pass GRBL 1.1's check that
+    /// the start and the end are at the same distance from the centre (error 33
+    /// when they differ by more than 0.005 mm and 0.1 % of the radius).
+    #[test]
+    fn arcs_pass_grbls_radius_check() {
+        let mut moves = Vec::new();
+        let (cx, cy) = (12.345_678, -7.654_321);
+        for k in 0..40 {
+            let r = 0.3 + 0.731 * k as f64;
+            let a0 = 0.1 + 0.37 * k as f64;
+            let a1 = a0 + 0.05 + 0.29 * k as f64;
+            let at = |a: f64| Vec3::new(cx + r * a.cos(), cy + r * a.sin(), -1.0);
+            moves.push(Move::Linear {
+                to: at(a0),
+                feed: 500.0,
+            });
+            moves.push(Move::Arc {
+                to: at(a1),
+                cx,
+                cy,
+                ccw: k % 2 == 0,
+                feed: 500.0,
+            });
+        }
+        let tp = Toolpath {
+            start: Vec3::new(0.0, 0.0, 5.0),
+            sections: vec![Section {
+                label: "arcs".into(),
+                z: -1.0,
+                moves,
+            }],
+        };
+        let g = write_gcode(&tp, &job()).unwrap();
+        let (mut x, mut y) = (0.0, 0.0);
+        let mut arcs = 0;
+        for line in g.lines().filter(|l| !l.starts_with('(')) {
+            let word = |c: char| {
+                line.split(' ')
+                    .find_map(|w| w.strip_prefix(c).and_then(|n| n.parse::<f64>().ok()))
+            };
+            let (nx, ny) = (word('X').unwrap_or(x), word('Y').unwrap_or(y));
+            if line.starts_with("G2 ") || line.starts_with("G3 ") {
+                let (i, j) = (word('I').unwrap(), word('J').unwrap());
+                let (ccx, ccy) = (x + i, y + j);
+                let r0 = i.hypot(j);
+                let r1 = (nx - ccx).hypot(ny - ccy);
+                let dr = (r0 - r1).abs();
+                assert!(dr <= 0.005 || dr <= 0.001 * r1, "{line}: radii {r0} {r1}");
+                arcs += 1;
+            }
+            (x, y) = (nx, ny);
+        }
+        assert_eq!(arcs, 40);
+    }
+}

@@ -1,0 +1,196 @@
+//! Output files on disk: written atomically, and never over someone else's file.
+//!
+//! A file is first written in full to a temporary file in the same directory
+//! (`.<name>.tmp-<pid>-<k>`), flushed to disk, then renamed over the final name,
+//! so the final name holds either the old file or the whole new one: an error at
+//! any point leaves nothing under the final name. An existing file is replaced
+//! only if pfcam wrote it (its first line is pfcam's header, see
+//! [`crate::gcode::is_pfcam_output`]) or if the caller forces it.
+
+use crate::gcode::is_pfcam_output;
+use std::fs;
+use std::io::{self, BufRead, Read, Write};
+use std::path::{Path, PathBuf};
+
+/// What can go wrong writing an output file.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    /// An existing file that pfcam did not write.
+    #[error("refusing to overwrite {}: it was not written by pfcam (use --force to replace it)", path.display())]
+    Foreign {
+        /// the file
+        path: PathBuf,
+    },
+    /// Something that is not a regular file is in the way.
+    #[error("{} exists and is not a regular file", path.display())]
+    NotAFile {
+        /// the path
+        path: PathBuf,
+    },
+    /// The output directory cannot be created.
+    #[error("cannot create directory {}: {source}", path.display())]
+    CreateDir {
+        /// the directory
+        path: PathBuf,
+        /// why
+        source: io::Error,
+    },
+    /// Reading, writing or renaming failed.
+    #[error("cannot write {}: {source}", path.display())]
+    Io {
+        /// the file
+        path: PathBuf,
+        /// why
+        source: io::Error,
+    },
+}
+
+/// Whether the existing file at `path` was written by pfcam (its first line).
+pub fn written_by_pfcam(path: &Path) -> io::Result<bool> {
+    let f = fs::File::open(path)?;
+    let mut first = Vec::new();
+    // The header line is short; reading a bounded prefix keeps a huge foreign
+    // file without newlines from being read whole.
+    io::BufReader::new(f.take(4096)).read_until(b'\n', &mut first)?;
+    Ok(is_pfcam_output(&String::from_utf8_lossy(&first)))
+}
+
+/// Check that `path` may be written: it does not exist, or it is a regular file
+/// that pfcam wrote, or `force` is set.
+pub fn check_target(path: &Path, force: bool) -> Result<(), OutputError> {
+    match fs::symlink_metadata(path) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
+        Err(source) => Err(OutputError::Io {
+            path: path.into(),
+            source,
+        }),
+        Ok(m) if !m.is_file() => Err(OutputError::NotAFile { path: path.into() }),
+        Ok(_) if force => Ok(()),
+        Ok(_) => match written_by_pfcam(path) {
+            Ok(true) => Ok(()),
+            Ok(false) => Err(OutputError::Foreign { path: path.into() }),
+            Err(source) => Err(OutputError::Io {
+                path: path.into(),
+                source,
+            }),
+        },
+    }
+}
+
+/// Write `contents` to `path` atomically (see the module docs), creating the
+/// parent directory if needed, after [`check_target`].
+pub fn write_atomic(path: &Path, contents: &[u8], force: bool) -> Result<(), OutputError> {
+    check_target(path, force)?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    fs::create_dir_all(&dir).map_err(|source| OutputError::CreateDir {
+        path: dir.clone(),
+        source,
+    })?;
+    let io_err = |source| OutputError::Io {
+        path: path.into(),
+        source,
+    };
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "output".into());
+    let (tmp, mut file) = create_temp(&dir, &file_name).map_err(io_err)?;
+    let written = file
+        .write_all(contents)
+        .and_then(|()| file.sync_all())
+        .and_then(|()| {
+            drop(file);
+            fs::rename(&tmp, path)
+        });
+    if let Err(e) = written {
+        let _ = fs::remove_file(&tmp);
+        return Err(io_err(e));
+    }
+    Ok(())
+}
+
+/// A new temporary file next to the target, never one that exists already.
+fn create_temp(dir: &Path, file_name: &str) -> io::Result<(PathBuf, fs::File)> {
+    let pid = std::process::id();
+    let mut k = 0u32;
+    loop {
+        let tmp = dir.join(format!(".{file_name}.tmp-{pid}-{k}"));
+        match fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
+            Ok(f) => return Ok((tmp, f)),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && k < 100 => k += 1,
+            Err(e) => return Err(e),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fresh empty directory under the target dir (no tempfile crate needed).
+    fn scratch(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("pfcam-output-{}-{name}", std::process::id()));
+        let _ = fs::remove_dir_all(&d);
+        fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    fn entries(d: &Path) -> Vec<String> {
+        let mut v: Vec<String> = fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn writes_new_file_and_creates_dir() {
+        let d = scratch("new");
+        let p = d.join("sub/x.nc");
+        write_atomic(&p, b"(pfcam 0.1.0 job x)\nM2\n", false).unwrap();
+        assert_eq!(fs::read_to_string(&p).unwrap(), "(pfcam 0.1.0 job x)\nM2\n");
+        assert_eq!(entries(&d.join("sub")), ["x.nc"]);
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn replaces_own_file_but_not_foreign_one() {
+        let d = scratch("replace");
+        let p = d.join("x.nc");
+        fs::write(&p, "(pfcam 0.0.1 job x)\nG0 X1\n").unwrap();
+        write_atomic(&p, b"(pfcam 0.1.0 job x)\nM2\n", false).unwrap();
+        assert_eq!(fs::read_to_string(&p).unwrap(), "(pfcam 0.1.0 job x)\nM2\n");
+
+        fs::write(&p, "G0 X1 (hand made)\n").unwrap();
+        let e = write_atomic(&p, b"(pfcam 0.1.0 job x)\n", false).unwrap_err();
+        assert!(matches!(e, OutputError::Foreign { .. }));
+        assert!(
+            e.to_string().contains("x.nc") && e.to_string().contains("--force"),
+            "{e}"
+        );
+        assert_eq!(fs::read_to_string(&p).unwrap(), "G0 X1 (hand made)\n");
+        assert_eq!(entries(&d), ["x.nc"]);
+
+        write_atomic(&p, b"(pfcam 0.1.0 job x)\n", true).unwrap();
+        assert_eq!(fs::read_to_string(&p).unwrap(), "(pfcam 0.1.0 job x)\n");
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn directory_in_the_way() {
+        let d = scratch("dir");
+        fs::create_dir(d.join("x.nc")).unwrap();
+        let e = write_atomic(&d.join("x.nc"), b"M2\n", true).unwrap_err();
+        assert!(matches!(e, OutputError::NotAFile { .. }), "{e}");
+        assert_eq!(entries(&d), ["x.nc"]);
+        fs::remove_dir_all(&d).unwrap();
+    }
+}

@@ -1,0 +1,144 @@
+//! Golden files: `gcode-samples/<name>.nc` against freshly generated G-code.
+//!
+//! The comparison (`pfcam::gcode::compare_gcode`) ignores comments, so the
+//! version in the first line, labels and estimates may change; code words are
+//! compared token by token, numbers within `GOLDEN_TOLERANCE` (0.001 mm), and X,
+//! Y, Z, F as modal state. Samples are rewritten only on purpose, with
+//! `PFCAM_BLESS=1 cargo test --release --test golden -- --include-ignored`; a
+//! missing sample is a failure, never created silently.
+
+use pfcam::gcode::{compare_gcode, write_gcode, GOLDEN_TOLERANCE};
+use pfcam::job::{load_job, parse_job, Job};
+use pfcam::toolpath::{Move, Section, Toolpath, Vec3};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn sample_path(name: &str) -> PathBuf {
+    root().join("gcode-samples").join(format!("{name}.nc"))
+}
+
+fn blessing() -> bool {
+    std::env::var("PFCAM_BLESS").is_ok_and(|v| v == "1")
+}
+
+/// Compare `actual` with the sample `name`, or rewrite the sample when blessing.
+fn check_golden(name: &str, actual: &str) {
+    let path = sample_path(name);
+    if blessing() {
+        fs::create_dir_all(path.parent().expect("samples dir")).expect("mkdir gcode-samples");
+        fs::write(&path, actual).expect("write sample");
+        return;
+    }
+    let expected = match fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) => panic!(
+            "{}: {e}; generate it with PFCAM_BLESS=1 cargo test --release --test golden -- --include-ignored, and review it",
+            path.display()
+        ),
+    };
+    if let Err(d) = compare_gcode(&expected, actual, GOLDEN_TOLERANCE) {
+        panic!(
+            "{} differs from the generated G-code: {d}\n(if the change is intended, re-bless with PFCAM_BLESS=1)",
+            path.display()
+        );
+    }
+}
+
+fn hand_job() -> Job {
+    let text = "[shape]\ntext = \"I\"\n[tool]\ndiameter = 3.175\nfeed = 800\nplunge_feed = 200\nspindle = 18000\nstepdown = 1\n[operation]\ndepth = 2\n";
+    match parse_job(text, "hand-rounded-rect", Path::new(".")) {
+        Ok(j) => j,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// A 30 × 20 mm rectangle with 4 mm corner arcs, cut in two passes: the
+/// writer's golden case, independent of the pipeline.
+fn hand_toolpath() -> Toolpath {
+    let p = Vec3::new;
+    let r = 4.0;
+    let (w, h) = (30.0, 20.0);
+    let mut sections = Vec::new();
+    for (k, z) in [-1.0, -2.0].into_iter().enumerate() {
+        let mut moves = vec![
+            Move::Rapid { to: p(r, 0.0, 5.0) },
+            Move::Linear {
+                to: p(r, 0.0, z),
+                feed: 200.0,
+            },
+        ];
+        let corners = [
+            (p(w - r, 0.0, z), (w - r, r), p(w, r, z)),
+            (p(w, h - r, z), (w - r, h - r), p(w - r, h, z)),
+            (p(r, h, z), (r, h - r), p(0.0, h - r, z)),
+            (p(0.0, r, z), (r, r), p(r, 0.0, z)),
+        ];
+        for (line_to, (cx, cy), arc_to) in corners {
+            moves.push(Move::Linear {
+                to: line_to,
+                feed: 800.0,
+            });
+            moves.push(Move::Arc {
+                to: arc_to,
+                cx,
+                cy,
+                ccw: true,
+                feed: 800.0,
+            });
+        }
+        moves.push(Move::Rapid { to: p(r, 0.0, 5.0) });
+        sections.push(Section {
+            label: format!("rounded rectangle ({}), z {z:.3}", k + 1),
+            z,
+            moves,
+        });
+    }
+    Toolpath {
+        start: p(0.0, 0.0, 5.0),
+        sections,
+    }
+}
+
+#[test]
+fn writer_matches_its_sample() {
+    let g = write_gcode(&hand_toolpath(), &hand_job()).expect("write");
+    check_golden("hand-rounded-rect", &g);
+}
+
+#[test]
+fn comparator_catches_a_change_of_the_real_sample() {
+    let Ok(sample) = fs::read_to_string(sample_path("hand-rounded-rect")) else {
+        panic!("gcode-samples/hand-rounded-rect.nc is missing");
+    };
+    // Every "X30" (the far side) moved by 0.01 mm: beyond the tolerance.
+    let moved = sample.replace("X30 ", "X30.01 ");
+    assert_ne!(moved, sample, "the sample has no X30 word");
+    assert!(compare_gcode(&sample, &moved, GOLDEN_TOLERANCE).is_err());
+    // Moved by 0.0005 mm (written as an extra digit): within it.
+    let nudged = sample.replace("X30 ", "X30.0005 ");
+    assert_eq!(compare_gcode(&sample, &nudged, GOLDEN_TOLERANCE), Ok(()));
+}
+
+#[test]
+#[ignore = "needs the pipeline"]
+fn every_job_matches_its_sample() {
+    let mut jobs: Vec<PathBuf> = fs::read_dir(root().join("jobs"))
+        .expect("jobs/")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    jobs.sort();
+    assert!(!jobs.is_empty());
+    for path in jobs {
+        let job = load_job(&path).unwrap_or_else(|e| panic!("{e}"));
+        let out = pfcam::pipeline::run(&job, &mut |_| {})
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let g = write_gcode(&out.toolpath, &job).unwrap_or_else(|e| panic!("{e}"));
+        check_golden(&job.name, &g);
+    }
+}
