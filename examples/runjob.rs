@@ -30,6 +30,7 @@ fn main() {
             direction: Direction::Climb,
         },
         field: FieldSpec::default(),
+        machine: Machine::default(),
     };
     let t = std::time::Instant::now();
     let out = pfcam::pipeline::run(&job, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));

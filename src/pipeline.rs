@@ -49,6 +49,10 @@ pub struct RunOutput {
     pub warnings: Vec<String>,
     /// Region names in the shape.
     pub glyphs: Vec<String>,
+    /// Tracing steps seeded by the geometric normal because ∇u did not point at
+    /// the wall being followed (a field-quality statistic, not a hazard: contact
+    /// is always judged geometrically).
+    pub fallbacks: usize,
 }
 
 /// Progress events for a front end's progress bar.
@@ -212,12 +216,6 @@ pub fn plan_shape(
     let loops: Vec<Loop> =
         profile::trace_loops(&shape, &polys, &part, &field, &params, &mut warnings)?;
     progress(Progress::Step);
-    let fallbacks: usize = loops.iter().map(|l| l.fallbacks).sum();
-    if fallbacks > 0 {
-        warnings.push(format!(
-            "{fallbacks} tracing steps were started from the geometric normal where the field gradient did not point at the part"
-        ));
-    }
     Ok(Plan {
         shape,
         polys,
@@ -250,5 +248,6 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
         min_clearance: report.min_clearance,
         warnings: plan.warnings,
         glyphs: plan.shape.regions.iter().map(|r| r.name.clone()).collect(),
+        fallbacks: plan.loops.iter().map(|l| l.fallbacks).sum(),
     })
 }

@@ -272,7 +272,6 @@ fn shipped_job(name: &str) -> String {
 }
 
 #[test]
-#[ignore = "needs the pipeline"]
 fn run_writes_gcode_and_a_rerun_replaces_it_identically() {
     let dir = scratch("run");
     let job = shipped_job("letter-i.toml");
@@ -299,7 +298,6 @@ fn run_writes_gcode_and_a_rerun_replaces_it_identically() {
 }
 
 #[test]
-#[ignore = "needs the pipeline"]
 fn force_replaces_a_foreign_file() {
     let dir = scratch("force");
     fs::create_dir_all(dir.join("out")).expect("mkdir");
@@ -314,7 +312,6 @@ fn force_replaces_a_foreign_file() {
 }
 
 #[test]
-#[ignore = "needs the MFS solver (field::convergence_table)"]
 fn convergence_json_has_the_documented_keys() {
     let o = pfcam(
         &["convergence", "--glyph", "I", "--n", "78,148", "--json"],

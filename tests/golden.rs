@@ -124,7 +124,6 @@ fn comparator_catches_a_change_of_the_real_sample() {
 }
 
 #[test]
-#[ignore = "needs the pipeline"]
 fn every_job_matches_its_sample() {
     let mut jobs: Vec<PathBuf> = fs::read_dir(root().join("jobs"))
         .expect("jobs/")

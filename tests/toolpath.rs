@@ -1,7 +1,7 @@
 //! The traced tool path against independent geometry: cavalier_contours' exact
 //! offset, invariance under the contours' start, direction, the gouge check.
 
-use cavalier_contours::polyline::{PlineCreation, PlineSource, PlineSourceMut, Polyline};
+use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use pfcam::geometry::{build_shape, DistanceIndex, FontSource, Shape, ShapeSource, Vec2};
 use pfcam::job::*;
 use pfcam::pipeline::{self, Plan};
@@ -36,6 +36,7 @@ fn job(text: &str, height: f64) -> Job {
             direction: Direction::Climb,
         },
         field: FieldSpec::default(),
+        machine: Machine::default(),
     }
 }
 
