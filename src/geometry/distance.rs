@@ -150,6 +150,14 @@ impl DistanceIndex {
             if best.is_finite() && reach * reach >= best {
                 break;
             }
+            // Every cell of the grid has been searched (p may be far outside it).
+            let all = ci - ring <= 0
+                && cj - ring <= 0
+                && ci + ring >= self.nx as isize - 1
+                && cj + ring >= self.ny as isize - 1;
+            if all && best.is_finite() {
+                break;
+            }
             ring += 1;
             if ring > max_ring + 2 {
                 break;
@@ -180,5 +188,74 @@ impl DistanceIndex {
             .map(|&(a, b)| seg_dist2(p, a, b).0)
             .fold(f64::INFINITY, f64::min)
             .sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fixed-seed linear congruential generator (Knuth's MMIX constants).
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    fn star(c: Vec2, r0: f64, r1: f64, n: usize) -> Vec<Vec2> {
+        (0..2 * n)
+            .map(|k| {
+                let a = std::f64::consts::PI * k as f64 / n as f64;
+                let r = if k % 2 == 0 { r0 } else { r1 };
+                c + Vec2::new(a.cos(), a.sin()) * r
+            })
+            .collect()
+    }
+
+    #[test]
+    fn nearest_equals_brute_force() {
+        let mut rng = Lcg(42);
+        let polys = vec![
+            star(Vec2::new(0.0, 0.0), 30.0, 12.0, 7),
+            star(Vec2::new(80.0, 10.0), 5.0, 2.0, 40),
+            vec![
+                Vec2::new(-50.0, -50.0),
+                Vec2::new(-49.0, -50.0),
+                Vec2::new(-49.5, -45.0),
+            ],
+        ];
+        let idx = DistanceIndex::new(&polys);
+        assert_eq!(idx.edge_count(), 14 + 80 + 3);
+        let mut worst: f64 = 0.0;
+        for k in 0..20_000 {
+            // Three quarters inside the grid's extent, the rest up to 1e4 away.
+            let spread = if k % 4 == 3 { 2e4 } else { 160.0 };
+            let p = Vec2::new(
+                20.0 + (rng.next() - 0.5) * spread,
+                (rng.next() - 0.5) * spread,
+            );
+            let (d, q) = idx.nearest(p);
+            let b = idx.distance_brute(p);
+            worst = worst.max((d - b).abs());
+            assert!((p.dist(q) - d).abs() <= 1e-9 * d.max(1.0));
+        }
+        assert!(worst <= 1e-12, "grid vs brute force: {worst:e}");
+    }
+
+    #[test]
+    fn degenerate_inputs() {
+        let empty = DistanceIndex::new(&[]);
+        assert_eq!(empty.distance(Vec2::new(1.0, 1.0)), f64::INFINITY);
+        // A flat polygon (zero height) and a single point.
+        let flat = DistanceIndex::new(&[vec![Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)]]);
+        assert_eq!(flat.distance(Vec2::new(5.0, 3.0)), 3.0);
+        assert_eq!(flat.distance(Vec2::new(13.0, -4.0)), 5.0);
+        let dot = DistanceIndex::new(&[vec![Vec2::new(2.0, 2.0)]]);
+        assert_eq!(dot.distance(Vec2::new(5.0, 6.0)), 5.0);
     }
 }

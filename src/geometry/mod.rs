@@ -151,3 +151,92 @@ pub enum FontSource {
     /// A TrueType/OpenType file.
     File(std::path::PathBuf),
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The paper's Appendix I literally: the index as the sum of the angles
+    /// B_k P B_{k+1} in (−π, π), divided by 2π.
+    fn index_by_angles(poly: &[Vec2], p: Vec2) -> i32 {
+        let n = poly.len();
+        let sum: f64 = (0..n)
+            .map(|k| {
+                let a = poly[k] - p;
+                let b = poly[(k + 1) % n] - p;
+                a.cross(b).atan2(a.dot(b))
+            })
+            .sum();
+        (sum / std::f64::consts::TAU).round() as i32
+    }
+
+    #[test]
+    fn winding_number_equals_appendix_i_angle_sum() {
+        // A pentagram (winding 2 in the middle), a square and a clockwise triangle.
+        let star: Vec<Vec2> = (0..5)
+            .map(|k| {
+                let a = std::f64::consts::FRAC_PI_2 + 4.0 * std::f64::consts::PI * k as f64 / 5.0;
+                Vec2::new(10.0 * a.cos(), 10.0 * a.sin())
+            })
+            .collect();
+        let square = vec![
+            Vec2::new(-3.0, -3.0),
+            Vec2::new(3.0, -3.0),
+            Vec2::new(3.0, 3.0),
+            Vec2::new(-3.0, 3.0),
+        ];
+        let tri = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.0, 8.0),
+            Vec2::new(8.0, 0.0),
+        ];
+        assert_eq!(polygon_winding_number(&star, Vec2::ZERO), 2);
+        assert_eq!(polygon_winding_number(&tri, Vec2::new(1.0, 1.0)), -1);
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 24.0
+        };
+        let mut counts = [0usize; 4];
+        for _ in 0..5000 {
+            let p = Vec2::new(rnd(), rnd());
+            for poly in [&star, &square, &tri] {
+                let w = polygon_winding_number(poly, p);
+                assert_eq!(w, index_by_angles(poly, p), "at {p:?}");
+                counts[(w + 1) as usize] += 1;
+            }
+        }
+        // Every value −1, 0, 1, 2 occurred.
+        assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
+        // Points on a vertex's horizontal line count once, not twice.
+        assert_eq!(
+            polygon_winding_number(&square, Vec2::new(0.0, 3.0 - 1e-12)),
+            1
+        );
+        assert_eq!(polygon_winding_number(&square, Vec2::new(-5.0, 3.0)), 0);
+    }
+
+    #[test]
+    fn shape_bbox_and_map() {
+        let sq = contour::tests::square(1.0, 2.0, 3.0);
+        let shape = Shape {
+            regions: vec![Region {
+                name: "sq".into(),
+                outline: sq,
+                counters: vec![],
+            }],
+        };
+        assert_eq!(
+            shape.bbox(),
+            Some((Vec2::new(1.0, 2.0), Vec2::new(4.0, 5.0)))
+        );
+        let moved = shape.map(|p| p * 2.0);
+        assert_eq!(
+            moved.bbox(),
+            Some((Vec2::new(2.0, 4.0), Vec2::new(8.0, 10.0)))
+        );
+        assert_eq!(Shape::default().bbox(), None);
+    }
+}
