@@ -4,12 +4,14 @@
 mod contour;
 mod distance;
 pub mod glyphs;
+mod nesting;
 mod segment;
 pub mod text;
 mod vec2;
 
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};
 pub use distance::DistanceIndex;
+pub use nesting::regions_from_contours;
 pub use segment::Segment;
 pub use text::build_shape;
 pub use vec2::Vec2;
