@@ -3,9 +3,11 @@
 
 mod contour;
 mod distance;
+pub mod font;
 pub mod glyphs;
 mod nesting;
 mod segment;
+mod svgpath;
 pub mod text;
 mod vec2;
 
@@ -37,6 +39,22 @@ pub enum GeometryError {
         font: String,
         /// the character
         ch: char,
+    },
+    /// A font file that cannot be used.
+    #[error("font file `{path}`: {reason}")]
+    Font {
+        /// the path as given
+        path: String,
+        /// what is wrong, in words
+        reason: String,
+    },
+    /// Malformed or unsupported SVG path data.
+    #[error("SVG path data, at character {offset}: {message}")]
+    Svg {
+        /// character offset into the `d` string, counted from 0
+        offset: usize,
+        /// what was found and what was expected
+        message: String,
     },
     /// Anything else wrong with the shape source, said in words.
     #[error("{0}")]
