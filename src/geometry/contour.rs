@@ -80,6 +80,19 @@ impl Contour {
         Some((lo, hi))
     }
 
+    /// Tight bounding box of the curve (see [`Segment::tight_bbox`]).
+    pub fn tight_bbox(&self) -> Option<(Vec2, Vec2)> {
+        self.segments
+            .iter()
+            .map(Segment::tight_bbox)
+            .reduce(|(a, b), (c, d)| {
+                (
+                    Vec2::new(a.x.min(c.x), a.y.min(c.y)),
+                    Vec2::new(b.x.max(d.x), b.y.max(d.y)),
+                )
+            })
+    }
+
     /// Signed area (exact for lines and cubics): positive when counter-clockwise.
     pub fn signed_area(&self) -> f64 {
         self.segments.iter().map(Segment::area_term).sum()

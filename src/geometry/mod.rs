@@ -49,7 +49,7 @@ pub enum GeometryError {
         reason: String,
     },
     /// Malformed or unsupported SVG path data.
-    #[error("SVG path data, at character {offset}: {message}")]
+    #[error("SVG path data: {message}, at character {offset}")]
     Svg {
         /// character offset into the `d` string, counted from 0
         offset: usize,
@@ -92,6 +92,18 @@ impl Shape {
     pub fn bbox(&self) -> Option<(Vec2, Vec2)> {
         self.contours()
             .filter_map(Contour::bbox)
+            .reduce(|(a, b), (c, d)| {
+                (
+                    Vec2::new(a.x.min(c.x), a.y.min(c.y)),
+                    Vec2::new(b.x.max(d.x), b.y.max(d.y)),
+                )
+            })
+    }
+
+    /// Tight bounding box of the curves themselves (see [`Segment::tight_bbox`]).
+    pub fn tight_bbox(&self) -> Option<(Vec2, Vec2)> {
+        self.contours()
+            .filter_map(Contour::tight_bbox)
             .reduce(|(a, b), (c, d)| {
                 (
                     Vec2::new(a.x.min(c.x), a.y.min(c.y)),

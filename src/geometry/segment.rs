@@ -252,6 +252,30 @@ impl Segment {
         }
     }
 
+    /// Tight bounding box of the curve itself (not of its control points): the end
+    /// points and the interior extrema, where a coordinate of the derivative vanishes.
+    pub fn tight_bbox(&self) -> (Vec2, Vec2) {
+        let (a, b) = (self.start(), self.end());
+        let mut lo = Vec2::new(a.x.min(b.x), a.y.min(b.y));
+        let mut hi = Vec2::new(a.x.max(b.x), a.y.max(b.y));
+        if let Segment::Cubic { p0, p1, p2, p3 } = *self {
+            // B'(t)/3 = d0 (1−t)² + 2 d1 (1−t) t + d2 t² = A t² + B t + C per coordinate.
+            let (d0, d1, d2) = (p1 - p0, p2 - p1, p3 - p2);
+            let qa = d0 - d1 * 2.0 + d2;
+            let qb = (d1 - d0) * 2.0;
+            for (qa, qb, qc) in [(qa.x, qb.x, d0.x), (qa.y, qb.y, d0.y)] {
+                for t in quadratic_roots(qa, qb, qc) {
+                    if t > 0.0 && t < 1.0 {
+                        let p = self.eval(t);
+                        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+                        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+                    }
+                }
+            }
+        }
+        (lo, hi)
+    }
+
     /// Signed area contribution ∮ x dy − y dx / 2 over this segment (exact).
     pub fn area_term(&self) -> f64 {
         match *self {
@@ -268,6 +292,28 @@ impl Segment {
             }
         }
     }
+}
+
+/// Real roots of a t² + b t + c = 0 (a linear or constant equation when a is
+/// negligible), in no particular order.
+fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+    let scale = a.abs().max(b.abs()).max(c.abs());
+    if scale == 0.0 {
+        return Vec::new();
+    }
+    if a.abs() <= 1e-12 * scale {
+        return if b != 0.0 { vec![-c / b] } else { Vec::new() };
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return Vec::new();
+    }
+    // The numerically stable pair of formulas.
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    if q == 0.0 {
+        return vec![0.0];
+    }
+    vec![q / a, c / q]
 }
 
 #[cfg(test)]
@@ -432,6 +478,24 @@ mod tests {
                     assert!(worst > tol / 20.0, "tol {tol}: deviation only {worst}");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn tight_bbox_matches_dense_sampling() {
+        for seg in test_cubics() {
+            let (lo, hi) = seg.tight_bbox();
+            let pts = fine(&seg, 100_000);
+            let mut slo = pts[0];
+            let mut shi = pts[0];
+            for p in &pts {
+                slo = Vec2::new(slo.x.min(p.x), slo.y.min(p.y));
+                shi = Vec2::new(shi.x.max(p.x), shi.y.max(p.y));
+            }
+            let scale = seg.length();
+            // Dense sampling misses an extremum by at most O(h²) ≈ 1e-10 × size.
+            assert!(lo.dist(slo) < 1e-8 * scale, "{lo:?} vs {slo:?}");
+            assert!(hi.dist(shi) < 1e-8 * scale, "{hi:?} vs {shi:?}");
         }
     }
 
