@@ -132,7 +132,10 @@ impl Contour {
 
     /// The closed polygon (first point not repeated at the end) within `tol` of the curve.
     pub fn flatten(&self, tol: f64) -> Vec<Vec2> {
-        let mut pts = vec![self.segments[0].start()];
+        let Some(first) = self.segments.first() else {
+            return Vec::new();
+        };
+        let mut pts = vec![first.start()];
         for s in &self.segments {
             s.flatten_into(tol, &mut pts);
         }
@@ -153,9 +156,18 @@ impl Contour {
         acc
     }
 
-    /// The point at arc length `s` (taken modulo the length).
+    /// The point at arc length `s` (taken modulo the length); `cum` is
+    /// [`Contour::cumulative_lengths`] of this contour.
     pub fn sample_at(&self, cum: &[f64], s: f64) -> Sample {
         let total = *cum.last().unwrap_or(&0.0);
+        if self.segments.is_empty() || cum.len() != self.segments.len() + 1 {
+            // No curve (only reachable by building a Contour without `new`).
+            return Sample {
+                p: Vec2::ZERO,
+                t: Vec2::new(1.0, 0.0),
+                s: 0.0,
+            };
+        }
         let s = if total > 0.0 {
             s.rem_euclid(total)
         } else {
@@ -471,6 +483,17 @@ pub(crate) mod tests {
             // Chords of equal arcs are shorter by at most h³κ²/24 (h = step).
             assert!(worst_chord < 1e-3 * total / n as f64, "{worst_chord:e}");
         }
+    }
+
+    #[test]
+    fn empty_contour_does_not_panic() {
+        // Only constructible through the public field, never through `new`.
+        let c = Contour { segments: vec![] };
+        assert!(c.flatten(0.1).is_empty());
+        assert_eq!(c.sample_uniform(3, 0.0).len(), 3);
+        assert_eq!(c.winding_number(Vec2::ZERO, 0.1), 0);
+        assert!(c.corners(0.1).is_empty());
+        assert_eq!(c.bbox(), None);
     }
 
     #[test]
