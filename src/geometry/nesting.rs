@@ -227,4 +227,41 @@ mod tests {
         assert_eq!(numbered("logo", 1), "logo (1)");
         assert_eq!(numbered("a)", 1), "a) (1)");
     }
+
+    #[test]
+    fn independent_of_direction_and_start() {
+        let base = vec![
+            circle(Vec2::ZERO, 20.0),
+            circle(v(-8.0, 0.0), 6.0),
+            circle(v(8.0, 0.0), 6.0),
+            circle(v(8.0, 0.0), 2.0),
+        ];
+        let want = regions_from_contours("b", base.clone());
+        assert_eq!(want.len(), 2);
+        assert_eq!(want[0].counters.len(), 2);
+        assert_eq!(want[1].counters.len(), 0);
+        for k in 0..4 {
+            let varied: Vec<Contour> = base
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    let c = c.cycled(k + i);
+                    if (i + k) % 2 == 0 {
+                        c.reversed()
+                    } else {
+                        c
+                    }
+                })
+                .collect();
+            let got = regions_from_contours("b", varied);
+            assert_eq!(got.len(), want.len());
+            for (g, w) in got.iter().zip(&want) {
+                assert!((g.outline.signed_area() - w.outline.signed_area()).abs() < 1e-9);
+                assert_eq!(g.counters.len(), w.counters.len());
+                for (gc, wc) in g.counters.iter().zip(&w.counters) {
+                    assert!((gc.signed_area() - wc.signed_area()).abs() < 1e-9);
+                }
+            }
+        }
+    }
 }

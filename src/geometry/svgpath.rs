@@ -601,4 +601,64 @@ mod tests {
         assert!(line.to_string().contains("encloses"), "{line}");
         assert!(svg_shape("M0 0", None, Vec2::ZERO).is_err());
     }
+
+    #[test]
+    fn random_data_never_panics() {
+        // Fixed-seed LCG. Inputs are random commands with (mostly) the right number
+        // of random numbers, mutated now and then by junk characters (one of them
+        // multi-byte): every input must give Ok or a positioned error.
+        let mut seed = 3u64;
+        let mut next = |n: usize| {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((seed >> 33) as usize) % n
+        };
+        let commands = [
+            "L", "l", "H", "h", "V", "v", "C", "c", "S", "s", "Q", "q", "T", "t", "Z", "z", "M",
+            "m", "A",
+        ];
+        let arity = [2, 2, 1, 1, 1, 1, 6, 6, 4, 4, 4, 4, 2, 2, 0, 0, 2, 2, 7];
+        let junk = [",", " ", ".", "-", "e", "x", "€", "1e", "+.", "\t"];
+        let d_of = |next: &mut dyn FnMut(usize) -> usize| {
+            let mut d = String::from("M1 2");
+            for _ in 0..next(8) {
+                let k = next(commands.len());
+                d.push_str(commands[k]);
+                let n = if next(10) == 0 { next(8) } else { arity[k] };
+                for _ in 0..n {
+                    let x = next(2001) as f64 / 100.0 - 10.0;
+                    d.push_str(&format!("{}{x}", [" ", ",", ""][next(3)]));
+                }
+            }
+            if next(3) > 0 {
+                d.push('z');
+            }
+            if next(8) == 0 {
+                let at = next(d.len() + 1);
+                if d.is_char_boundary(at) {
+                    d.insert_str(at, junk[next(junk.len())]);
+                }
+            }
+            d
+        };
+        let (mut ok, mut bad) = (0, 0);
+        for _ in 0..20_000 {
+            let d = d_of(&mut next);
+            match svg_shape(&d, Some(10.0), Vec2::ZERO) {
+                Ok(shape) => {
+                    ok += 1;
+                    assert!(shape.regions.iter().all(|r| r.outline.is_ccw()));
+                }
+                Err(GeometryError::Svg { offset, .. }) => {
+                    bad += 1;
+                    assert!(offset <= d.chars().count(), "{d:?}: offset {offset}");
+                }
+                Err(e) => panic!("{d:?}: unexpected error kind {e:?}"),
+            }
+        }
+        assert!(bad > 0);
+        // Some random inputs are valid paths that enclose area.
+        assert!(ok > 0, "no valid input among {bad} errors");
+    }
 }
