@@ -232,6 +232,11 @@ mod tests {
         let ring_counters: usize = shape.regions[2..].iter().map(|r| r.counters.len()).sum();
         assert_eq!(ring_counters, 2);
         assert!(names[2..].iter().all(|n| n.starts_with("% (2.")));
+        // A composite glyph (e + acute accent, assembled by ttf-parser).
+        let e = text("é", FontSource::File(dejavu()), 20.0, 0.0).expect("é");
+        assert_eq!(e.regions.len(), 2);
+        let counters: Vec<usize> = e.regions.iter().map(|r| r.counters.len()).collect();
+        assert_eq!(counters.iter().sum::<usize>(), 1, "{counters:?}");
     }
 
     /// Left edge of the region whose name starts with `prefix`.
