@@ -239,6 +239,8 @@ impl Contour {
     /// Winding number of the contour about `p` (the index of the paper's Appendix I,
     /// eq. (8.2)), computed on the flattening within `tol`: +1 inside a
     /// counter-clockwise contour, −1 inside a clockwise one, 0 outside.
+    /// This flattens the contour on every call: to test many points, flatten once
+    /// and call [`polygon_winding_number`](super::polygon_winding_number).
     pub fn winding_number(&self, p: Vec2, tol: f64) -> i32 {
         super::polygon_winding_number(&self.flatten(tol), p)
     }

@@ -172,18 +172,23 @@ impl ttf_parser::OutlineBuilder for Builder {
         self.pen = b;
     }
     fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
-        let b = p(x, y);
-        self.current.push(Segment::quad(self.pen, p(x1, y1), b));
+        let (q, b) = (p(x1, y1), p(x, y));
+        // A curve collapsed onto one point has no tangent: leave it out.
+        if !(q == self.pen && b == self.pen) {
+            self.current.push(Segment::quad(self.pen, q, b));
+        }
         self.pen = b;
     }
     fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
-        let b = p(x, y);
-        self.current.push(Segment::Cubic {
-            p0: self.pen,
-            p1: p(x1, y1),
-            p2: p(x2, y2),
-            p3: b,
-        });
+        let (c1, c2, b) = (p(x1, y1), p(x2, y2), p(x, y));
+        if !(c1 == self.pen && c2 == self.pen && b == self.pen) {
+            self.current.push(Segment::Cubic {
+                p0: self.pen,
+                p1: c1,
+                p2: c2,
+                p3: b,
+            });
+        }
         self.pen = b;
     }
     fn close(&mut self) {
