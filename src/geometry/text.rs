@@ -371,4 +371,43 @@ mod tests {
         assert_eq!(shape.regions.len(), 104);
         assert_eq!(counters, 29);
     }
+
+    #[test]
+    fn cap_height_from_os2_or_the_top_of_h() {
+        let data = std::fs::read(dejavu()).expect("test font");
+        let face = ttf_parser::Face::parse(&data, 0).expect("face");
+        // DejaVu Serif's OS/2 table is version 1, without sCapHeight: the cap height
+        // is the top of its H.
+        assert_eq!(face.capital_height(), None);
+        let h = face.glyph_index('H').expect("H");
+        let top = f64::from(face.glyph_bounding_box(h).expect("bbox").y_max);
+        assert_eq!(font::cap_height(&face, "x").expect("cap"), top);
+        assert_eq!(top, 1493.0);
+        // A copy whose OS/2 table is rewritten as version 2 with sCapHeight = 1400
+        // (appended at the end of the file, the table directory pointed at it).
+        let tables = usize::from(u16::from_be_bytes([data[4], data[5]]));
+        let rec = (0..tables)
+            .map(|k| 12 + 16 * k)
+            .find(|&r| &data[r..r + 4] == b"OS/2")
+            .expect("OS/2 table");
+        let word = |r: usize| u32::from_be_bytes([data[r], data[r + 1], data[r + 2], data[r + 3]]);
+        let (off, len) = (word(rec + 8) as usize, word(rec + 12) as usize);
+        let mut os2 = data[off..off + len].to_vec();
+        os2[0..2].copy_from_slice(&2u16.to_be_bytes());
+        os2.resize(86, 0);
+        os2.extend_from_slice(&[0, 0]); // sxHeight
+        os2.extend_from_slice(&1400i16.to_be_bytes()); // sCapHeight
+        os2.extend_from_slice(&[0; 6]); // usDefaultChar, usBreakChar, usMaxContext
+        let mut patched = data.clone();
+        while patched.len() % 4 != 0 {
+            patched.push(0);
+        }
+        let new_off = patched.len() as u32;
+        patched.extend_from_slice(&os2);
+        patched[rec + 8..rec + 12].copy_from_slice(&new_off.to_be_bytes());
+        patched[rec + 12..rec + 16].copy_from_slice(&(os2.len() as u32).to_be_bytes());
+        let face2 = ttf_parser::Face::parse(&patched, 0).expect("patched face");
+        assert_eq!(face2.capital_height(), Some(1400));
+        assert_eq!(font::cap_height(&face2, "x").expect("cap"), 1400.0);
+    }
 }
