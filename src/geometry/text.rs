@@ -152,6 +152,11 @@ impl Layout {
             pen += g.advance * scale + self.letter_spacing;
             prev = Some(g.id);
         }
+        if regions.is_empty() {
+            return Err(GeometryError::Invalid(format!(
+                "the text {text:?} has no visible glyph to cut"
+            )));
+        }
         Ok(Shape { regions })
     }
 }
@@ -318,6 +323,10 @@ mod tests {
             text("A", FontSource::Paper, f64::NAN, 0.0),
             Err(GeometryError::Invalid(_))
         ));
+        for (s, font) in [("", FontSource::Paper), ("  ", FontSource::File(dejavu()))] {
+            let e = text(s, font, 10.0, 0.0).expect_err("nothing to cut");
+            assert!(e.to_string().contains("no visible glyph"), "{e}");
+        }
     }
 
     #[test]
