@@ -160,7 +160,6 @@ fn open_svg_path_is_rejected() {
 }
 
 #[test]
-#[ignore = "needs SVG path support in geometry::build_shape"]
 fn open_svg_path_is_named_open() {
     assert_rejected("open-svg-named", OPEN_SVG, &["shape", "open"]);
 }

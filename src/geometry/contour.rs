@@ -80,6 +80,19 @@ impl Contour {
         Some((lo, hi))
     }
 
+    /// Tight bounding box of the curve (see [`Segment::tight_bbox`]).
+    pub fn tight_bbox(&self) -> Option<(Vec2, Vec2)> {
+        self.segments
+            .iter()
+            .map(Segment::tight_bbox)
+            .reduce(|(a, b), (c, d)| {
+                (
+                    Vec2::new(a.x.min(c.x), a.y.min(c.y)),
+                    Vec2::new(b.x.max(d.x), b.y.max(d.y)),
+                )
+            })
+    }
+
     /// Signed area (exact for lines and cubics): positive when counter-clockwise.
     pub fn signed_area(&self) -> f64 {
         self.segments.iter().map(Segment::area_term).sum()
@@ -119,7 +132,10 @@ impl Contour {
 
     /// The closed polygon (first point not repeated at the end) within `tol` of the curve.
     pub fn flatten(&self, tol: f64) -> Vec<Vec2> {
-        let mut pts = vec![self.segments[0].start()];
+        let Some(first) = self.segments.first() else {
+            return Vec::new();
+        };
+        let mut pts = vec![first.start()];
         for s in &self.segments {
             s.flatten_into(tol, &mut pts);
         }
@@ -140,9 +156,18 @@ impl Contour {
         acc
     }
 
-    /// The point at arc length `s` (taken modulo the length).
+    /// The point at arc length `s` (taken modulo the length); `cum` is
+    /// [`Contour::cumulative_lengths`] of this contour.
     pub fn sample_at(&self, cum: &[f64], s: f64) -> Sample {
         let total = *cum.last().unwrap_or(&0.0);
+        if self.segments.is_empty() || cum.len() != self.segments.len() + 1 {
+            // No curve (only reachable by building a Contour without `new`).
+            return Sample {
+                p: Vec2::ZERO,
+                t: Vec2::new(1.0, 0.0),
+                s: 0.0,
+            };
+        }
         let s = if total > 0.0 {
             s.rem_euclid(total)
         } else {
@@ -177,13 +202,23 @@ impl Contour {
     pub fn corners(&self, min_turn: f64) -> Vec<Corner> {
         let n = self.segments.len();
         let cum = self.cumulative_lengths();
+        let degenerate = |s: &Segment| match *s {
+            Segment::Line { a, b } => a == b,
+            Segment::Cubic { p0, p1, p2, p3 } => p0 == p1 && p1 == p2 && p2 == p3,
+        };
         let mut out = Vec::new();
-        for i in 0..n {
-            let prev = &self.segments[(i + n - 1) % n];
-            let cur = &self.segments[i];
-            if prev.end().dist(prev.start()) == 0.0 && matches!(prev, Segment::Line { .. }) {
+        for (i, (cur, &s)) in self.segments.iter().zip(&cum).enumerate() {
+            if degenerate(cur) {
                 continue;
             }
+            // The nearest segment before this one that has a direction: a zero-length
+            // piece between two segments must not hide the corner they make.
+            let Some(prev) = (1..=n)
+                .map(|k| &self.segments[(i + n - k) % n])
+                .find(|p| !degenerate(p))
+            else {
+                continue;
+            };
             let t_in = prev.tangent(1.0);
             let t_out = cur.tangent(0.0);
             let turn = t_in.cross(t_out).atan2(t_in.dot(t_out));
@@ -191,7 +226,7 @@ impl Contour {
                 out.push(Corner {
                     segment: i,
                     p: cur.start(),
-                    s: cum[i],
+                    s,
                     t_in,
                     t_out,
                     turn,
@@ -204,7 +239,278 @@ impl Contour {
     /// Winding number of the contour about `p` (the index of the paper's Appendix I,
     /// eq. (8.2)), computed on the flattening within `tol`: +1 inside a
     /// counter-clockwise contour, −1 inside a clockwise one, 0 outside.
+    /// This flattens the contour on every call: to test many points, flatten once
+    /// and call [`polygon_winding_number`](super::polygon_winding_number).
     pub fn winding_number(&self, p: Vec2, tol: f64) -> i32 {
         super::polygon_winding_number(&self.flatten(tol), p)
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::geometry::glyphs;
+
+    fn v(x: f64, y: f64) -> Vec2 {
+        Vec2::new(x, y)
+    }
+
+    fn line(a: Vec2, b: Vec2) -> Segment {
+        Segment::Line { a, b }
+    }
+
+    /// A closed polygon of lines through `pts`.
+    pub(crate) fn polygon(pts: &[Vec2]) -> Contour {
+        let n = pts.len();
+        Contour::new((0..n).map(|i| line(pts[i], pts[(i + 1) % n])).collect())
+            .expect("test polygon is closed")
+    }
+
+    /// Axis-aligned square, counter-clockwise.
+    pub(crate) fn square(x0: f64, y0: f64, side: f64) -> Contour {
+        polygon(&[
+            v(x0, y0),
+            v(x0 + side, y0),
+            v(x0 + side, y0 + side),
+            v(x0, y0 + side),
+        ])
+    }
+
+    /// Circle of radius `r` about `c` from four cubic quarter arcs (k = 0.5519…),
+    /// counter-clockwise.
+    pub(crate) fn circle(c: Vec2, r: f64) -> Contour {
+        let k = 0.551_915_024_494 * r;
+        let pts = [v(r, 0.0), v(0.0, r), v(-r, 0.0), v(0.0, -r)];
+        let segs = (0..4)
+            .map(|i| {
+                let a = pts[i];
+                let b = pts[(i + 1) % 4];
+                Segment::Cubic {
+                    p0: c + a,
+                    p1: c + a + a.perp().normalized() * k,
+                    p2: c + b - b.perp().normalized() * k,
+                    p3: c + b,
+                }
+            })
+            .collect();
+        Contour::new(segs).expect("circle is closed")
+    }
+
+    /// A rounded rectangle: lines and tangent-continuous cubic corners, CCW.
+    fn rounded_rect() -> Contour {
+        let (w, h, r) = (40.0, 20.0, 5.0);
+        let k = 0.551_915_024_494 * r;
+        let segs = vec![
+            line(v(r, 0.0), v(w - r, 0.0)),
+            Segment::Cubic {
+                p0: v(w - r, 0.0),
+                p1: v(w - r + k, 0.0),
+                p2: v(w, r - k),
+                p3: v(w, r),
+            },
+            line(v(w, r), v(w, h - r)),
+            Segment::Cubic {
+                p0: v(w, h - r),
+                p1: v(w, h - r + k),
+                p2: v(w - r + k, h),
+                p3: v(w - r, h),
+            },
+            line(v(w - r, h), v(r, h)),
+            Segment::Cubic {
+                p0: v(r, h),
+                p1: v(r - k, h),
+                p2: v(0.0, h - r + k),
+                p3: v(0.0, h - r),
+            },
+            line(v(0.0, h - r), v(0.0, r)),
+            Segment::Cubic {
+                p0: v(0.0, r),
+                p1: v(0.0, r - k),
+                p2: v(r - k, 0.0),
+                p3: v(r, 0.0),
+            },
+        ];
+        Contour::new(segs).expect("rounded rectangle is closed")
+    }
+
+    fn shoelace(pts: &[Vec2]) -> f64 {
+        let n = pts.len();
+        (0..n).map(|i| 0.5 * pts[i].cross(pts[(i + 1) % n])).sum()
+    }
+
+    fn test_contours() -> Vec<Contour> {
+        let mut cs = vec![
+            square(1.0, 2.0, 3.0),
+            circle(v(5.0, -3.0), 7.0),
+            rounded_rect(),
+        ];
+        for ch in glyphs::paper_chars() {
+            let g = glyphs::paper_glyph(ch).expect("paper glyph");
+            cs.extend(g.outlines);
+            cs.extend(g.counters);
+        }
+        cs
+    }
+
+    #[test]
+    fn new_rejects_open_and_empty() {
+        assert_eq!(Contour::new(vec![]), Err(GeometryError::Empty));
+        let open = vec![
+            line(v(0.0, 0.0), v(1.0, 0.0)),
+            line(v(1.0, 0.0), v(1.0, 1.0)),
+        ];
+        match Contour::new(open) {
+            Err(GeometryError::Open { at, next }) => {
+                assert_eq!(at, v(1.0, 1.0));
+                assert_eq!(next, v(0.0, 0.0));
+            }
+            other => panic!("expected Open, got {other:?}"),
+        }
+        // A gap in the middle is found too.
+        let gap = vec![
+            line(v(0.0, 0.0), v(1.0, 0.0)),
+            line(v(1.0, 0.001), v(0.0, 0.0)),
+        ];
+        assert!(matches!(Contour::new(gap), Err(GeometryError::Open { .. })));
+    }
+
+    #[test]
+    fn area_matches_flattening_and_is_invariant() {
+        for c in test_contours() {
+            let area = c.signed_area();
+            let poly = shoelace(&c.flatten(1e-4));
+            let len = c.length();
+            // The flattening is within 1e-4 of the curve, so the areas differ by at
+            // most about length × 1e-4.
+            assert!(
+                (area - poly).abs() <= len * 1e-4,
+                "area {area} vs flattened {poly}"
+            );
+            let r = c.reversed();
+            assert!((r.signed_area() + area).abs() < 1e-9 * area.abs());
+            assert!((r.length() - len).abs() < 1e-9 * len);
+            for k in 0..c.segments.len() {
+                let cy = c.cycled(k);
+                assert!((cy.signed_area() - area).abs() < 1e-9 * area.abs());
+                assert!((cy.length() - len).abs() < 1e-9 * len);
+                assert!(Contour::new(cy.segments.clone()).is_ok());
+            }
+            assert!(Contour::new(r.segments.clone()).is_ok());
+        }
+    }
+
+    #[test]
+    fn known_areas_and_lengths() {
+        let sq = square(0.0, 0.0, 3.0);
+        assert_eq!(sq.signed_area(), 9.0);
+        assert_eq!(sq.length(), 12.0);
+        let c = circle(Vec2::ZERO, 10.0);
+        // The 4-cubic circle deviates from the true one by at most 2.7e-4 relative.
+        let pi_area = c.signed_area() / 100.0;
+        let pi_len = c.length() / 20.0;
+        assert!((pi_area - std::f64::consts::PI).abs() < 1e-3, "{pi_area}");
+        assert!((pi_len - std::f64::consts::PI).abs() < 1e-3, "{pi_len}");
+        assert!(c.is_ccw() && !c.reversed().is_ccw());
+    }
+
+    #[test]
+    fn corners_of_square_and_smooth_contours() {
+        let sq = square(0.0, 0.0, 2.0);
+        let cs = sq.corners(0.1);
+        assert_eq!(cs.len(), 4);
+        for (i, c) in cs.iter().enumerate() {
+            assert_eq!(c.segment, i);
+            assert_eq!(c.s, 2.0 * i as f64);
+            assert!((c.turn - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        }
+        assert_eq!(cs[1].p, v(2.0, 0.0));
+        // Reversed: the turns are to the right.
+        for c in sq.reversed().corners(0.1) {
+            assert!((c.turn + std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        }
+        // A zero-length piece at a corner does not hide it.
+        let with_dot = Contour::new(vec![
+            line(v(0.0, 0.0), v(2.0, 0.0)),
+            line(v(2.0, 0.0), v(2.0, 0.0)),
+            line(v(2.0, 0.0), v(2.0, 2.0)),
+            line(v(2.0, 2.0), v(0.0, 0.0)),
+        ])
+        .expect("closed");
+        let cs2 = with_dot.corners(0.1);
+        assert_eq!(cs2.len(), 3);
+        assert_eq!(cs2[1].segment, 2);
+        assert!((cs2[1].turn - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        // Tangent-continuous joins are not corners.
+        assert!(rounded_rect().corners(1e-6).is_empty());
+        assert!(circle(Vec2::ZERO, 1.0).corners(1e-6).is_empty());
+        // The paper's H: the total turning of a simple CCW contour is 2π, and the
+        // corners with smooth joins excluded account for the rest.
+        let h = &glyphs::paper_glyph('H').expect("H").outlines[0];
+        let corners = h.corners(0.01);
+        assert!(corners.len() >= 8, "H has {} corners", corners.len());
+        for c in &corners {
+            assert!(c.turn.abs() <= std::f64::consts::PI);
+            assert!((c.t_in.norm() - 1.0).abs() < 1e-12);
+            assert!((c.t_out.norm() - 1.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn sample_uniform_is_equally_spaced() {
+        for c in [rounded_rect(), circle(v(1.0, 1.0), 3.0)] {
+            let n = 400;
+            let total = c.length();
+            let samples = c.sample_uniform(n, 0.25);
+            assert_eq!(samples.len(), n);
+            let cum = c.cumulative_lengths();
+            let mut worst_s: f64 = 0.0;
+            let mut worst_chord: f64 = 0.0;
+            for (k, smp) in samples.iter().enumerate() {
+                let want = (0.25 + total * k as f64 / n as f64).rem_euclid(total);
+                worst_s = worst_s.max((smp.s - want).abs());
+                assert!((smp.t.norm() - 1.0).abs() < 1e-12);
+                // The point is on the contour: arc length from the segment start matches.
+                let i = cum
+                    .iter()
+                    .rposition(|&x| x <= smp.s)
+                    .unwrap_or(0)
+                    .min(c.segments.len() - 1);
+                let seg = c.segments[i];
+                let t = seg.t_at_length(smp.s - cum[i]);
+                assert!(seg.eval(t).dist(smp.p) < 1e-9);
+                let next = &samples[(k + 1) % n];
+                worst_chord = worst_chord.max((smp.p.dist(next.p) - total / n as f64).abs());
+            }
+            assert!(worst_s < 1e-9, "{worst_s:e}");
+            // Chords of equal arcs are shorter by at most h³κ²/24 (h = step).
+            assert!(worst_chord < 1e-3 * total / n as f64, "{worst_chord:e}");
+        }
+    }
+
+    #[test]
+    fn empty_contour_does_not_panic() {
+        // Only constructible through the public field, never through `new`.
+        let c = Contour { segments: vec![] };
+        assert!(c.flatten(0.1).is_empty());
+        assert_eq!(c.sample_uniform(3, 0.0).len(), 3);
+        assert_eq!(c.winding_number(Vec2::ZERO, 0.1), 0);
+        assert!(c.corners(0.1).is_empty());
+        assert_eq!(c.bbox(), None);
+    }
+
+    #[test]
+    fn winding_number_inside_outside() {
+        let c = circle(Vec2::ZERO, 10.0);
+        assert_eq!(c.winding_number(v(0.0, 0.0), 0.01), 1);
+        assert_eq!(c.winding_number(v(9.9, 0.0), 0.01), 1);
+        assert_eq!(c.winding_number(v(10.1, 0.0), 0.01), 0);
+        assert_eq!(c.reversed().winding_number(v(3.0, 3.0), 0.01), -1);
+        let a = glyphs::paper_glyph('A').expect("A");
+        let counter = &a.counters[0];
+        let (lo, hi) = counter.bbox().expect("bbox");
+        let mid = (lo + hi) * 0.5;
+        assert_eq!(counter.winding_number(mid, 0.1), -1);
+        // The counter's middle is not material: outline +1, counter −1.
+        assert_eq!(a.outlines[0].winding_number(mid, 0.1), 1);
     }
 }

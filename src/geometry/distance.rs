@@ -58,19 +58,37 @@ impl DistanceIndex {
         let nx = ((ext.x / cell).floor() as usize + 1).max(1);
         let ny = ((ext.y / cell).floor() as usize + 1).max(1);
         let mut counts = vec![0u32; nx * ny + 1];
-        let cell_range = |a: Vec2, b: Vec2| {
-            let i0 = (((a.x.min(b.x) - lo.x) / cell).floor().max(0.0) as usize).min(nx - 1);
-            let i1 = (((a.x.max(b.x) - lo.x) / cell).floor().max(0.0) as usize).min(nx - 1);
-            let j0 = (((a.y.min(b.y) - lo.y) / cell).floor().max(0.0) as usize).min(ny - 1);
-            let j1 = (((a.y.max(b.y) - lo.y) / cell).floor().max(0.0) as usize).min(ny - 1);
-            (i0, i1, j0, j1)
-        };
-        for &(a, b) in &edges {
-            let (i0, i1, j0, j1) = cell_range(a, b);
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    counts[j * nx + i + 1] += 1;
+        // The cells an edge passes through: row by row, the x-range of the part of
+        // the edge inside the row, padded by a hair against rounding (a superset is
+        // harmless, a missed cell would not be). Registering the bounding box of the
+        // edge instead put a long diagonal into O(n²) cells.
+        let cells_of = |a: Vec2, b: Vec2, out: &mut Vec<usize>| {
+            out.clear();
+            let col = |x: f64| (((x - lo.x) / cell).floor().max(0.0) as usize).min(nx - 1);
+            let row = |y: f64| (((y - lo.y) / cell).floor().max(0.0) as usize).min(ny - 1);
+            let (ymin, ymax) = (a.y.min(b.y), a.y.max(b.y));
+            let pad = 1e-9 * cell;
+            for j in row(ymin)..=row(ymax) {
+                let y0 = lo.y + j as f64 * cell;
+                let (y1, y2) = (ymin.max(y0 - pad), ymax.min(y0 + cell + pad));
+                let (y1, y2) = (y1.min(y2), y1.max(y2));
+                let (x1, x2) = if b.y == a.y {
+                    (a.x.min(b.x), a.x.max(b.x))
+                } else {
+                    let x_at = |y: f64| a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
+                    let (u, w) = (x_at(y1), x_at(y2));
+                    (u.min(w), u.max(w))
+                };
+                for i in col(x1 - pad)..=col(x2 + pad) {
+                    out.push(j * nx + i);
                 }
+            }
+        };
+        let mut cells = Vec::new();
+        for &(a, b) in &edges {
+            cells_of(a, b, &mut cells);
+            for &c in &cells {
+                counts[c + 1] += 1;
             }
         }
         for c in 1..counts.len() {
@@ -80,13 +98,10 @@ impl DistanceIndex {
         let mut fill = counts;
         let mut items = vec![0u32; *starts.last().unwrap_or(&0) as usize];
         for (e, &(a, b)) in edges.iter().enumerate() {
-            let (i0, i1, j0, j1) = cell_range(a, b);
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    let c = j * nx + i;
-                    items[fill[c] as usize] = e as u32;
-                    fill[c] += 1;
-                }
+            cells_of(a, b, &mut cells);
+            for &c in &cells {
+                items[fill[c] as usize] = e as u32;
+                fill[c] += 1;
             }
         }
         DistanceIndex {
@@ -148,6 +163,14 @@ impl DistanceIndex {
             let ly = (fy - (cj - ring) as f64).min((cj + ring + 1) as f64 - fy);
             let reach = lx.min(ly).max(0.0) * self.cell;
             if best.is_finite() && reach * reach >= best {
+                break;
+            }
+            // Every cell of the grid has been searched (p may be far outside it).
+            let all = ci - ring <= 0
+                && cj - ring <= 0
+                && ci + ring >= self.nx as isize - 1
+                && cj + ring >= self.ny as isize - 1;
+            if all && best.is_finite() {
                 break;
             }
             ring += 1;
@@ -228,4 +251,105 @@ pub fn seg_seg_dist(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> f64 {
         .min(seg_dist2(p, a, b).0)
         .min(seg_dist2(q, a, b).0)
         .sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fixed-seed linear congruential generator (Knuth's MMIX constants).
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    fn star(c: Vec2, r0: f64, r1: f64, n: usize) -> Vec<Vec2> {
+        (0..2 * n)
+            .map(|k| {
+                let a = std::f64::consts::PI * k as f64 / n as f64;
+                let r = if k % 2 == 0 { r0 } else { r1 };
+                c + Vec2::new(a.cos(), a.sin()) * r
+            })
+            .collect()
+    }
+
+    #[test]
+    fn nearest_equals_brute_force() {
+        let mut rng = Lcg(42);
+        let polys = vec![
+            star(Vec2::new(0.0, 0.0), 30.0, 12.0, 7),
+            star(Vec2::new(80.0, 10.0), 5.0, 2.0, 40),
+            vec![
+                Vec2::new(-50.0, -50.0),
+                Vec2::new(-49.0, -50.0),
+                Vec2::new(-49.5, -45.0),
+            ],
+        ];
+        let idx = DistanceIndex::new(&polys);
+        assert_eq!(idx.edge_count(), 14 + 80 + 3);
+        let mut worst: f64 = 0.0;
+        for k in 0..20_000 {
+            // Three quarters inside the grid's extent, the rest up to 1e4 away.
+            let spread = if k % 4 == 3 { 2e4 } else { 160.0 };
+            let p = Vec2::new(
+                20.0 + (rng.next() - 0.5) * spread,
+                (rng.next() - 0.5) * spread,
+            );
+            let (d, q) = idx.nearest(p);
+            let b = idx.distance_brute(p);
+            worst = worst.max((d - b).abs());
+            assert!((p.dist(q) - d).abs() <= 1e-9 * d.max(1.0));
+        }
+        assert!(worst <= 1e-12, "grid vs brute force: {worst:e}");
+    }
+
+    #[test]
+    fn long_diagonals_and_many_short_edges() {
+        // A thin sliver triangle with two long diagonals plus a fine circle: the
+        // grid is fine, the diagonals cross many cells.
+        let mut circle: Vec<Vec2> = (0..2000)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 2000.0;
+                Vec2::new(50.0 + 3.0 * a.cos(), 50.0 + 3.0 * a.sin())
+            })
+            .collect();
+        circle.reverse();
+        let sliver = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(100.0, 97.0),
+            Vec2::new(99.0, 100.0),
+        ];
+        let idx = DistanceIndex::new(&[sliver, circle]);
+        let mut rng = Lcg(9);
+        let mut worst: f64 = 0.0;
+        for _ in 0..20_000 {
+            let p = Vec2::new(rng.next() * 120.0 - 10.0, rng.next() * 120.0 - 10.0);
+            worst = worst.max((idx.distance(p) - idx.distance_brute(p)).abs());
+        }
+        assert!(worst <= 1e-12, "{worst:e}");
+        // Only the cells along the diagonals hold them: far fewer than their boxes.
+        assert!(
+            idx.items.len() < 20 * idx.edges.len(),
+            "{} items",
+            idx.items.len()
+        );
+    }
+
+    #[test]
+    fn degenerate_inputs() {
+        let empty = DistanceIndex::new(&[]);
+        assert_eq!(empty.distance(Vec2::new(1.0, 1.0)), f64::INFINITY);
+        // A flat polygon (zero height) and a single point.
+        let flat = DistanceIndex::new(&[vec![Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)]]);
+        assert_eq!(flat.distance(Vec2::new(5.0, 3.0)), 3.0);
+        assert_eq!(flat.distance(Vec2::new(13.0, -4.0)), 5.0);
+        let dot = DistanceIndex::new(&[vec![Vec2::new(2.0, 2.0)]]);
+        assert_eq!(dot.distance(Vec2::new(5.0, 6.0)), 5.0);
+    }
 }

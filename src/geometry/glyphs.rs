@@ -192,3 +192,67 @@ pub fn paper_glyph(ch: char) -> Result<Glyph, GeometryError> {
 pub fn paper_q() -> Result<RawQ, GeometryError> {
     Ok(font().as_ref().map_err(Clone::clone)?.q.clone())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_paper_glyph_loads_closed_and_oriented() {
+        let chars = paper_chars();
+        assert_eq!(chars, vec!['I', 'H', 'A', 'M', 'F', 'S']);
+        for ch in chars {
+            let g = paper_glyph(ch).expect("paper glyph");
+            assert_eq!(g.ch, ch);
+            assert_eq!(g.outlines.len(), 1, "{ch}");
+            for c in &g.outlines {
+                assert!(c.is_ccw(), "{ch} outline is not CCW");
+                // Still closed after loading (the constructor checks the joins).
+                assert!(Contour::new(c.segments.clone()).is_ok());
+                let (lo, hi) = c.bbox().expect("bbox");
+                assert!(lo.y >= -20.0 && hi.y <= PAPER_CAP_HEIGHT + 20.0, "{ch}");
+                assert!(g.advance > hi.x);
+            }
+            for c in &g.counters {
+                assert!(!c.is_ccw(), "{ch} counter is not CW");
+            }
+            assert_eq!(g.counters.len(), usize::from(ch == 'A'), "{ch}");
+        }
+    }
+
+    #[test]
+    fn m_gaps_closed_and_cap_at_662() {
+        let m = paper_glyph('M').expect("M");
+        let c = &m.outlines[0];
+        let (_, hi) = c.bbox().expect("bbox");
+        assert_eq!(hi.y, 662.0);
+        // Exactly joined, not merely within tolerance.
+        let n = c.segments.len();
+        for i in 0..n {
+            assert_eq!(c.segments[i].end(), c.segments[(i + 1) % n].start());
+        }
+        // The top-right cap after the snap: (664, 662) → (863, 662).
+        assert!(c.segments.iter().any(|s| *s
+            == Segment::Line {
+                a: Vec2::new(863.0, 662.0),
+                b: Vec2::new(664.0, 662.0)
+            }));
+        for ch in ['I', 'H', 'F'] {
+            let g = paper_glyph(ch).expect("glyph");
+            assert_eq!(g.outlines[0].bbox().expect("bbox").1.y, 662.0, "{ch}");
+        }
+    }
+
+    #[test]
+    fn missing_glyph_and_q() {
+        assert_eq!(
+            paper_glyph('Z'),
+            Err(GeometryError::MissingGlyph {
+                font: "paper".into(),
+                ch: 'Z'
+            })
+        );
+        let q = paper_q().expect("q");
+        assert!(q.m1_rectangle.len() >= 4);
+    }
+}

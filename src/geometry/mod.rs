@@ -3,13 +3,17 @@
 
 mod contour;
 mod distance;
+pub mod font;
 pub mod glyphs;
+mod nesting;
 mod segment;
+mod svgpath;
 pub mod text;
 mod vec2;
 
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};
 pub use distance::{seg_seg_dist, DistanceIndex};
+pub use nesting::regions_from_contours;
 pub use segment::Segment;
 pub use text::build_shape;
 pub use vec2::Vec2;
@@ -35,6 +39,22 @@ pub enum GeometryError {
         font: String,
         /// the character
         ch: char,
+    },
+    /// A font file that cannot be used.
+    #[error("font file `{path}`: {reason}")]
+    Font {
+        /// the path as given
+        path: String,
+        /// what is wrong, in words
+        reason: String,
+    },
+    /// Malformed or unsupported SVG path data.
+    #[error("SVG path data: {message}, at character {offset}")]
+    Svg {
+        /// character offset into the `d` string, counted from 0
+        offset: usize,
+        /// what was found and what was expected
+        message: String,
     },
     /// Anything else wrong with the shape source, said in words.
     #[error("{0}")]
@@ -72,6 +92,18 @@ impl Shape {
     pub fn bbox(&self) -> Option<(Vec2, Vec2)> {
         self.contours()
             .filter_map(Contour::bbox)
+            .reduce(|(a, b), (c, d)| {
+                (
+                    Vec2::new(a.x.min(c.x), a.y.min(c.y)),
+                    Vec2::new(b.x.max(d.x), b.y.max(d.y)),
+                )
+            })
+    }
+
+    /// Tight bounding box of the curves themselves (see [`Segment::tight_bbox`]).
+    pub fn tight_bbox(&self) -> Option<(Vec2, Vec2)> {
+        self.contours()
+            .filter_map(Contour::tight_bbox)
             .reduce(|(a, b), (c, d)| {
                 (
                     Vec2::new(a.x.min(c.x), a.y.min(c.y)),
@@ -150,4 +182,93 @@ pub enum FontSource {
     Paper,
     /// A TrueType/OpenType file.
     File(std::path::PathBuf),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The paper's Appendix I literally: the index as the sum of the angles
+    /// B_k P B_{k+1} in (−π, π), divided by 2π.
+    fn index_by_angles(poly: &[Vec2], p: Vec2) -> i32 {
+        let n = poly.len();
+        let sum: f64 = (0..n)
+            .map(|k| {
+                let a = poly[k] - p;
+                let b = poly[(k + 1) % n] - p;
+                a.cross(b).atan2(a.dot(b))
+            })
+            .sum();
+        (sum / std::f64::consts::TAU).round() as i32
+    }
+
+    #[test]
+    fn winding_number_equals_appendix_i_angle_sum() {
+        // A pentagram (winding 2 in the middle), a square and a clockwise triangle.
+        let star: Vec<Vec2> = (0..5)
+            .map(|k| {
+                let a = std::f64::consts::FRAC_PI_2 + 4.0 * std::f64::consts::PI * k as f64 / 5.0;
+                Vec2::new(10.0 * a.cos(), 10.0 * a.sin())
+            })
+            .collect();
+        let square = vec![
+            Vec2::new(-3.0, -3.0),
+            Vec2::new(3.0, -3.0),
+            Vec2::new(3.0, 3.0),
+            Vec2::new(-3.0, 3.0),
+        ];
+        let tri = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.0, 8.0),
+            Vec2::new(8.0, 0.0),
+        ];
+        assert_eq!(polygon_winding_number(&star, Vec2::ZERO), 2);
+        assert_eq!(polygon_winding_number(&tri, Vec2::new(1.0, 1.0)), -1);
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 24.0
+        };
+        let mut counts = [0usize; 4];
+        for _ in 0..5000 {
+            let p = Vec2::new(rnd(), rnd());
+            for poly in [&star, &square, &tri] {
+                let w = polygon_winding_number(poly, p);
+                assert_eq!(w, index_by_angles(poly, p), "at {p:?}");
+                counts[(w + 1) as usize] += 1;
+            }
+        }
+        // Every value −1, 0, 1, 2 occurred.
+        assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
+        // Points on a vertex's horizontal line count once, not twice.
+        assert_eq!(
+            polygon_winding_number(&square, Vec2::new(0.0, 3.0 - 1e-12)),
+            1
+        );
+        assert_eq!(polygon_winding_number(&square, Vec2::new(-5.0, 3.0)), 0);
+    }
+
+    #[test]
+    fn shape_bbox_and_map() {
+        let sq = contour::tests::square(1.0, 2.0, 3.0);
+        let shape = Shape {
+            regions: vec![Region {
+                name: "sq".into(),
+                outline: sq,
+                counters: vec![],
+            }],
+        };
+        assert_eq!(
+            shape.bbox(),
+            Some((Vec2::new(1.0, 2.0), Vec2::new(4.0, 5.0)))
+        );
+        let moved = shape.map(|p| p * 2.0);
+        assert_eq!(
+            moved.bbox(),
+            Some((Vec2::new(2.0, 4.0), Vec2::new(8.0, 10.0)))
+        );
+        assert_eq!(Shape::default().bbox(), None);
+    }
 }

@@ -1,0 +1,197 @@
+//! TrueType/OpenType fonts from a file, through `ttf-parser`: glyph outlines in
+//! font units (y up), advance widths, cap height and `kern`-table kerning.
+//!
+//! Quadratic (TrueType) curves are raised to cubics exactly with
+//! [`Segment::quad`]; CFF cubics are kept as they are. Kerning comes from the
+//! legacy `kern` table only (horizontal, non-variable subtables); the OpenType
+//! `GPOS` table is not applied, so fonts that kern only through GPOS are set
+//! with their plain advance widths.
+
+use super::{Contour, GeometryError, Segment, Vec2};
+use std::path::Path;
+
+/// A font file read into memory and checked to parse.
+pub struct FontFile {
+    /// The path as given, for messages.
+    pub name: String,
+    data: Vec<u8>,
+}
+
+/// One glyph in font units.
+pub struct FontGlyph {
+    /// The closed contours, as the font orders and orients them.
+    pub contours: Vec<Contour>,
+    /// Horizontal advance, font units.
+    pub advance: f64,
+    /// The glyph index, for kerning.
+    pub id: u16,
+}
+
+fn font_err(name: &str, reason: impl Into<String>) -> GeometryError {
+    GeometryError::Font {
+        path: name.to_string(),
+        reason: reason.into(),
+    }
+}
+
+impl FontFile {
+    /// Reads and checks the font at `path`. Errors name the path: missing,
+    /// unreadable, or not a TrueType/OpenType font.
+    pub fn open(path: &Path) -> Result<FontFile, GeometryError> {
+        let name = path.display().to_string();
+        let data = std::fs::read(path).map_err(|e| font_err(&name, e.to_string()))?;
+        ttf_parser::Face::parse(&data, 0)
+            .map_err(|e| font_err(&name, format!("not a TrueType/OpenType font ({e})")))?;
+        Ok(FontFile { name, data })
+    }
+
+    /// The parsed face (checked to parse in `open`).
+    pub fn face(&self) -> Result<ttf_parser::Face<'_>, GeometryError> {
+        ttf_parser::Face::parse(&self.data, 0)
+            .map_err(|e| font_err(&self.name, format!("not a TrueType/OpenType font ({e})")))
+    }
+}
+
+/// The cap height in font units: the OS/2 `sCapHeight` when present and positive,
+/// else the top of the glyph `H`.
+pub fn cap_height(face: &ttf_parser::Face<'_>, name: &str) -> Result<f64, GeometryError> {
+    if let Some(h) = face.capital_height().filter(|&h| h > 0) {
+        return Ok(f64::from(h));
+    }
+    face.glyph_index('H')
+        .and_then(|id| face.glyph_bounding_box(id))
+        .map(|r| f64::from(r.y_max))
+        .filter(|&h| h > 0.0)
+        .ok_or_else(|| {
+            font_err(
+                name,
+                "the font gives no cap height (OS/2) and has no glyph `H` to measure it",
+            )
+        })
+}
+
+/// The glyph for `ch`, or `MissingGlyph`. Whitespace without a glyph of its own
+/// gets the advance of the space (or a quarter em) and no contours.
+pub fn glyph(
+    face: &ttf_parser::Face<'_>,
+    name: &str,
+    ch: char,
+) -> Result<FontGlyph, GeometryError> {
+    let Some(id) = face.glyph_index(ch) else {
+        if ch.is_whitespace() {
+            let advance = face
+                .glyph_index(' ')
+                .and_then(|id| face.glyph_hor_advance(id))
+                .map(f64::from)
+                .unwrap_or(f64::from(face.units_per_em()) / 4.0);
+            return Ok(FontGlyph {
+                contours: Vec::new(),
+                advance,
+                id: 0,
+            });
+        }
+        return Err(GeometryError::MissingGlyph {
+            font: name.to_string(),
+            ch,
+        });
+    };
+    let mut b = Builder::default();
+    // `None` means an empty outline (a space): no contours.
+    let _ = face.outline_glyph(id, &mut b);
+    b.finish();
+    let contours = b
+        .contours
+        .into_iter()
+        .filter(|segs| !segs.is_empty())
+        .map(Contour::new)
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| font_err(name, format!("glyph for {ch:?}: {e}")))?;
+    let advance = face.glyph_hor_advance(id).map(f64::from).unwrap_or(0.0);
+    Ok(FontGlyph {
+        contours,
+        advance,
+        id: id.0,
+    })
+}
+
+/// Kerning between two glyphs in font units (negative brings them closer), summed
+/// over the horizontal, non-variable, non-cross-stream subtables of `kern`.
+pub fn kerning(face: &ttf_parser::Face<'_>, left: u16, right: u16) -> f64 {
+    let Some(kern) = face.tables().kern else {
+        return 0.0;
+    };
+    kern.subtables
+        .into_iter()
+        .filter(|s| s.horizontal && !s.variable && !s.has_cross_stream)
+        .filter_map(|s| s.glyphs_kerning(ttf_parser::GlyphId(left), ttf_parser::GlyphId(right)))
+        .map(f64::from)
+        .sum()
+}
+
+/// Collects `ttf-parser` outline callbacks into closed segment lists.
+#[derive(Default)]
+struct Builder {
+    contours: Vec<Vec<Segment>>,
+    current: Vec<Segment>,
+    start: Vec2,
+    pen: Vec2,
+}
+
+impl Builder {
+    /// Closes the open contour, if any, with a line back to its start.
+    fn finish(&mut self) {
+        if self.current.is_empty() {
+            return;
+        }
+        if self.pen != self.start {
+            self.current.push(Segment::Line {
+                a: self.pen,
+                b: self.start,
+            });
+        }
+        self.contours.push(std::mem::take(&mut self.current));
+        self.pen = self.start;
+    }
+}
+
+fn p(x: f32, y: f32) -> Vec2 {
+    Vec2::new(f64::from(x), f64::from(y))
+}
+
+impl ttf_parser::OutlineBuilder for Builder {
+    fn move_to(&mut self, x: f32, y: f32) {
+        self.finish();
+        self.start = p(x, y);
+        self.pen = self.start;
+    }
+    fn line_to(&mut self, x: f32, y: f32) {
+        let b = p(x, y);
+        if b != self.pen {
+            self.current.push(Segment::Line { a: self.pen, b });
+        }
+        self.pen = b;
+    }
+    fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
+        let (q, b) = (p(x1, y1), p(x, y));
+        // A curve collapsed onto one point has no tangent: leave it out.
+        if !(q == self.pen && b == self.pen) {
+            self.current.push(Segment::quad(self.pen, q, b));
+        }
+        self.pen = b;
+    }
+    fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
+        let (c1, c2, b) = (p(x1, y1), p(x2, y2), p(x, y));
+        if !(c1 == self.pen && c2 == self.pen && b == self.pen) {
+            self.current.push(Segment::Cubic {
+                p0: self.pen,
+                p1: c1,
+                p2: c2,
+                p3: b,
+            });
+        }
+        self.pen = b;
+    }
+    fn close(&mut self) {
+        self.finish();
+    }
+}
