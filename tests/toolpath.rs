@@ -123,7 +123,7 @@ fn hausdorff(lp: &[Vec2], oracles: &[Polyline]) -> f64 {
         })
         .unwrap();
     let oracle_pts = sample_pline(best, 0.002);
-    let oracle_index = DistanceIndex::new(&[oracle_pts.clone()]);
+    let oracle_index = DistanceIndex::new(std::slice::from_ref(&oracle_pts));
     let traced_index = DistanceIndex::new(&[lp[..lp.len() - 1].to_vec()]);
     // Traced → oracle: every vertex and chord midpoint.
     let mut d: f64 = 0.0;
