@@ -1,0 +1,97 @@
+//! Speed benchmarks (criterion). Run: `cargo bench --bench pfcam`.
+//! Figures reported in docs/method.md are the medians criterion prints.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use pfcam::field::{self, Boundary, Layout, Prepared};
+use pfcam::geometry::Vec2;
+use std::hint::black_box;
+
+fn letter_i_solve(c: &mut Criterion) {
+    let prep = Prepared::new(field::paper_boundary('I').unwrap()).unwrap();
+    let layout = Layout {
+        n_total: 516,
+        distance: 5.0,
+        corner_clusters: true,
+        corner_fraction: field::DEFAULT_CORNER_FRACTION,
+    };
+    c.bench_function("letter I: one MFS solve, N = 516, M = 1032", |b| {
+        b.iter(|| field::solve_layout(&prep, black_box(&layout)).unwrap())
+    });
+    let mut g = c.benchmark_group("slow");
+    g.sample_size(10);
+    g.bench_function(
+        "letter I: solve with the distance chosen (17 solves), N = 516",
+        |b| b.iter(|| field::solve_auto(&prep, black_box(516), None, true).unwrap()),
+    );
+    g.finish();
+}
+
+/// The paper's MFS string in font units (F and S shifted by D1 = 1300, D2 = 2200).
+fn mfs_boundary() -> Boundary {
+    let mut contours = Vec::new();
+    for (ch, dx) in [('M', 0.0), ('F', 1300.0), ('S', 2200.0)] {
+        let g = pfcam::geometry::glyphs::paper_glyph(ch).unwrap();
+        contours.extend(
+            g.outlines
+                .iter()
+                .map(|o| o.map(move |p| Vec2::new(p.x + dx, p.y))),
+        );
+    }
+    let centre = field::centroid(&contours, 0.01);
+    let is_counter = vec![false; contours.len()];
+    Boundary {
+        contours,
+        is_counter,
+        centre,
+        radius: 1e4,
+        flat_tol: 0.01,
+    }
+}
+
+fn field_eval(c: &mut Criterion) {
+    let prep = Prepared::new(mfs_boundary()).unwrap();
+    let layout = Layout {
+        n_total: 1210,
+        distance: 8.0,
+        corner_clusters: true,
+        corner_fraction: field::DEFAULT_CORNER_FRACTION,
+    };
+    let (sol, _) = field::solve_layout(&prep, &layout).unwrap();
+    let f = sol.field;
+    assert_eq!(f.n(), 1210);
+    let p = Vec2::new(1000.0, 720.0);
+    c.bench_function("field: u and grad u at one point, N = 1210", |b| {
+        b.iter(|| f.value_grad(black_box(p)))
+    });
+    c.bench_function("field: grad u at one point, N = 1210", |b| {
+        b.iter(|| f.grad(black_box(p)))
+    });
+}
+
+fn job(path: &str) -> pfcam::job::Job {
+    pfcam::job::load_job(std::path::Path::new(path)).unwrap()
+}
+
+fn profiles(c: &mut Criterion) {
+    let mut g = c.benchmark_group("jobs");
+    g.sample_size(10);
+    let i = job("jobs/letter-i.toml");
+    g.bench_function(
+        "letter I profile (solve + trace + gouge check), tol 0.01 mm",
+        |b| b.iter(|| pfcam::pipeline::run(black_box(&i), &mut |_| {}).unwrap()),
+    );
+    let mfs = job("jobs/mfs-sign.toml");
+    g.bench_function(
+        "mfs-sign end to end (solve + trace + check + G-code)",
+        |b| {
+            b.iter(|| {
+                let out = pfcam::pipeline::run(black_box(&mfs), &mut |_| {}).unwrap();
+                pfcam::gcode::write_gcode(&out.toolpath, &mfs).unwrap()
+            })
+        },
+    );
+    g.finish();
+}
+
+criterion_group!(benches, letter_i_solve, field_eval, profiles);
+criterion_main!(benches);
