@@ -8,6 +8,7 @@ pub mod field;
 pub mod gcode;
 pub mod geometry;
 pub mod job;
+pub mod levels;
 pub mod output;
 pub mod pipeline;
 pub mod toolpath;
