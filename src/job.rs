@@ -28,6 +28,8 @@ pub struct Job {
     pub field: FieldSpec,
     /// Machine settings that only the G-code writer and time estimates read.
     pub machine: Machine,
+    /// The depth profile φ(s) of a boss or cavity (`None` for a profile).
+    pub profile: Option<crate::levels::DepthProfile>,
 }
 
 /// A flat end mill.
@@ -43,6 +45,10 @@ pub struct Tool {
     pub spindle: f64,
     /// Largest depth of one pass, mm.
     pub stepdown: f64,
+    /// Largest sideways step between clearing rings, mm.
+    pub stepover: f64,
+    /// Angle of ramped entries into uncut material, degrees.
+    pub ramp_angle: f64,
 }
 
 /// The stock.
@@ -52,6 +58,8 @@ pub struct Stock {
     pub top: f64,
     /// Z for rapid moves, mm (above `top`).
     pub safe_z: f64,
+    /// Stock around the part's largest level (a boss's base), mm on every side.
+    pub margin: f64,
 }
 
 /// Operation kinds.
@@ -59,6 +67,10 @@ pub struct Stock {
 pub enum OperationKind {
     /// Cut along the shape's boundary with vertical walls.
     Profile,
+    /// A raised sign whose walls follow φ(s): material outside Γ(s(z)) is removed at every level.
+    Boss,
+    /// The sign's mould: the inverse model milled into a slab, level by level.
+    Cavity,
 }
 
 /// Which side of the material the tool runs on.
@@ -90,6 +102,8 @@ pub struct Operation {
     pub tolerance: f64,
     /// Climb or conventional.
     pub direction: Direction,
+    /// Largest horizontal step between the contours of neighbouring levels, mm.
+    pub max_scallop: f64,
 }
 
 /// How the MFS field is set up.
@@ -146,10 +160,26 @@ pub mod defaults {
     pub const RAPID_RATE: f64 = 1000.0;
     /// `machine.spindle_dwell`, seconds.
     pub const SPINDLE_DWELL: f64 = 2.0;
+    /// `tool.stepover` as a fraction of the diameter.
+    pub const STEPOVER_FRACTION: f64 = 0.4;
+    /// `tool.ramp_angle`, degrees: gentle enough for a flat end mill in wood, plastic or aluminium.
+    pub const RAMP_ANGLE: f64 = 3.0;
+    /// `stock.margin`, mm.
+    pub const MARGIN: f64 = 5.0;
+    /// `operation.max_scallop`, mm.
+    pub const MAX_SCALLOP: f64 = 0.5;
+    /// `profile.kind`.
+    pub const PROFILE_KIND: &str = "linear";
+    /// `profile.s_bottom` for a linear profile.
+    pub const S_BOTTOM: f64 = 0.8;
+    /// `profile.s1`, `profile.s2`, `profile.steepness` for a sigmoid (the paper's Section 7 values).
+    pub const SIGMOID: (f64, f64, f64) = (0.99, 0.75, 8.0);
 }
 
 /// The accepted values of `operation.kind`.
-pub const OPERATION_KINDS: &[&str] = &["profile"];
+pub const OPERATION_KINDS: &[&str] = &["profile", "boss", "cavity"];
+/// The accepted values of `profile.kind`.
+pub const PROFILE_KINDS: &[&str] = &["linear", "sigmoid", "spline", "table"];
 /// The accepted values of `operation.side`.
 pub const SIDES: &[&str] = &["outside"];
 /// The accepted values of `operation.direction`.
@@ -233,6 +263,26 @@ pub struct RawJob {
     pub field: Option<RawField>,
     /// `[machine]`
     pub machine: Option<RawMachine>,
+    /// `[profile]`
+    pub profile: Option<RawProfile>,
+}
+
+/// `[profile]`: the depth profile φ(s) of a boss or cavity.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawProfile {
+    /// `kind`: linear, sigmoid, spline or table
+    pub kind: Option<String>,
+    /// `s_bottom` (linear)
+    pub s_bottom: Option<f64>,
+    /// `s1` (sigmoid: top edge)
+    pub s1: Option<f64>,
+    /// `s2` (sigmoid: foot of the wall)
+    pub s2: Option<f64>,
+    /// `steepness` (sigmoid)
+    pub steepness: Option<f64>,
+    /// `points`: [[s, z], ...] (spline, table), z in mm relative to stock.top
+    pub points: Option<Vec<[f64; 2]>>,
 }
 
 /// `[job]`
@@ -275,6 +325,10 @@ pub struct RawTool {
     pub spindle: Option<f64>,
     /// `stepdown`, mm
     pub stepdown: Option<f64>,
+    /// `stepover`, mm
+    pub stepover: Option<f64>,
+    /// `ramp_angle`, degrees
+    pub ramp_angle: Option<f64>,
 }
 
 /// `[stock]`
@@ -285,6 +339,8 @@ pub struct RawStock {
     pub top: Option<f64>,
     /// `safe_z`, mm
     pub safe_z: Option<f64>,
+    /// `margin`, mm
+    pub margin: Option<f64>,
 }
 
 /// `[operation]`
@@ -301,6 +357,8 @@ pub struct RawOperation {
     pub tolerance: Option<f64>,
     /// `direction`
     pub direction: Option<String>,
+    /// `max_scallop`, mm
+    pub max_scallop: Option<f64>,
 }
 
 /// `[field]`
@@ -566,6 +624,38 @@ impl RawJob {
                 t.stepdown.unwrap_or(defaults::STEPDOWN),
                 "mm",
             )?,
+            stepover: {
+                let so = positive(
+                    "tool.stepover",
+                    t.stepover.unwrap_or(defaults::STEPOVER_FRACTION * diameter),
+                    "mm",
+                )?;
+                if so > diameter / 2.0 {
+                    return Err(invalid(
+                        "tool.stepover",
+                        format!(
+                            "must be at most the tool radius ({} mm) so neighbouring rings overlap, got {}",
+                            show(diameter / 2.0),
+                            show(so)
+                        ),
+                    ));
+                }
+                so
+            },
+            ramp_angle: {
+                let a = positive(
+                    "tool.ramp_angle",
+                    t.ramp_angle.unwrap_or(defaults::RAMP_ANGLE),
+                    "degrees",
+                )?;
+                if a > 45.0 {
+                    return Err(invalid(
+                        "tool.ramp_angle",
+                        format!("must be at most 45 degrees, got {}", show(a)),
+                    ));
+                }
+                a
+            },
         };
 
         let shape = resolve_shape(self.shape.unwrap_or_default(), diameter, base_dir)?;
@@ -586,7 +676,18 @@ impl RawJob {
                 ),
             ));
         }
-        let stock = Stock { top, safe_z };
+        let margin = finite("stock.margin", s.margin.unwrap_or(defaults::MARGIN))?;
+        if margin < 0.0 {
+            return Err(invalid(
+                "stock.margin",
+                format!("must be >= 0 mm, got {}", show(margin)),
+            ));
+        }
+        let stock = Stock {
+            top,
+            safe_z,
+            margin,
+        };
 
         let o = self.operation.unwrap_or_default();
         let kind = o.kind.unwrap_or_else(|| "profile".into());
@@ -621,8 +722,30 @@ impl RawJob {
                 ),
             ));
         }
+        let max_scallop = positive(
+            "operation.max_scallop",
+            o.max_scallop.unwrap_or(defaults::MAX_SCALLOP),
+            "mm",
+        )?;
+        let op_kind = match kind.as_str() {
+            "boss" => OperationKind::Boss,
+            "cavity" => OperationKind::Cavity,
+            _ => OperationKind::Profile,
+        };
+        let profile = if op_kind == OperationKind::Profile {
+            if self.profile.is_some() {
+                return Err(invalid(
+                    "profile",
+                    "only applies to operation.kind = \"boss\" or \"cavity\"",
+                ));
+            }
+            None
+        } else {
+            Some(resolve_profile(self.profile.unwrap_or_default(), depth)?)
+        };
         let operation = Operation {
-            kind: OperationKind::Profile,
+            max_scallop,
+            kind: op_kind,
             side: Side::Outside,
             depth,
             tolerance,
@@ -703,7 +826,77 @@ impl RawJob {
             operation,
             field,
             machine,
+            profile,
         })
+    }
+}
+
+/// `[profile]` into a depth profile; `depth` is `operation.depth`, which spline
+/// and table points must agree with (their lowest z is −depth).
+fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProfile, JobError> {
+    use crate::levels::DepthProfile;
+    let kind = p.kind.unwrap_or_else(|| defaults::PROFILE_KIND.into());
+    one_of("profile.kind", &kind, PROFILE_KINDS)?;
+    let unit = |key: &str, v: f64| -> Result<f64, JobError> {
+        if v.is_finite() && v > 0.0 && v < 1.0 {
+            Ok(v)
+        } else {
+            Err(invalid(key, format!("must be an equipotential value in (0, 1), got {}", show(v))))
+        }
+    };
+    let unused = |key: &str, present: bool| -> Result<(), JobError> {
+        if present {
+            Err(invalid(key, format!("does not apply to profile.kind = {kind:?}")))
+        } else {
+            Ok(())
+        }
+    };
+    match kind.as_str() {
+        "linear" => {
+            unused("profile.s1", p.s1.is_some())?;
+            unused("profile.s2", p.s2.is_some())?;
+            unused("profile.steepness", p.steepness.is_some())?;
+            unused("profile.points", p.points.is_some())?;
+            let s_bottom = unit("profile.s_bottom", p.s_bottom.unwrap_or(defaults::S_BOTTOM))?;
+            Ok(DepthProfile::Linear { s_bottom, depth })
+        }
+        "sigmoid" => {
+            unused("profile.s_bottom", p.s_bottom.is_some())?;
+            unused("profile.points", p.points.is_some())?;
+            let (d1, d2, dk) = defaults::SIGMOID;
+            let s1 = unit("profile.s1", p.s1.unwrap_or(d1))?;
+            let s2 = unit("profile.s2", p.s2.unwrap_or(d2))?;
+            if s2 >= s1 {
+                return Err(invalid(
+                    "profile.s2",
+                    format!("must be below profile.s1 ({}), got {}", show(s1), show(s2)),
+                ));
+            }
+            let steepness = positive("profile.steepness", p.steepness.unwrap_or(dk), "")?;
+            Ok(DepthProfile::Sigmoid { s1, s2, steepness, depth })
+        }
+        _ => {
+            unused("profile.s_bottom", p.s_bottom.is_some())?;
+            unused("profile.s1", p.s1.is_some())?;
+            unused("profile.s2", p.s2.is_some())?;
+            unused("profile.steepness", p.steepness.is_some())?;
+            let points = p
+                .points
+                .ok_or_else(|| invalid("profile.points", "is required for a spline or table: [[s, z], ...] with z in mm relative to stock.top"))?;
+            let prof = DepthProfile::from_points(&points, kind == "spline")
+                .map_err(|e| invalid("profile.points", e.to_string()))?;
+            if (prof.depth() - depth).abs() > 1e-9 {
+                return Err(invalid(
+                    "profile.points",
+                    format!(
+                        "the lowest point is at z = {} but operation.depth is {}: they must agree",
+                        show(-prof.depth()),
+                        show(depth)
+                    ),
+                ));
+            }
+            Ok(prof)
+        }
     }
 }
 

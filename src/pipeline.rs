@@ -2,7 +2,9 @@
 
 use crate::field::{self, Boundary, FieldError, Layout, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape};
-use crate::job::{Direction, Job};
+use crate::job::{Direction, Job, OperationKind};
+use crate::levels::plan::{plan_levels, LevelInfo, LevelJob};
+use crate::toolpath::zlevel::{link_levels, LevelParams};
 use crate::toolpath::gouge::{self, GougeReport};
 use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
 use crate::toolpath::Toolpath;
@@ -53,6 +55,8 @@ pub struct RunOutput {
     /// the wall being followed (a field-quality statistic, not a hazard: contact
     /// is always judged geometrically).
     pub fallbacks: usize,
+    /// Boss and cavity: one entry per level (z, s, its solve, the cavity's coverage).
+    pub levels: Vec<LevelInfo>,
 }
 
 /// Progress events for a front end's progress bar.
@@ -230,6 +234,103 @@ pub fn plan_shape(
 /// Run a job to a tool path: plan, link, and the independent gouge check (a
 /// failing check is an error: no tool path is returned).
 pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
+    match job.operation.kind {
+        OperationKind::Profile => run_profile(job, progress),
+        OperationKind::Boss | OperationKind::Cavity => run_levels(job, progress),
+    }
+}
+
+/// A boss or cavity: the shape's field, the levels (each with its own MFS solve on
+/// Γ(s_k)), linking, and the gouge check of every level against its Γ(s_k).
+fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
+    let shape = build_shape(&job.shape)?;
+    let tol = job.operation.tolerance;
+    let flat_tol = tol * FLATTEN_FRACTION;
+    let boundary = boundary_for(&shape, flat_tol)?;
+    let outer_radius = boundary.radius;
+    let profile = job
+        .profile
+        .as_ref()
+        .ok_or_else(|| PipelineError::Other("a boss or cavity needs a [profile]".into()))?;
+    progress(Progress::Stage { name: "solving the potential field".into(), total: 1 });
+    let prep = Prepared::new(boundary)?;
+    let n_total = job.field.singularities.unwrap_or(
+        AUTO_N_PER_REGION * shape.regions.len()
+            + field::setup::OUTER_CHARGES
+            + prep.sinks.len() * field::setup::SINK_CHARGES,
+    );
+    let base = Layout { n_total, distance: 1.0, corner_clusters: true, corner_fraction: field::DEFAULT_CORNER_FRACTION };
+    let solved = field::solve_with(&prep, base, job.field.pseudo_boundary)?;
+    progress(Progress::Step);
+    let glyphs: Vec<Vec<crate::geometry::Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
+    let params = LevelParams {
+        radius: job.tool.diameter / 2.0,
+        tol,
+        stepover: job.tool.stepover,
+        ramp_angle: job.tool.ramp_angle,
+        climb: job.operation.direction == Direction::Climb,
+        feed: job.tool.feed,
+        plunge_feed: job.tool.plunge_feed,
+        safe_z: job.stock.safe_z,
+        top: job.stock.top,
+        stock_lo: crate::geometry::Vec2::ZERO,
+        stock_hi: crate::geometry::Vec2::ZERO,
+    };
+    let lj = LevelJob {
+        field: &solved.solution.field,
+        glyphs: &glyphs,
+        profile,
+        cavity: job.operation.kind == OperationKind::Cavity,
+        top: job.stock.top,
+        stepdown: job.tool.stepdown,
+        max_scallop: job.operation.max_scallop,
+        margin: job.stock.margin,
+        outer_radius,
+        params,
+    };
+    progress(Progress::Stage { name: "solving and tracing the levels".into(), total: 1 });
+    let planned = plan_levels(&lj).map_err(|e| PipelineError::Other(e.to_string()))?;
+    progress(Progress::Step);
+    let toolpath = link_levels(&planned.cuts, &planned.params);
+    // Gouge check, level by level, against that level's Γ(s_k) as polygons.
+    let mut min_clearance = f64::INFINITY;
+    for (section, cut) in toolpath.sections.iter().zip(&planned.cuts) {
+        let part = DistanceIndex::new(&cut.part);
+        let one = Toolpath { start: toolpath.start, sections: vec![section.clone()] };
+        let rep = gouge::check(&one, &part, params.radius, job.stock.top);
+        if !rep.passes(tol) {
+            return Err(PipelineError::Gouge { clearance: rep.min_clearance, at: rep.at, tol });
+        }
+        min_clearance = min_clearance.min(rep.min_clearance);
+    }
+    let mut solves = vec![SolveReport {
+        label: shape.regions.iter().map(|r| r.name.clone()).collect::<Vec<_>>().join(" "),
+        n: solved.layout.n_total,
+        m: solved.m,
+        distance: solved.layout.distance,
+        max_error: solved.solution.max_error,
+    }];
+    for (k, li) in planned.info.iter().enumerate() {
+        solves.push(SolveReport {
+            label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),
+            n: li.n,
+            m: li.m,
+            distance: f64::NAN,
+            max_error: li.max_error,
+        });
+    }
+    Ok(RunOutput {
+        toolpath,
+        solves,
+        min_clearance,
+        warnings: planned.warnings,
+        glyphs: shape.regions.iter().map(|r| r.name.clone()).collect(),
+        fallbacks: 0,
+        levels: planned.info,
+    })
+}
+
+fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
     let plan = plan(job, progress)?;
     let toolpath = profile::link(&plan.loops, &plan.params);
     let part = DistanceIndex::new(&plan.polys);
@@ -249,5 +350,6 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
         warnings: plan.warnings,
         glyphs: plan.shape.regions.iter().map(|r| r.name.clone()).collect(),
         fallbacks: plan.loops.iter().map(|l| l.fallbacks).sum(),
+        levels: Vec::new(),
     })
 }

@@ -2,42 +2,28 @@
 //! offset, invariance under the contours' start, direction, the gouge check.
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
-use pfcam::geometry::{build_shape, DistanceIndex, FontSource, Shape, ShapeSource, Vec2};
-use pfcam::job::*;
+use pfcam::geometry::{build_shape, DistanceIndex, Shape, Vec2};
+use pfcam::job::{parse_job, Direction, Job};
 use pfcam::pipeline::{self, Plan};
 use pfcam::toolpath::{gouge, Move, Section, Toolpath, Vec3};
 
 fn job(text: &str, height: f64) -> Job {
-    Job {
-        name: "test".into(),
-        shape: ShapeSource::Text {
-            text: text.into(),
-            font: FontSource::Paper,
-            height,
-            letter_spacing: 2.0,
-            origin: Vec2::ZERO,
-        },
-        tool: Tool {
-            diameter: 3.175,
-            feed: 800.0,
-            plunge_feed: 200.0,
-            spindle: 18000.0,
-            stepdown: 1.0,
-        },
-        stock: Stock {
-            top: 0.0,
-            safe_z: 5.0,
-        },
-        operation: Operation {
-            kind: OperationKind::Profile,
-            side: Side::Outside,
-            depth: 3.0,
-            tolerance: 0.01,
-            direction: Direction::Climb,
-        },
-        field: FieldSpec::default(),
-        machine: Machine::default(),
-    }
+    let toml = format!(
+        r#"
+[shape]
+text = "{text}"
+height = {height}
+letter_spacing = 2.0
+[tool]
+diameter = 3.175
+[operation]
+kind = "profile"
+depth = 3.0
+tolerance = 0.01
+direction = "climb"
+"#
+    );
+    parse_job(&toml, "test", std::path::Path::new(".")).unwrap()
 }
 
 fn plan(j: &Job) -> Plan {

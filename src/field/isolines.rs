@@ -98,17 +98,8 @@ impl Grid {
     }
 }
 
-/// An edge of the grid: horizontal (i, j)–(i+1, j) or vertical (i, j)–(i, j+1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum Edge {
-    H(usize, usize),
-    V(usize, usize),
-}
-
-/// The closed curves {u = s} on the grid, material on their left. Vertices are
-/// placed on grid edges by regula falsi on u (taken as 1 inside the material on
-/// edges that touch it).
-pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> Vec<Vec<Vec2>> {
+/// The loops of grid edges crossed by {u = s}, chained in order.
+fn trace_loops(grid: &Grid, s: f64) -> Vec<Vec<Edge>> {
     let nx = grid.nx;
     let high = |i: usize, j: usize| grid.values[j * nx + i] >= s;
     // Segments, each from one edge crossing to another, high side on the left.
@@ -190,6 +181,22 @@ pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> V
             loops_edges.push(lp);
         }
     }
+    loops_edges
+}
+
+/// An edge of the grid: horizontal (i, j)–(i+1, j) or vertical (i, j)–(i, j+1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Edge {
+    H(usize, usize),
+    V(usize, usize),
+}
+
+/// The closed curves {u = s} on the grid, material on their left. Vertices are
+/// placed on grid edges by regula falsi on u (taken as 1 inside the material on
+/// edges that touch it).
+pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> Vec<Vec<Vec2>> {
+    let nx = grid.nx;
+    let loops_edges = trace_loops(grid, s);
     // Place every vertex on its edge.
     loops_edges
         .par_iter()
@@ -254,6 +261,34 @@ fn edge_root(pa: Vec2, pb: Vec2, fa: f64, fb: f64, s: f64, value_at: &(dyn Fn(Ve
         }
     }
     pa.lerp(pb, t)
+}
+
+/// As `isolines`, with every vertex placed by linear interpolation of the grid
+/// values (no field evaluations): for searches over many levels.
+pub fn isolines_linear(grid: &Grid, s: f64) -> Vec<Vec<Vec2>> {
+    let f = Field::new(vec![], vec![]);
+    let _ = &f;
+    trace_loops(grid, s)
+        .into_iter()
+        .map(|lp| {
+            lp.iter()
+                .map(|e| {
+                    let ((pa, fa), (pb, fb)) = edge_ends(grid, *e, s);
+                    let t = if fb != fa { fa / (fa - fb) } else { 0.5 };
+                    pa.lerp(pb, t.clamp(0.0, 1.0))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn edge_ends(grid: &Grid, e: Edge, s: f64) -> ((Vec2, f64), (Vec2, f64)) {
+    let (a, b) = match e {
+        Edge::H(i, j) => ((i, j), (i + 1, j)),
+        Edge::V(i, j) => ((i, j), (i, j + 1)),
+    };
+    let nx = grid.nx;
+    ((grid.point(a.0, a.1), grid.values[a.1 * nx + a.0] - s), (grid.point(b.0, b.1), grid.values[b.1 * nx + b.0] - s))
 }
 
 /// Signed area of a closed polygon (positive counter-clockwise).

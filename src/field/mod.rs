@@ -197,6 +197,33 @@ pub fn solve_with(
     })
 }
 
+/// A quick solve for the fields of z-levels, whose generating boundaries Γ(s) are
+/// smooth: four distances in [h/2, 4h], in parallel, and the best kept.
+pub fn solve_quick(prep: &Prepared, base: Layout) -> Result<Solved, FieldError> {
+    let h = prep.perimeter() / base.n_total as f64;
+    let ds: Vec<f64> = (0..4).map(|i| h * 0.5 * 2f64.powf(i as f64)).collect();
+    let res: Vec<Result<(Solution, usize, f64), FieldError>> = ds
+        .par_iter()
+        .map(|&d| solve_layout(prep, &Layout { distance: d, ..base }).map(|(s, m)| (s, m, d)))
+        .collect();
+    let mut best: Option<(Solution, usize, f64)> = None;
+    let mut err = None;
+    for r in res {
+        match r {
+            Ok(t) => {
+                if best.as_ref().is_none_or(|b| t.0.max_error < b.0.max_error) {
+                    best = Some(t);
+                }
+            }
+            Err(e) => err = Some(e),
+        }
+    }
+    match best {
+        Some((solution, m, d)) => Ok(Solved { solution, layout: Layout { distance: d, ..base }, solves: 4, m }),
+        None => Err(err.unwrap_or(FieldError::Invalid("no distance could be solved".into()))),
+    }
+}
+
 /// Area centroid of the material bounded by the contours (outlines counter-clockwise
 /// count positive, counters clockwise negative), from their flattenings.
 pub fn centroid(contours: &[Contour], tol: f64) -> Vec2 {

@@ -297,6 +297,8 @@ pub fn write_gcode(tp: &Toolpath, job: &Job) -> Result<String, GcodeError> {
     )));
     let kind = match job.operation.kind {
         OperationKind::Profile => "profile",
+        OperationKind::Boss => "boss",
+        OperationKind::Cavity => "cavity",
     };
     let side = match job.operation.side {
         Side::Outside => "outside",

@@ -4,6 +4,7 @@
 pub mod gouge;
 pub mod profile;
 pub mod trace;
+pub mod zlevel;
 
 /// A point in machine coordinates, millimetres.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]

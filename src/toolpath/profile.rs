@@ -51,6 +51,9 @@ pub enum ProfileError {
         /// why
         source: TraceError,
     },
+    /// A field solved for a path (a cavity's inverse problem) failed.
+    #[error("{0}")]
+    Field(#[from] crate::field::FieldError),
 }
 
 /// Z of every pass: equal steps of at most `stepdown`, the last exactly at the depth.

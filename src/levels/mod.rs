@@ -5,6 +5,8 @@
 //! φ(s_bottom) = −depth. φ increases strictly with s on [s_bottom, s_top], so it
 //! can be inverted: at every z-level the generating boundary is Γ(s(z)).
 
+pub mod plan;
+
 /// A depth profile.
 #[derive(Clone, Debug, PartialEq)]
 pub enum DepthProfile {

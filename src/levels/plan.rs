@@ -1,0 +1,277 @@
+//! Levels of a boss or cavity: the schedule of z, the contour Γ(s_k) of every level
+//! extracted from the shape's field, a new MFS problem solved on each Γ(s_k) (the
+//! paper, Section 7: "The corresponding MFS problem is solved at each level to find
+//! the offset lines"), and the paths of each level traced in that level's field.
+
+use super::{schedule, DepthProfile};
+use crate::field::isolines::{isolines, polygon_area, Grid};
+use crate::field::{self, Boundary, Field, FieldError, Layout, Prepared};
+use crate::geometry::{Contour, DistanceIndex, Segment, Vec2};
+use crate::toolpath::profile::ProfileError;
+use crate::toolpath::zlevel::{boss_paths, LevelCut, LevelParams};
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+/// Grid spacing for sampling u, mm: fine enough that marching squares finds every
+/// component of Γ(s) of the letters; vertices are exact and chords are then refined
+/// to the tolerance by `refine`.
+pub const GRID_SPACING: f64 = 0.4;
+
+/// Singularities per outer loop of a level's Γ(s) (smooth curves need fewer than
+/// the glyphs with their corners).
+pub const LEVEL_N_PER_LOOP: usize = 90;
+
+/// What the level planner reports for one level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LevelInfo {
+    /// Z (absolute).
+    pub z: f64,
+    /// Equipotential value.
+    pub s: f64,
+    /// Singularities of the level's MFS solve.
+    pub n: usize,
+    /// Collocation points.
+    pub m: usize,
+    /// Max boundary error of the level's solve.
+    pub max_error: f64,
+    /// Cavity: the uncut share of the reachable area (measured on a grid).
+    pub uncut: Option<f64>,
+}
+
+/// Inputs of the level planner.
+pub struct LevelJob<'a> {
+    /// The shape's field (generating boundary: the glyphs).
+    pub field: &'a Field,
+    /// The glyphs, flattened, material on the left.
+    pub glyphs: &'a [Vec<Vec2>],
+    /// φ(s).
+    pub profile: &'a DepthProfile,
+    /// True for a cavity (the mould), false for a boss.
+    pub cavity: bool,
+    /// Stock top, mm.
+    pub top: f64,
+    /// Largest depth per level.
+    pub stepdown: f64,
+    /// Largest horizontal step between neighbouring levels.
+    pub max_scallop: f64,
+    /// Stock margin around the largest level, mm.
+    pub margin: f64,
+    /// Outer radius for the level problems.
+    pub outer_radius: f64,
+    /// Path settings (the stock rectangle is filled in by the planner).
+    pub params: LevelParams,
+}
+
+/// Newton's method along ∇u from `p` to Γ(s) (a few steps; `None` if it wanders).
+fn project(field: &Field, p: Vec2, s: f64, limit: f64) -> Option<Vec2> {
+    let mut q = p;
+    for _ in 0..6 {
+        let (u, g) = field.value_grad(q);
+        let g2 = g.norm2();
+        if g2 == 0.0 {
+            return None;
+        }
+        let step = g * ((u - s) / g2);
+        q -= step;
+        if step.norm() < 1e-10 {
+            break;
+        }
+    }
+    (q.dist(p) <= limit).then_some(q)
+}
+
+/// Insert vertices on Γ(s) where a chord strays more than `tol` from it (the
+/// chord's midpoint projected onto Γ(s) by Newton), up to four halvings.
+fn refine(poly: &[Vec2], field: &Field, s: f64, tol: f64) -> Vec<Vec2> {
+    let n = poly.len();
+    let mut out = Vec::with_capacity(n * 2);
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        out.push(a);
+        refine_edge(a, b, field, s, tol, 4, &mut out);
+    }
+    out
+}
+
+fn refine_edge(a: Vec2, b: Vec2, field: &Field, s: f64, tol: f64, depth: usize, out: &mut Vec<Vec2>) {
+    if depth == 0 {
+        return;
+    }
+    let m = a.lerp(b, 0.5);
+    if let Some(q) = project(field, m, s, a.dist(b)) {
+        if q.dist(m) > tol {
+            refine_edge(a, q, field, s, tol, depth - 1, out);
+            out.push(q);
+            refine_edge(q, b, field, s, tol, depth - 1, out);
+        }
+    }
+}
+
+fn to_contour(poly: &[Vec2]) -> Option<Contour> {
+    let n = poly.len();
+    let segs: Vec<Segment> = (0..n).map(|i| Segment::Line { a: poly[i], b: poly[(i + 1) % n] }).collect();
+    Contour::new(segs).ok()
+}
+
+/// Everything the planner produced.
+pub struct Planned {
+    /// The levels with their paths, top down.
+    pub cuts: Vec<LevelCut>,
+    /// What each level's solve reported.
+    pub info: Vec<LevelInfo>,
+    /// Warnings.
+    pub warnings: Vec<String>,
+    /// Path settings with the stock rectangle.
+    pub params: LevelParams,
+}
+
+/// Plan every level.
+pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
+    let f = job.field;
+    let (s_lo, s_hi) = job.profile.s_range();
+    // One grid for the whole job, grown until Γ(s_lo) closes inside it.
+    let (mut lo, mut hi) = bbox(job.glyphs);
+    let diag = (hi - lo).norm();
+    let mut pad = 0.25 * diag;
+    let h = GRID_SPACING.max(diag / 2000.0);
+    let mut grid;
+    let mut tries = 0;
+    loop {
+        let (glo, ghi) = (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad));
+        grid = Grid::sample(f, glo, ghi, h, job.glyphs);
+        if grid.border_max() < s_lo || tries >= 5 {
+            break;
+        }
+        pad *= 1.8;
+        tries += 1;
+    }
+    if grid.border_max() >= s_lo {
+        return Err(PlanError::Invalid(format!(
+            "the level s = {s_lo} does not close within {pad:.0} mm of the shape; raise profile.s_bottom / profile.s2"
+        )));
+    }
+    let tol = job.params.tol;
+    // Γ(s) at the level of z: s from the profile (mirrored for a cavity).
+    let depth = job.profile.depth();
+    let s_of = |zrel: f64| if job.cavity { job.profile.s_at(-depth - zrel) } else { job.profile.s_at(zrel) };
+    let cache: Mutex<HashMap<u64, Vec<Vec<Vec2>>>> = Mutex::new(HashMap::new());
+    let contours_at = |s: f64| -> Vec<Vec<Vec2>> {
+        if let Some(c) = cache.lock().ok().and_then(|m| m.get(&s.to_bits()).cloned()) {
+            return c;
+        }
+        let polys: Vec<Vec<Vec2>> = if s >= 1.0 - 1e-12 {
+            job.glyphs.to_vec()
+        } else {
+            isolines(&grid, s, f, job.glyphs)
+                .into_iter()
+                .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
+                .map(|p| refine(&p, f, s, 0.25 * tol))
+                .collect()
+        };
+        if let Ok(mut m) = cache.lock() {
+            m.insert(s.to_bits(), polys.clone());
+        }
+        polys
+    };
+    // Horizontal step between the contours of two levels: the largest distance
+    // from the wider contour's points to the narrower one.
+    let gap = |za: f64, zb: f64| -> f64 {
+        let (ca, cb) = (contours_at(s_of(za)), contours_at(s_of(zb)));
+        let (wide, narrow) = if job.cavity { (ca, cb) } else { (cb, ca) };
+        let idx = DistanceIndex::new(&narrow);
+        wide.iter().flatten().map(|&p| idx.distance(p)).fold(0.0, f64::max)
+    };
+    let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, &gap);
+    let _ = (s_hi, &mut lo, &mut hi);
+
+    // The stock: the largest level (a boss's base, a cavity's rim) plus the margin.
+    let base = contours_at(if job.cavity { s_of(0.0) } else { s_of(-depth) });
+    let (blo, bhi) = bbox(&base);
+    let mut params = job.params;
+    params.stock_lo = blo - Vec2::new(job.margin, job.margin);
+    params.stock_hi = bhi + Vec2::new(job.margin, job.margin);
+
+    // Every level below the top, in parallel.
+    let levels: Vec<(usize, f64, f64)> = (1..zs.len()).map(|k| (k, zs[k - 1], zs[k])).collect();
+    let results: Vec<Result<(LevelCut, LevelInfo, Vec<String>), PlanError>> = levels
+        .par_iter()
+        .map(|&(k, z_prev, z)| {
+            let s = s_of(z);
+            let polys = contours_at(s);
+            if polys.is_empty() {
+                return Err(PlanError::Invalid(format!("level {k} (z {:.3}, s = {s:.4}) has no contour", job.top + z)));
+            }
+            // The level's own MFS problem on Γ(s): material on the left (for a
+            // cavity the mould is outside Γ(s), so the loops are reversed).
+            let oriented: Vec<Vec<Vec2>> = if job.cavity {
+                polys.iter().map(|p| p.iter().rev().copied().collect()).collect()
+            } else {
+                polys.clone()
+            };
+            let contours: Vec<Contour> = oriented.iter().filter_map(|p| to_contour(p)).collect();
+            let is_counter: Vec<bool> = oriented.iter().map(|p| polygon_area(p) < 0.0).collect();
+            let loops = oriented.iter().filter(|p| polygon_area(p) > 0.0).count().max(1);
+            let centre = field::centroid(&contours, tol);
+            let b = Boundary { contours, is_counter, centre, radius: job.outer_radius, flat_tol: tol };
+            let prep = Prepared::new(b)?;
+            let n_total = LEVEL_N_PER_LOOP * loops
+                + field::setup::OUTER_CHARGES
+                + prep.sinks.len() * (field::setup::SINK_CHARGES + LEVEL_N_PER_LOOP);
+            let base = Layout { n_total, distance: 1.0, corner_clusters: true, corner_fraction: 0.2 };
+            let solved = field::solve_quick(&prep, base)?;
+            let mut warnings = Vec::new();
+            let label = format!("level {k} (z {:.3})", job.top + z);
+            let (paths, uncut) = if job.cavity {
+                let (p, f) =
+                    crate::toolpath::zlevel::cavity_paths(&oriented, &solved.solution.field, &params, &label, &mut warnings)?;
+                (p, Some(f))
+            } else {
+                (boss_paths(&oriented, &solved.solution.field, &params, &label, &mut warnings)?, None)
+            };
+            let info = LevelInfo {
+                z: job.top + z,
+                s,
+                n: solved.layout.n_total,
+                m: solved.m,
+                max_error: solved.solution.max_error,
+                uncut,
+            };
+            Ok((LevelCut { z: job.top + z, z_prev: job.top + z_prev, s, part: polys, paths }, info, warnings))
+        })
+        .collect();
+    let mut cuts = Vec::new();
+    let mut info = Vec::new();
+    let mut warnings = Vec::new();
+    for r in results {
+        let (c, i, w) = r?;
+        cuts.push(c);
+        info.push(i);
+        warnings.extend(w);
+    }
+    Ok(Planned { cuts, info, warnings, params })
+}
+
+fn bbox(polys: &[Vec<Vec2>]) -> (Vec2, Vec2) {
+    let mut lo = Vec2::new(f64::MAX, f64::MAX);
+    let mut hi = Vec2::new(f64::MIN, f64::MIN);
+    for p in polys.iter().flatten() {
+        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    (lo, hi)
+}
+
+/// Why planning levels failed.
+#[derive(Debug, thiserror::Error)]
+pub enum PlanError {
+    /// A level's field.
+    #[error("{0}")]
+    Field(#[from] FieldError),
+    /// A level's paths.
+    #[error("{0}")]
+    Profile(#[from] ProfileError),
+    /// Anything else, in words.
+    #[error("{0}")]
+    Invalid(String),
+}

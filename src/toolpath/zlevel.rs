@@ -1,0 +1,615 @@
+//! Z-level operations (boss and cavity): the paths of one level and the linking of
+//! all levels into a tool path with ramped entries.
+
+use super::profile::{deepest_point, ProfileError};
+use super::trace::{trace, Navigator, TraceParams};
+use super::{Move, Section, Toolpath, Vec3};
+use crate::geometry::{DistanceIndex, Vec2};
+
+/// Settings shared by every level, mm, mm/min and degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LevelParams {
+    /// Tool radius.
+    pub radius: f64,
+    /// Chord tolerance.
+    pub tol: f64,
+    /// Largest distance between neighbouring clearing rings.
+    pub stepover: f64,
+    /// Ramp angle for entries into uncut material, degrees.
+    pub ramp_angle: f64,
+    /// Climb milling.
+    pub climb: bool,
+    /// Cutting feed.
+    pub feed: f64,
+    /// Plunge and ramp feed.
+    pub plunge_feed: f64,
+    /// Safe Z for rapids.
+    pub safe_z: f64,
+    /// Stock top Z.
+    pub top: f64,
+    /// Lower-left corner of the stock rectangle.
+    pub stock_lo: Vec2,
+    /// Upper-right corner of the stock rectangle.
+    pub stock_hi: Vec2,
+}
+
+/// One path at a level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CutPath {
+    /// What it is, e.g. `ring 3 around the part`.
+    pub label: String,
+    /// The tool centre positions (for a closed path the last equals the first).
+    pub points: Vec<Vec2>,
+    /// Closed loop (entered by a ramp) or open run (starts and ends outside the
+    /// stock, entered by a plunge in air).
+    pub closed: bool,
+}
+
+/// All the paths of one level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LevelCut {
+    /// Z of the level (absolute).
+    pub z: f64,
+    /// Z of the level above (its floor is already cleared).
+    pub z_prev: f64,
+    /// The equipotential value s of the level.
+    pub s: f64,
+    /// The part at this level, Γ(s), as closed polygons.
+    pub part: Vec<Vec<Vec2>>,
+    /// The paths in cutting order.
+    pub paths: Vec<CutPath>,
+}
+
+fn inside_rect(p: Vec2, lo: Vec2, hi: Vec2) -> bool {
+    p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y
+}
+
+/// Split a closed ring into the runs that lie inside the rectangle, each run
+/// extended by one point at both ends so that it starts and ends outside (where
+/// the tool is clear of the stock). A ring wholly inside stays closed.
+fn clip_ring(ring: &[Vec2], lo: Vec2, hi: Vec2) -> Vec<(Vec<Vec2>, bool)> {
+    let n = ring.len() - 1; // last = first
+    let inside: Vec<bool> = ring[..n].iter().map(|&p| inside_rect(p, lo, hi)).collect();
+    if inside.iter().all(|&b| b) {
+        return vec![(ring.to_vec(), true)];
+    }
+    if !inside.iter().any(|&b| b) {
+        return Vec::new();
+    }
+    // Start just after an outside point.
+    let k0 = (0..n).find(|&k| !inside[k]).unwrap_or(0);
+    let mut runs = Vec::new();
+    let mut cur: Vec<Vec2> = Vec::new();
+    for step in 1..=n {
+        let k = (k0 + step) % n;
+        let prev = (k + n - 1) % n;
+        if inside[k] {
+            if cur.is_empty() {
+                cur.push(ring[prev]);
+            }
+            cur.push(ring[k]);
+        } else if !cur.is_empty() {
+            cur.push(ring[k]);
+            runs.push((std::mem::take(&mut cur), false));
+        }
+    }
+    if !cur.is_empty() {
+        runs.push((cur, false));
+    }
+    runs
+}
+
+fn lowest(poly: &[Vec2]) -> Vec2 {
+    poly.iter().copied().fold(poly[0], |a, b| if b.y < a.y || (b.y == a.y && b.x < a.x) { b } else { a })
+}
+
+fn signed_area(p: &[Vec2]) -> f64 {
+    let n = p.len();
+    (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum::<f64>() / 2.0
+}
+
+/// The paths of one boss level: around every outer loop of the part, clearing
+/// rings (rolling-disk offsets of radius r + j·stepover) from the outermost that
+/// still reaches into the stock down to the finishing ring at r, clipped to the
+/// stock grown by r; inside every hole of the part, rings from the innermost out.
+pub fn boss_paths<N: Navigator + Sync>(
+    part: &[Vec<Vec2>],
+    nav: &N,
+    p: &LevelParams,
+    label: &str,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<CutPath>, ProfileError> {
+    use rayon::prelude::*;
+    let index = DistanceIndex::new(part);
+    let r = p.radius;
+    let grow = Vec2::new(r, r);
+    let (lo, hi) = (p.stock_lo - grow, p.stock_hi + grow);
+    let corners = [p.stock_lo, p.stock_hi, Vec2::new(p.stock_lo.x, p.stock_hi.y), Vec2::new(p.stock_hi.x, p.stock_lo.y)];
+    let dmax = corners.iter().map(|&c| index.distance(c)).fold(0.0, f64::max);
+    let rings = ((dmax - 2.0 * r) / p.stepover).ceil().max(0.0) as usize;
+    let outer: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
+    let holes: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
+    let tp = |radius: f64| TraceParams { radius, tol: p.tol, part_on_left: !p.climb };
+    // Trace every (ring, outer loop) pair in parallel; drop duplicates of merged rings.
+    let jobs: Vec<(usize, usize)> = (0..=rings).rev().flat_map(|j| (0..outer.len()).map(move |i| (j, i))).collect();
+    let traced: Vec<Result<(usize, Vec<Vec2>), ProfileError>> = jobs
+        .par_iter()
+        .map(|&(j, i)| {
+            let rj = r + j as f64 * p.stepover;
+            let start = lowest(outer[i]) - Vec2::new(0.0, rj + 1.0);
+            trace(nav, &index, start, tp(rj))
+                .map(|t| (j, t.points))
+                .map_err(|source| ProfileError::Trace { label: format!("{label}: ring {j} around the part"), source })
+        })
+        .collect();
+    let mut paths = Vec::new();
+    let mut kept: Vec<(usize, DistanceIndex)> = Vec::new();
+    for res in traced {
+        let (j, ring) = res?;
+        if kept.iter().any(|(jj, idx)| *jj == j && idx.distance(ring[0]) < 10.0 * p.tol) {
+            continue;
+        }
+        kept.push((j, DistanceIndex::new(&[ring[..ring.len() - 1].to_vec()])));
+        for (run, closed) in clip_ring(&ring, lo, hi) {
+            paths.push(CutPath { label: format!("{label}: ring {j} around the part"), points: run, closed });
+        }
+    }
+    // Holes (counters of the sign): rings from the innermost out to the finishing ring.
+    for (h, hole) in holes.iter().enumerate() {
+        let (deep, room) = deepest_point(hole, &index);
+        if room < r + p.tol {
+            warnings.push(format!(
+                "{label}: hole {} is too small for the tool (largest inscribed radius {room:.3} mm, tool radius {r:.3} mm): not cut",
+                h + 1
+            ));
+            continue;
+        }
+        let n_in = ((room - r - p.tol) / p.stepover).floor() as usize;
+        for j in (0..=n_in).rev() {
+            let rj = r + j as f64 * p.stepover;
+            if rj > room - p.tol {
+                continue;
+            }
+            let t = trace(nav, &index, deep, tp(rj))
+                .map_err(|source| ProfileError::Trace { label: format!("{label}: ring {j} in hole {}", h + 1), source })?;
+            paths.push(CutPath { label: format!("{label}: ring {j} in hole {}", h + 1), points: t.points, closed: true });
+        }
+    }
+    Ok(paths)
+}
+
+/// Moves that enter a closed loop by ramping down along it from `z_from` to `z`
+/// at `angle` degrees (several laps if the loop is short), then cut one full lap
+/// at `z` from where the ramp ended.
+fn ramp_loop(lp: &[Vec2], z_from: f64, z: f64, angle: f64, plunge_feed: f64, feed: f64, out: &mut Vec<Move>) {
+    let n = lp.len() - 1;
+    let drop = (z_from - z).max(0.0);
+    let ramp_len = drop / angle.to_radians().tan();
+    let mut travelled = 0.0;
+    let mut k = 0;
+    let mut at = lp[0];
+    // Ramp.
+    if drop > 0.0 {
+        let mut guard = 0;
+        loop {
+            let next = lp[(k + 1) % n];
+            let seg = at.dist(next);
+            if travelled + seg >= ramp_len {
+                let t = if seg > 0.0 { (ramp_len - travelled) / seg } else { 1.0 };
+                let q = at.lerp(next, t);
+                out.push(Move::Linear { to: Vec3::new(q.x, q.y, z), feed: plunge_feed });
+                at = q;
+                break;
+            }
+            travelled += seg;
+            let zz = z_from - drop * travelled / ramp_len;
+            out.push(Move::Linear { to: Vec3::new(next.x, next.y, zz), feed: plunge_feed });
+            at = next;
+            k = (k + 1) % n;
+            guard += 1;
+            if guard > 1_000_000 {
+                break;
+            }
+        }
+    }
+    // One full lap at z from `at` (which lies on segment k → k+1).
+    for step in 1..=n {
+        let q = lp[(k + step) % n];
+        out.push(Move::Linear { to: Vec3::new(q.x, q.y, z), feed });
+    }
+    out.push(Move::Linear { to: Vec3::new(at.x, at.y, z), feed });
+}
+
+/// Rotate a closed loop (last = first) so it starts at the vertex nearest to `p`.
+fn start_near(lp: &[Vec2], p: Vec2) -> Vec<Vec2> {
+    let n = lp.len() - 1;
+    let k = (0..n).min_by(|&a, &b| lp[a].dist(p).total_cmp(&lp[b].dist(p))).unwrap_or(0);
+    let mut out: Vec<Vec2> = (0..n).map(|i| lp[(k + i) % n]).collect();
+    out.push(out[0]);
+    out
+}
+
+/// Link the levels, top down, into a tool path. Between paths of a level the tool
+/// moves sideways at depth when the next path starts within two stepovers and the
+/// straight move keeps clear of the part; otherwise it retracts to safe Z, rapids
+/// over, comes down to 0.5 mm above the level above (already cleared) and enters
+/// by a ramp (closed loops) or a plunge in air (runs that start outside the stock).
+pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
+    let start = Vec3::new(0.0, 0.0, p.safe_z);
+    let mut sections = Vec::new();
+    for lv in levels {
+        let index = DistanceIndex::new(&lv.part);
+        let mut moves = Vec::new();
+        let mut at: Option<Vec2> = None; // XY when the tool is down at this level
+        let above = (lv.z_prev + 0.5).min(p.safe_z);
+        for path in &lv.paths {
+            let pts = if path.closed {
+                match at {
+                    Some(a) => start_near(&path.points, a),
+                    None => path.points.clone(),
+                }
+            } else {
+                path.points.clone()
+            };
+            let first = pts[0];
+            let sideways = at.filter(|a| {
+                a.dist(first) <= 2.0 * p.stepover + p.tol
+                    && index.segment_distance(*a, first, 2.0 * p.radius) >= p.radius - 0.5 * p.tol
+            });
+            if sideways.is_some() {
+                moves.push(Move::Linear { to: Vec3::new(first.x, first.y, lv.z), feed: p.feed });
+                if path.closed {
+                    for q in &pts[1..] {
+                        moves.push(Move::Linear { to: Vec3::new(q.x, q.y, lv.z), feed: p.feed });
+                    }
+                } else {
+                    for q in &pts[1..] {
+                        moves.push(Move::Linear { to: Vec3::new(q.x, q.y, lv.z), feed: p.feed });
+                    }
+                }
+            } else {
+                moves.push(Move::Rapid { to: Vec3::new(at.map_or(first.x, |a| a.x), at.map_or(first.y, |a| a.y), p.safe_z) });
+                moves.push(Move::Rapid { to: Vec3::new(first.x, first.y, p.safe_z) });
+                moves.push(Move::Rapid { to: Vec3::new(first.x, first.y, above) });
+                if path.closed {
+                    moves.push(Move::Linear { to: Vec3::new(first.x, first.y, lv.z_prev), feed: p.plunge_feed });
+                    ramp_loop(&pts, lv.z_prev, lv.z, p.ramp_angle, p.plunge_feed, p.feed, &mut moves);
+                } else {
+                    moves.push(Move::Linear { to: Vec3::new(first.x, first.y, lv.z), feed: p.plunge_feed });
+                    for q in &pts[1..] {
+                        moves.push(Move::Linear { to: Vec3::new(q.x, q.y, lv.z), feed: p.feed });
+                    }
+                }
+            }
+            at = moves.last().map(|m| {
+                let t = m.to();
+                Vec2::new(t.x, t.y)
+            });
+        }
+        if let Some(a) = at {
+            moves.push(Move::Rapid { to: Vec3::new(a.x, a.y, p.safe_z) });
+        }
+        sections.push(Section { label: format!("level z {:.3} (s = {:.4})", lv.z, lv.s), z: lv.z, moves });
+    }
+    Toolpath { start, sections }
+}
+
+/// Gap from a new (inner) set of rings `b` to the set outside it `a`: the largest
+/// distance from a point of `b` to `a`. (The other direction cannot be bounded by
+/// equipotentials: near a convex corner of V, 1 − u ~ r², so every ring cuts the
+/// corner by about √(1 − c) while it follows straight walls at a distance ∝ 1 − c;
+/// what that leaves uncut is measured by the coverage check instead.)
+fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
+    if a.is_empty() || b.is_empty() {
+        return f64::INFINITY;
+    }
+    let ia = DistanceIndex::new(a);
+    b.iter().flatten().map(|&p| ia.distance(p)).fold(0.0, f64::max)
+}
+
+/// The paths of one cavity level. `part` holds the level's Γ(s) loops with the
+/// mould's material on their left: pockets clockwise, islands counter-clockwise.
+///
+/// 1. The finishing loops: the rolling disk inside every pocket and around every
+///    island, in the level's field. They bound V, the region the tool centre may
+///    reach.
+/// 2. The inverse problem of the paper's Section 4 on ∂V: u = 1 on the finishing
+///    loops, u = 0 on sinks spread along each pocket (farthest-point selection on
+///    the distance to ∂V, so that u does not underflow toward 1 in long strokes),
+///    singularities outside V and inside the sinks.
+/// 3. Clearing rings: equipotentials of that field, each value chosen by bisection
+///    so that neighbouring rings are at most `stepover` apart (symmetric Hausdorff
+///    distance, measured), until every ring is small enough for the tool to cover
+///    its inside.
+/// 4. Coverage: the uncut share of the reachable area, on a grid.
+pub fn cavity_paths<N: Navigator + Sync>(
+    part: &[Vec<Vec2>],
+    nav: &N,
+    p: &LevelParams,
+    label: &str,
+    warnings: &mut Vec<String>,
+) -> Result<(Vec<CutPath>, f64), ProfileError> {
+    use crate::field::isolines::{isolines_linear, polygon_area, Grid};
+    use crate::field::{self, Boundary, Layout, Prepared, Sink};
+    let index = DistanceIndex::new(part);
+    let r = p.radius;
+    let tp = TraceParams { radius: r, tol: p.tol, part_on_left: !p.climb };
+    let pockets: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
+    let islands: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
+    // 1. Finishing loops.
+    let mut finish: Vec<Vec<Vec2>> = Vec::new();
+    for (i, pk) in pockets.iter().enumerate() {
+        let (deep, room) = deepest_point(pk, &index);
+        if room < r + p.tol {
+            warnings.push(format!("{label}: pocket {} is too narrow for the tool (room {room:.3} mm): not cut", i + 1));
+            continue;
+        }
+        let t = trace(nav, &index, deep, tp)
+            .map_err(|source| ProfileError::Trace { label: format!("{label}: wall of pocket {}", i + 1), source })?;
+        finish.push(t.points);
+    }
+    for (i, is) in islands.iter().enumerate() {
+        let start = lowest(is) - Vec2::new(0.0, r + p.tol);
+        match trace(nav, &index, start, tp) {
+            Ok(t) => finish.push(t.points),
+            Err(source) => return Err(ProfileError::Trace { label: format!("{label}: around island {}", i + 1), source }),
+        }
+    }
+    if finish.is_empty() {
+        return Ok((Vec::new(), 0.0));
+    }
+    // A second loop one stepover in from the wall, again by the rolling disk: it
+    // keeps the wall's sharp corners, which the equipotential rings would cut by
+    // more than the tool can bridge (the measured uncut area sat in those corners).
+    // The inverse problem is then solved inside these loops.
+    let r2 = r + 0.9 * p.stepover;
+    let tp2 = TraceParams { radius: r2, tol: p.tol, part_on_left: !p.climb };
+    let mut second: Vec<Vec<Vec2>> = Vec::new();
+    let mut n_pockets2 = 0;
+    for pk in &pockets {
+        let (deep, room) = deepest_point(pk, &index);
+        if room > r2 + p.stepover {
+            if let Ok(t) = trace(nav, &index, deep, tp2) {
+                second.push(t.points);
+                n_pockets2 += 1;
+            }
+        }
+    }
+    for is in &islands {
+        let start = lowest(is) - Vec2::new(0.0, r2 + p.tol);
+        if let Ok(t) = trace(nav, &index, start, tp2) {
+            second.push(t.points);
+        }
+    }
+    let inner_paths: Vec<Vec<Vec2>> = second.clone();
+    let finish_all = finish.clone();
+    let finish = if n_pockets2 > 0 { second } else { finish };
+    let pockets_in_finish = if n_pockets2 > 0 { n_pockets2 } else { pockets.len() };
+    // V's boundary, oriented for the inverse problem: pocket loops clockwise
+    // (outside V on their left), island loops counter-clockwise.
+    let loops: Vec<Vec<Vec2>> = finish
+        .iter()
+        .map(|l| {
+            let q: Vec<Vec2> = l[..l.len() - 1].to_vec();
+            q
+        })
+        .collect();
+    let n_pockets = pockets_in_finish.min(loops.len());
+    let oriented: Vec<Vec<Vec2>> = loops
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let want_cw = i < n_pockets;
+            if (polygon_area(l) < 0.0) == want_cw {
+                l.clone()
+            } else {
+                l.iter().rev().copied().collect()
+            }
+        })
+        .collect();
+    let vindex = DistanceIndex::new(&oriented);
+    let (mut lo, mut hi) = (oriented[0][0], oriented[0][0]);
+    for q in oriented.iter().flatten() {
+        lo = Vec2::new(lo.x.min(q.x), lo.y.min(q.y));
+        hi = Vec2::new(hi.x.max(q.x), hi.y.max(q.y));
+    }
+    let pad = Vec2::new(2.0 * r, 2.0 * r);
+    let rect = vec![lo - pad, Vec2::new(hi.x + pad.x, lo.y - pad.y), hi + pad, Vec2::new(lo.x - pad.x, hi.y + pad.y)];
+    let mut mask = vec![rect];
+    mask.extend(oriented.iter().cloned());
+    let h = (p.stepover / 4.0).max(0.05);
+    // 2. Sinks: farthest points from ∂V inside V, spaced by 2.5× their depth.
+    let probe = Grid::sample(&crate::field::Field::new(vec![], vec![]), lo, hi, h, &mask);
+    let mut cand: Vec<(f64, Vec2)> = Vec::new();
+    for j in 0..probe.ny {
+        for i in 0..probe.nx {
+            if !probe.inside[j * probe.nx + i] {
+                let q = Vec2::new(probe.origin.x + h * i as f64, probe.origin.y + h * j as f64);
+                cand.push((vindex.distance(q), q));
+            }
+        }
+    }
+    cand.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.x.total_cmp(&b.1.x)).then(a.1.y.total_cmp(&b.1.y)));
+    // Only deep points: a sink near ∂V would force u from 1 to 0 over a short
+    // distance there and crowd the rings against the wall.
+    let dmax = cand.first().map_or(0.0, |c| c.0);
+    let mut sinks: Vec<Sink> = Vec::new();
+    for &(d, q) in &cand {
+        if d < 0.5 * dmax || d < 0.5 * h {
+            break;
+        }
+        if sinks.iter().all(|s| s.centre.dist(q) >= 2.5 * d.max(4.0 * s.radius)) {
+            sinks.push(Sink { centre: q, radius: 0.25 * d });
+            if sinks.len() >= 80 {
+                break;
+            }
+        }
+    }
+    if sinks.is_empty() {
+        warnings.push(format!("{label}: no room inside the finishing loops: only the walls are cut"));
+        let paths = finish_all.into_iter().map(|pts| CutPath { label: format!("{label}: wall"), points: pts, closed: true }).collect();
+        return Ok((paths, 0.0));
+    }
+    let contours: Vec<crate::geometry::Contour> = oriented
+        .iter()
+        .filter_map(|l| {
+            let n = l.len();
+            crate::geometry::Contour::new(
+                (0..n).map(|i| crate::geometry::Segment::Line { a: l[i], b: l[(i + 1) % n] }).collect(),
+            )
+            .ok()
+        })
+        .collect();
+    let is_counter = vec![false; contours.len()];
+    let centre = field::centroid(&contours, p.tol);
+    let b = Boundary { contours, is_counter, centre, radius: 20.0 * (hi - lo).norm().max(1.0), flat_tol: p.tol };
+    let prep = Prepared::with_sinks(b, sinks.clone())?;
+    let n_total = field::setup::OUTER_CHARGES
+        + sinks.len() * field::setup::SINK_CHARGES
+        + (prep.perimeter() / (0.5 * p.stepover)).ceil().max(60.0) as usize;
+    let solved = field::solve_quick(&prep, Layout { n_total, distance: 1.0, corner_clusters: false, corner_fraction: 0.0 })?;
+    let inv = &solved.solution.field;
+    let mut grid = Grid::sample(inv, lo, hi, h, &mask);
+    // Inside the sinks the sum is singular at the charges: pin the values to 0.
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let q = Vec2::new(grid.origin.x + h * i as f64, grid.origin.y + h * j as f64);
+            if sinks.iter().any(|s| s.centre.dist(q) < 0.75 * s.radius) {
+                grid.values[j * grid.nx + i] = 0.0;
+            }
+        }
+    }
+    // 3. Rings, outermost first, by bisection on the value.
+    let target = 0.9 * p.stepover;
+    let mut rings: Vec<Vec<Vec<Vec2>>> = Vec::new();
+    let mut prev: Vec<Vec<Vec2>> = oriented.clone();
+    let mut c_prev = 1.0;
+    for _ in 0..400 {
+        let small = |set: &[Vec<Vec2>]| {
+            set.iter().all(|l| {
+                let n = l.len() as f64;
+                let cx = l.iter().fold(Vec2::ZERO, |a, &b| a + b) / n;
+                l.iter().all(|&q| q.dist(cx) <= 0.7 * r)
+            })
+        };
+        if small(&prev) && !rings.is_empty() {
+            break;
+        }
+        // A ring is usable when it keeps r − tol/4 from the part everywhere (the
+        // field's error could carry a ring with c near 1 across ∂V).
+        let safe = |set: &[Vec<Vec2>]| {
+            set.iter().all(|l| {
+                let n = l.len();
+                (0..n).all(|i| index.segment_distance(l[i], l[(i + 1) % n], 2.0 * r) >= r - 0.25 * p.tol)
+            })
+        };
+        let (mut a, mut bnd) = (0.0_f64, c_prev);
+        let mut best: Option<f64> = None;
+        // The safe ring with the smallest gap, for when none meets the target.
+        let mut fallback: Option<(f64, f64)> = None;
+        for _ in 0..30 {
+            let c = 0.5 * (a + bnd);
+            let set = isolines_linear(&grid, c);
+            if !safe(&set) {
+                bnd = c;
+                continue;
+            }
+            let g = ring_gap(&prev, &set);
+            if fallback.is_none_or(|f| g < f.1) {
+                fallback = Some((c, g));
+            }
+            if g <= target {
+                best = Some(c);
+                bnd = c;
+            } else {
+                a = c;
+            }
+            if bnd - a < 1e-6 {
+                break;
+            }
+        }
+        let mut c = match (best, fallback) {
+            (Some(c), _) => c,
+            (None, Some((c, g))) if g <= 1.25 * p.stepover => {
+                warnings.push(format!(
+                    "{label}: a clearing ring is {g:.3} mm from the one outside it (stepover {:.3} mm): the field's rings hug the wall elsewhere",
+                    p.stepover
+                ));
+                c
+            }
+            _ => break,
+        };
+        // The exact ring (vertices on the level by regula falsi) must be safe too;
+        // if not, step the value down until it is.
+        let mut exact: Vec<Vec<Vec2>> = Vec::new();
+        for _ in 0..20 {
+            exact = crate::field::isolines::isolines(&grid, c, inv, &mask[1..])
+                .into_iter()
+                .filter(|l| polygon_area(l).abs() > h * h)
+                .collect();
+            if safe(&exact) {
+                break;
+            }
+            exact.clear();
+            c *= 0.98;
+        }
+        if exact.is_empty() {
+            break;
+        }
+        prev = exact.clone();
+        c_prev = c;
+        rings.push(exact);
+        if c < 1e-4 {
+            break;
+        }
+    }
+    // Cutting order: innermost rings first, then outward, then the walls.
+    let mut paths = Vec::new();
+    for (k, set) in rings.iter().enumerate().rev() {
+        for l in set {
+            let mut pts = l.clone();
+            pts.push(pts[0]);
+            paths.push(CutPath { label: format!("{label}: ring {}", k + 1), points: pts, closed: true });
+        }
+    }
+    if n_pockets2 > 0 {
+        for pts in inner_paths {
+            paths.push(CutPath { label: format!("{label}: one stepover from the wall"), points: pts, closed: true });
+        }
+    }
+    for pts in finish_all {
+        paths.push(CutPath { label: format!("{label}: wall"), points: pts, closed: true });
+    }
+    // 4. Coverage: reachable points (in V, or within r of V) not within r of a path.
+    let all: Vec<Vec<Vec2>> = paths.iter().map(|c| c.points[..c.points.len() - 1].to_vec()).collect();
+    let pindex = DistanceIndex::new(&all);
+    let hc = (r / 10.0).max(0.05);
+    let cov = Grid::sample(&crate::field::Field::new(vec![], vec![]), lo - pad, hi + pad, hc, part);
+    let mut reach = 0usize;
+    let mut uncut = 0usize;
+    let pocket_mask: Vec<Vec<Vec2>> = part.iter().map(|q| q.iter().rev().copied().collect()).collect();
+    let in_cavity = Grid::sample(&crate::field::Field::new(vec![], vec![]), lo - pad, hi + pad, hc, &pocket_mask);
+    for j in 0..cov.ny {
+        for i in 0..cov.nx {
+            let k = j * cov.nx + i;
+            if !in_cavity.inside[k] {
+                continue;
+            }
+            let q = Vec2::new(cov.origin.x + hc * i as f64, cov.origin.y + hc * j as f64);
+            let dv = vindex.distance(q);
+            let in_v = !probe_inside(&mask, q);
+            if in_v || dv <= r {
+                reach += 1;
+                if pindex.distance(q) > r + 1e-9 {
+                    uncut += 1;
+                }
+            }
+        }
+    }
+    let frac = if reach > 0 { uncut as f64 / reach as f64 } else { 0.0 };
+    Ok((paths, frac))
+}
+
+fn probe_inside(mask: &[Vec<Vec2>], q: Vec2) -> bool {
+    mask.iter().map(|m| crate::geometry::polygon_winding_number(m, q)).sum::<i32>() != 0
+}
