@@ -5,7 +5,9 @@
 //! and never panics on user input.
 
 pub mod field;
+pub mod gcode;
 pub mod geometry;
+pub mod grbl;
 pub mod job;
 pub mod pipeline;
 pub mod toolpath;

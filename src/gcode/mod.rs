@@ -1,0 +1,3 @@
+//! G-code: parsing (and, in another branch, writing).
+
+pub mod parse;
