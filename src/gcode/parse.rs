@@ -212,7 +212,8 @@ pub struct ModalState {
     pub feed_mode: FeedMode,
     /// Work coordinate system, 54 ..= 59.
     pub wcs: u8,
-    /// Feed rate in program units per minute (as written), `None` until set.
+    /// Feed rate in **mm/min** (GRBL converts F when it reads it, so a later
+    /// G20/G21 does not change it), `None` until set.
     pub feed: Option<f64>,
     /// Spindle speed S (rpm), 0 until set.
     pub spindle_speed: f64,
@@ -429,7 +430,10 @@ impl ModalState {
             }
         }
         if let Some(f) = v('F') {
-            self.feed = Some(f);
+            self.feed = Some(match self.units {
+                Units::Inch => f * MM_PER_INCH,
+                Units::Mm => f,
+            });
         }
         if let Some(s) = v('S') {
             self.spindle_speed = s;
@@ -578,10 +582,7 @@ impl ModalState {
 
     /// The feed rate in mm/min, if set.
     pub fn feed_mm_per_min(&self) -> Option<f64> {
-        self.feed.map(|f| match self.units {
-            Units::Inch => f * MM_PER_INCH,
-            Units::Mm => f,
-        })
+        self.feed
     }
 }
 
@@ -740,8 +741,9 @@ mod tests {
         assert_eq!(s.plane, Plane::ZX);
         assert_eq!(s.wcs, 55);
         assert_eq!(s.motion, Motion::Linear);
-        assert_eq!(s.feed, Some(10.0));
-        assert_eq!(s.feed_mm_per_min(), Some(254.0));
+        assert_eq!(s.feed, Some(254.0));
+        let s2 = run(&["G20 F10", "G21"]).unwrap();
+        assert_eq!(s2.feed, Some(254.0), "F is kept in mm/min across G21");
         assert_eq!(s.spindle, Spindle::Ccw);
         assert_eq!(s.spindle_speed, 9000.0);
         assert!(s.flood && !s.mist);

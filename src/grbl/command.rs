@@ -19,8 +19,8 @@ use super::codes;
 use super::link::Link;
 use super::protocol::StatusReport;
 use super::streamer::{
-    resume_blocks, Block, Event, Observer, OperatorCommand, Resume, Settings, StreamReport,
-    Streamer,
+    check_blocks, resume_blocks, Block, Event, Observer, OperatorCommand, Resume, Settings,
+    StreamReport, Streamer,
 };
 use super::GrblError;
 use crate::gcode::parse::Program;
@@ -192,6 +192,7 @@ pub fn run_stream(
     obs: &mut dyn Observer,
 ) -> Result<StreamReport, GrblError> {
     let (_program, blocks) = job_blocks(args)?;
+    check_blocks(&blocks, &args.settings())?;
     let mut link = Link::open(&args.port, args.baud)?;
     if let Some(path) = &args.log {
         let file = std::fs::File::create(path)
@@ -288,27 +289,19 @@ pub fn stream_command(args: &StreamArgs) -> ExitCode {
                     codes::alarm_meaning(*code)
                 );
             }
-            if matches!(
-                status,
-                ExitStatus::GrblError
-                    | ExitStatus::Alarm
-                    | ExitStatus::Aborted
-                    | ExitStatus::LinkLost
-            ) {
+            if let Some(resume) = e.resume_from() {
                 match e.last_acked() {
-                    Some(n) => {
-                        eprintln!("last line acknowledged by GRBL: {n}: `{}`", line_text(n));
-                        eprintln!(
-                            "to resume after fixing the cause: pfcam stream {} --port {} --from-line {}",
-                            args.file.display(),
-                            args.port,
-                            n + 1
-                        );
-                    }
-                    None if !matches!(e, GrblError::CheckFailed { .. }) => {
-                        eprintln!("no line of the file was acknowledged by GRBL")
-                    }
-                    None => {}
+                    Some(n) => eprintln!("last line acknowledged by GRBL: {n}: `{}`", line_text(n)),
+                    None => eprintln!("no line of the file was acknowledged by GRBL"),
+                }
+                match resume {
+                    Some(n) => eprintln!(
+                        "lines from {n} on may not have been (fully) executed; to resume after \
+                         fixing the cause: pfcam stream {} --port {} --from-line {n}",
+                        args.file.display(),
+                        args.port
+                    ),
+                    None => eprintln!("to resume, restart the job from the beginning"),
                 }
             }
         }
@@ -400,11 +393,7 @@ impl Terminal {
             bar.set_message(self.machine());
         } else if self.last_plain.elapsed() >= Duration::from_secs(5) {
             self.last_plain = Instant::now();
-            let pct = if self.total > 0 {
-                self.acked * 100 / self.total
-            } else {
-                0
-            };
+            let pct = (self.acked * 100).checked_div(self.total).unwrap_or(0);
             eprintln!(
                 "stream: {}/{} lines ({pct}%), {:.0} s, {}",
                 self.acked,

@@ -120,6 +120,7 @@ impl Link {
         GrblError::LinkLost {
             reason,
             last_acked: None,
+            resume_from: None,
         }
     }
 

@@ -58,6 +58,9 @@ pub enum GrblError {
         fault: Fault,
         /// Last line acknowledged with `ok`.
         last_acked: Option<usize>,
+        /// First file line that may not have been fully executed: where
+        /// `--from-line` should resume (conservative; `None`: from the start).
+        resume_from: Option<usize>,
     },
     /// Check mode found errors (`--check`/`--check-first`).
     #[error("check mode: GRBL rejected {} line(s)", faults.len())]
@@ -72,12 +75,18 @@ pub enum GrblError {
         code: u8,
         /// Last line acknowledged with `ok`.
         last_acked: Option<usize>,
+        /// First file line that may not have been fully executed: where
+        /// `--from-line` should resume (conservative; `None`: from the start).
+        resume_from: Option<usize>,
     },
     /// The operator aborted (Ctrl-C → abort): feed hold, then soft reset.
     #[error("aborted by the operator")]
     Aborted {
         /// Last line acknowledged with `ok`.
         last_acked: Option<usize>,
+        /// First file line that may not have been fully executed: where
+        /// `--from-line` should resume (conservative; `None`: from the start).
+        resume_from: Option<usize>,
     },
     /// The port failed or disappeared.
     #[error("serial link lost: {reason}")]
@@ -86,6 +95,9 @@ pub enum GrblError {
         reason: String,
         /// Last line acknowledged with `ok`.
         last_acked: Option<usize>,
+        /// First file line that may not have been fully executed: where
+        /// `--from-line` should resume (conservative; `None`: from the start).
+        resume_from: Option<usize>,
     },
     /// GRBL stopped answering (not even status reports).
     #[error("GRBL stopped answering for {seconds:.1} s (not even status reports); feed hold and soft reset sent")]
@@ -94,12 +106,18 @@ pub enum GrblError {
         seconds: f64,
         /// Last line acknowledged with `ok`.
         last_acked: Option<usize>,
+        /// First file line that may not have been fully executed: where
+        /// `--from-line` should resume (conservative; `None`: from the start).
+        resume_from: Option<usize>,
     },
     /// GRBL printed its banner mid-job: it was reset (reset button, power, brown-out).
     #[error("GRBL reset itself in the middle of the job (banner received)")]
     UnexpectedReset {
         /// Last line acknowledged with `ok`.
         last_acked: Option<usize>,
+        /// First file line that may not have been fully executed: where
+        /// `--from-line` should resume (conservative; `None`: from the start).
+        resume_from: Option<usize>,
     },
     /// A system command (`$C`, `$X`) did not get the expected answer.
     #[error("`{command}` failed: {reason}")]
@@ -117,22 +135,55 @@ pub enum GrblError {
 impl GrblError {
     /// The last file line GRBL acknowledged, if the error carries one.
     pub fn last_acked(&self) -> Option<usize> {
+        self.stop_point().map(|(l, _)| l).unwrap_or(None)
+    }
+
+    /// Where to resume with `--from-line`, if the error happened mid-job
+    /// (`Some(None)`: from the start).
+    pub fn resume_from(&self) -> Option<Option<usize>> {
+        self.stop_point().map(|(_, r)| r)
+    }
+
+    fn stop_point(&self) -> Option<(Option<usize>, Option<usize>)> {
         match self {
-            GrblError::Rejected { last_acked, .. }
-            | GrblError::Alarm { last_acked, .. }
-            | GrblError::Aborted { last_acked }
-            | GrblError::LinkLost { last_acked, .. }
-            | GrblError::Unresponsive { last_acked, .. }
-            | GrblError::UnexpectedReset { last_acked } => *last_acked,
+            GrblError::Rejected {
+                last_acked,
+                resume_from,
+                ..
+            }
+            | GrblError::Alarm {
+                last_acked,
+                resume_from,
+                ..
+            }
+            | GrblError::Aborted {
+                last_acked,
+                resume_from,
+            }
+            | GrblError::LinkLost {
+                last_acked,
+                resume_from,
+                ..
+            }
+            | GrblError::Unresponsive {
+                last_acked,
+                resume_from,
+                ..
+            }
+            | GrblError::UnexpectedReset {
+                last_acked,
+                resume_from,
+            } => Some((*last_acked, *resume_from)),
             _ => None,
         }
     }
 
-    pub(crate) fn with_last_acked(self, line: Option<usize>) -> GrblError {
+    pub(crate) fn with_stop(self, last: Option<usize>, resume: Option<usize>) -> GrblError {
         match self {
             GrblError::LinkLost { reason, .. } => GrblError::LinkLost {
                 reason,
-                last_acked: line,
+                last_acked: last,
+                resume_from: resume,
             },
             other => other,
         }

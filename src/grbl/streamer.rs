@@ -215,6 +215,8 @@ struct Run<'a> {
     in_flight: usize,
     acked: usize,
     last_acked: Option<usize>,
+    /// File lines of the last acknowledged lines with axis words.
+    acked_motion: VecDeque<usize>,
     faults: Vec<Fault>,
     held: bool,
     hold_announced: bool,
@@ -401,6 +403,7 @@ impl Streamer {
                     return Err(GrblError::Alarm {
                         code: n,
                         last_acked: None,
+                        resume_from: None,
                     })
                 }
                 Response::Status(r) => self.note_status(&r),
@@ -447,25 +450,7 @@ impl Streamer {
     }
 
     fn check_lengths(&self, blocks: &[Block]) -> Result<(), GrblError> {
-        let max = self.settings.line_buffer.min(self.settings.rx_buffer);
-        for b in blocks {
-            if b.text.len() + 1 > max {
-                return Err(GrblError::Input(format!(
-                    "line {}: {} characters after stripping comments and spaces; GRBL takes \
-                     at most {} per line",
-                    b.line,
-                    b.text.len(),
-                    max - 1
-                )));
-            }
-            if !b.text.is_ascii() || b.text.bytes().any(|c| c.is_ascii_control()) {
-                return Err(GrblError::Input(format!(
-                    "line {}: contains non-ASCII or control characters",
-                    b.line
-                )));
-            }
-        }
-        Ok(())
+        check_blocks(blocks, &self.settings)
     }
 
     fn run(
@@ -484,6 +469,7 @@ impl Streamer {
             in_flight: 0,
             acked: 0,
             last_acked: None,
+            acked_motion: VecDeque::new(),
             faults: Vec::new(),
             held: false,
             hold_announced: false,
@@ -525,6 +511,7 @@ impl Streamer {
                         self.stop_machine(&mut r, obs)?;
                         return Err(GrblError::Aborted {
                             last_acked: r.last_acked,
+                            resume_from: self.resume_point(&r, false),
                         });
                     }
                     Err(TryRecvError::Empty) | Err(TryRecvError::Disconnected) => break,
@@ -606,11 +593,12 @@ impl Streamer {
                         return Err(GrblError::Unresponsive {
                             seconds: silent.as_secs_f64(),
                             last_acked: r.last_acked,
+                            resume_from: self.resume_point(&r, true),
                         });
                     }
                     continue;
                 }
-                Err(e) => return Err(e.with_last_acked(r.last_acked)),
+                Err(e) => return Err(e.with_stop(r.last_acked, self.resume_point(&r, true))),
             };
             last_rx = Instant::now();
             match parse_response(&line) {
@@ -622,9 +610,13 @@ impl Streamer {
                         if mode == Mode::Run && self.settings.stop_on_error {
                             obs.event(Event::Stopping("GRBL rejected a line"));
                             self.stop_machine(&mut r, obs)?;
+                            let resume = self
+                                .resume_point(&r, false)
+                                .map_or(fault.line, |l| l.min(fault.line));
                             return Err(GrblError::Rejected {
                                 fault,
                                 last_acked: r.last_acked,
+                                resume_from: Some(resume),
                             });
                         }
                         obs.event(Event::Rejected(&fault));
@@ -635,6 +627,7 @@ impl Streamer {
                     return Err(GrblError::Alarm {
                         code,
                         last_acked: r.last_acked,
+                        resume_from: self.resume_point(&r, true),
                     })
                 }
                 Response::Status(report) => {
@@ -655,6 +648,7 @@ impl Streamer {
                 Response::Banner { .. } => {
                     return Err(GrblError::UnexpectedReset {
                         last_acked: r.last_acked,
+                        resume_from: self.resume_point(&r, true),
                     })
                 }
                 _ => obs.event(Event::Message(&line)),
@@ -671,6 +665,16 @@ impl Streamer {
             },
             max_in_flight: r.max_in_flight,
         })
+    }
+
+    /// Resume point from the planner fill in the last status report (`Bf:`), or
+    /// assuming a full planner when `worst_case` or when GRBL did not report it.
+    fn resume_point(&self, r: &Run<'_>, worst_case: bool) -> Option<usize> {
+        let used = match self.status.as_ref().and_then(|s| s.buffer) {
+            Some((free, _)) if !worst_case => PLANNER_BLOCKS.saturating_sub(free as usize),
+            _ => PLANNER_BLOCKS,
+        };
+        resume_point(r, used)
     }
 
     fn in_hold(&self) -> bool {
@@ -705,6 +709,12 @@ impl Streamer {
         });
         if error.is_none() && block.line != 0 {
             r.last_acked = Some(block.line);
+            if block.text.contains(['X', 'Y', 'Z']) {
+                r.acked_motion.push_back(block.line);
+                if r.acked_motion.len() > 4 * PLANNER_BLOCKS {
+                    r.acked_motion.pop_front();
+                }
+            }
         }
         obs.event(Event::Progress {
             acked: r.acked,
@@ -737,7 +747,7 @@ impl Streamer {
             let Some(line) = self
                 .link
                 .recv(Duration::from_millis(20))
-                .map_err(|e| e.with_last_acked(r.last_acked))?
+                .map_err(|e| e.with_stop(r.last_acked, self.resume_point(r, true)))?
             else {
                 continue;
             };
@@ -768,6 +778,7 @@ impl Streamer {
                     return Err(GrblError::Alarm {
                         code,
                         last_acked: r.last_acked,
+                        resume_from: self.resume_point(r, true),
                     })
                 }
                 _ => obs.event(Event::Message(&line)),
@@ -780,19 +791,64 @@ impl Streamer {
         let mut alarm = false;
         let banner = self
             .wait_banner(&mut heard, &mut alarm, obs)
-            .map_err(|e| e.with_last_acked(r.last_acked))?;
+            .map_err(|e| e.with_stop(r.last_acked, self.resume_point(r, true)))?;
         if banner.is_none() {
             return Err(GrblError::Unresponsive {
                 seconds: self.settings.banner_timeout.as_secs_f64(),
                 last_acked: r.last_acked,
+                resume_from: self.resume_point(r, true),
             });
         }
         Ok(())
     }
 }
 
+/// Refuses blocks GRBL cannot take whole: longer than its line buffer (or the
+/// receive buffer), or with non-ASCII / control characters.
+pub fn check_blocks(blocks: &[Block], settings: &Settings) -> Result<(), GrblError> {
+    let max = settings.line_buffer.min(settings.rx_buffer);
+    for b in blocks {
+        if b.text.len() + 1 > max {
+            return Err(GrblError::Input(format!(
+                "line {}: {} characters after stripping comments and spaces; GRBL takes \
+                     at most {} per line",
+                b.line,
+                b.text.len(),
+                max - 1
+            )));
+        }
+        if !b.text.is_ascii() || b.text.bytes().any(|c| c.is_ascii_control()) {
+            return Err(GrblError::Input(format!(
+                "line {}: contains non-ASCII or control characters",
+                b.line
+            )));
+        }
+    }
+    Ok(())
+}
+
 fn lost(e: GrblError, r: &Run<'_>) -> GrblError {
-    e.with_last_acked(r.last_acked)
+    let resume = resume_point(r, PLANNER_BLOCKS);
+    e.with_stop(r.last_acked, resume)
+}
+
+/// GRBL 1.1's usable planner blocks (BLOCK_BUFFER_SIZE 16, one kept free).
+const PLANNER_BLOCKS: usize = 15;
+
+/// The acknowledged lines that may still sit unexecuted in GRBL's planner are the
+/// last `planner_used` lines with axis words (one block each; an arc takes several
+/// blocks, which only moves the point earlier). Resume at the oldest of them, or
+/// after the last acknowledged line when the planner is empty.
+fn resume_point(r: &Run<'_>, planner_used: usize) -> Option<usize> {
+    if planner_used == 0 {
+        return r.last_acked.map(|l| l + 1);
+    }
+    if r.acked_motion.len() < planner_used {
+        return None;
+    }
+    r.acked_motion
+        .get(r.acked_motion.len() - planner_used)
+        .copied()
 }
 
 fn truncate(s: &str, n: usize) -> String {
@@ -872,8 +928,9 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
         Units::Inch => mm / 25.4,
         Units::Mm => mm,
     };
+    let decimals = if state.units == Units::Inch { 5 } else { 4 };
     let num = |v: f64| {
-        let s = format!("{v:.4}");
+        let s = format!("{v:.decimals$}");
         let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
         if s == "-0" {
             "0".to_string()
@@ -896,7 +953,10 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
         },
         state.wcs
     ));
-    out.push(format!("G0Z{}", num(to_units(safe_z.max(pos[2])))));
+    // Rounded up, so the printed safe Z is never below the asked one.
+    let scale = 10f64.powi(decimals as i32);
+    let safe = (to_units(safe_z.max(pos[2])) * scale).ceil() / scale;
+    out.push(format!("G0Z{}", num(safe)));
     let spindle = match state.spindle {
         Spindle::Off => "M5",
         Spindle::Cw => "M3",
@@ -917,7 +977,11 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
         num(to_units(pos[0])),
         num(to_units(pos[1]))
     ));
-    out.push(format!("G1Z{}F{}", num(to_units(pos[2])), num(feed)));
+    out.push(format!(
+        "G1Z{}F{}",
+        num(to_units(pos[2])),
+        num(to_units(feed))
+    ));
     let mut modes = String::new();
     if state.distance == Distance::Incremental {
         modes.push_str("G91");
