@@ -147,13 +147,20 @@ fn file_blocks(a: &StreamArgs) -> Vec<String> {
 fn whole_job_streams_in_order_within_the_buffer() {
     let emu = Emulator::start(Config {
         speedup: 150.0,
+        startup_echo: true,
         ..Config::default()
     });
     let file = job_file("whole", &zigzag(3000));
     let mut a = args(&emu, &file);
     let log = std::env::temp_dir().join(format!("pfcam-grbl-{}-whole.log", std::process::id()));
     a.log = Some(log.clone());
-    let (r, _) = run(&a);
+    let (r, events) = run(&a);
+    // Push messages are shown, never taken for acknowledgements.
+    assert!(events.iter().any(|e| e.contains(">G54:ok")), "{events:?}");
+    assert!(
+        events.iter().any(|e| e.contains("[MSG:Pgm End]")),
+        "{events:?}"
+    );
     let report = r.expect("stream completes");
     let sent = file_blocks(&a);
     assert_eq!(report.acked, sent.len());
@@ -681,4 +688,68 @@ fn overlong_line_is_refused_before_sending() {
     assert!(err.to_string().contains("line 2"), "{err}");
     assert_eq!(ExitStatus::of(&Err(err)), ExitStatus::BadInput);
     assert!(emu.lines().is_empty());
+}
+
+#[test]
+fn controller_that_hangs_is_detected_and_stopped() {
+    let emu = Emulator::start(Config {
+        freeze_after: Some(200),
+        ..Config::default()
+    });
+    let file = job_file("freeze", &zigzag(1000));
+    let mut a = args(&emu, &file);
+    a.response_timeout = 0.5;
+    let (_op, _events, done) = spawn(a);
+    let err = outcome(&done).expect_err("unresponsive");
+    let GrblError::Unresponsive { last_acked, .. } = &err else {
+        panic!("unexpected {err:?}");
+    };
+    // The last acknowledged line is the last one the controller answered.
+    let program = Program::parse(&zigzag(1000));
+    let last = last_acked.expect("lines were acknowledged");
+    let answered = emu.shared().received.last().map(|r| r.text.clone());
+    assert_eq!(Some(program.lines[last - 1].block.clone()), answered);
+    assert!(err.to_string().contains("stopped answering"), "{err}");
+    assert_eq!(ExitStatus::of(&Err(err)), ExitStatus::LinkLost);
+}
+
+#[test]
+fn controller_reset_mid_job_stops_the_stream() {
+    let emu = Emulator::start(Config {
+        reboot_after: Some(150),
+        ..Config::default()
+    });
+    let file = job_file("reboot", &zigzag(1000));
+    let (r, _) = run(&args(&emu, &file));
+    let err = r.expect_err("reset detected");
+    assert!(matches!(err, GrblError::UnexpectedReset { .. }), "{err:?}");
+    assert_eq!(ExitStatus::of(&Err(err)), ExitStatus::LinkLost);
+    // Nothing is sent into a freshly reset controller (its lines would run
+    // without the job's modal state).
+    let s = emu.shared();
+    let at = s.rebooted_at.expect("rebooted");
+    let late: usize = s.received[at..].iter().map(|r| r.text.len() + 1).sum();
+    assert!(late <= 128, "{late} bytes sent after the reset");
+}
+
+#[test]
+fn stream_command_exit_codes() {
+    let emu = Emulator::start(Config::default());
+    let file = job_file("cmd-ok", &zigzag(100));
+    let code = pfcam::grbl::stream_command(&args(&emu, &file));
+    assert_eq!(
+        format!("{code:?}"),
+        format!("{:?}", std::process::ExitCode::from(0))
+    );
+    drop(emu);
+
+    let emu = Emulator::start(Config::default());
+    let file = job_file("cmd-err", &with_errors());
+    let mut a = args(&emu, &file);
+    a.continue_on_error = true;
+    let code = pfcam::grbl::stream_command(&a);
+    assert_eq!(
+        format!("{code:?}"),
+        format!("{:?}", std::process::ExitCode::from(4))
+    );
 }

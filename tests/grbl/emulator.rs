@@ -56,6 +56,12 @@ pub struct Config {
     pub alarm_after: Option<(usize, u8)>,
     /// After this many G-code lines are received, close the pty master.
     pub die_after: Option<usize>,
+    /// After this many G-code lines, stop reading and answering (port stays open).
+    pub freeze_after: Option<usize>,
+    /// After this many G-code lines, reboot (banner) as on a power glitch.
+    pub reboot_after: Option<usize>,
+    /// A startup line echoed after the banner (`>G54:ok`).
+    pub startup_echo: bool,
 }
 
 impl Default for Config {
@@ -69,6 +75,9 @@ impl Default for Config {
             start_in_alarm: false,
             alarm_after: None,
             die_after: None,
+            freeze_after: None,
+            reboot_after: None,
+            startup_echo: false,
         }
     }
 }
@@ -101,6 +110,8 @@ pub struct Shared {
     pub moved: bool,
     pub boot_requested: bool,
     pub dead: bool,
+    /// Lines received when the emulator rebooted (`reboot_after`).
+    pub rebooted_at: Option<usize>,
 }
 
 pub struct Emulator {
@@ -249,6 +260,8 @@ impl Machine {
         self.say("Grbl 1.1h ['$' for help]");
         if self.state == State::Alarm {
             self.say("[MSG:'$H'|'$X' to unlock]");
+        } else if self.cfg.startup_echo {
+            self.say(">G54:ok");
         }
     }
 
@@ -286,6 +299,22 @@ impl Machine {
                     self.shared().dead = true;
                     return; // drops the master: the link disappears
                 }
+            }
+            if self.cfg.freeze_after.is_some_and(|k| self.lines >= k) {
+                // Hung firmware: the port stays open, nothing is read or answered.
+                while !self.stop.load(Ordering::Relaxed) {
+                    std::thread::sleep(Duration::from_millis(5));
+                }
+                return;
+            }
+            if self.cfg.reboot_after.is_some_and(|k| self.lines >= k) {
+                self.cfg.reboot_after = None;
+                let n = self.shared().received.len();
+                self.shared().rebooted_at = Some(n);
+                self.state = State::Idle;
+                self.reset();
+                let out = std::mem::take(&mut self.out);
+                let _ = self.port.write_all(&out);
             }
             self.publish();
         }
@@ -532,12 +561,17 @@ impl Machine {
                 }
             }
         }
+        let pgm_end = error.is_none() && !check && self.modal.ended && !before.ended;
         self.shared().received.push(Received {
             text: text.clone(),
             state_before: before,
             check_mode: check,
             error,
         });
+        if pgm_end {
+            self.say("[MSG:Pgm End]");
+            self.modal.ended = false;
+        }
         match error {
             Some(n) => self.say(&format!("error:{n}")),
             None if extra_ok => self.say("ok"),
