@@ -223,12 +223,7 @@ pub fn stream_command(args: &StreamArgs) -> ExitCode {
         let held = held.clone();
         // First Ctrl-C: feed hold and ask; second (while held): abort.
         let installed = ctrlc::set_handler(move || {
-            let cmd = if held.swap(true, Ordering::SeqCst) {
-                OperatorCommand::Abort
-            } else {
-                OperatorCommand::Hold
-            };
-            let _ = tx.send(cmd);
+            let _ = tx.send(ctrl_c(&held));
         });
         if let Err(e) = installed {
             eprintln!("warning: cannot catch Ctrl-C ({e}); Ctrl-C will kill pfcam without stopping the machine");
@@ -307,6 +302,16 @@ pub fn stream_command(args: &StreamArgs) -> ExitCode {
         }
     }
     status.into()
+}
+
+/// What a Ctrl-C means: a feed hold, or an abort when already held (second
+/// Ctrl-C, or Ctrl-C at the resume-or-abort prompt).
+pub fn ctrl_c(held: &AtomicBool) -> OperatorCommand {
+    if held.swap(true, Ordering::SeqCst) {
+        OperatorCommand::Abort
+    } else {
+        OperatorCommand::Hold
+    }
 }
 
 /// Reads `r`/`a` answers to the hold prompt from stdin.
@@ -442,5 +447,49 @@ impl Observer for Terminal {
             }
             Event::Stopping(why) => self.say(&format!("stopping the machine: {why}")),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn first_ctrl_c_holds_second_aborts() {
+        let held = AtomicBool::new(false);
+        assert_eq!(ctrl_c(&held), OperatorCommand::Hold);
+        assert_eq!(ctrl_c(&held), OperatorCommand::Abort);
+        // After a resume the front end clears the flag: Ctrl-C holds again.
+        held.store(false, Ordering::SeqCst);
+        assert_eq!(ctrl_c(&held), OperatorCommand::Hold);
+    }
+
+    #[test]
+    fn every_outcome_has_a_distinct_exit_code() {
+        let outcomes = [
+            Ok(StreamReport::default()),
+            Err(GrblError::Input("x".into())),
+            Err(GrblError::NoGrbl {
+                port: "p".into(),
+                heard: String::new(),
+            }),
+            Err(GrblError::CheckFailed { faults: Vec::new() }),
+            Err(GrblError::Alarm {
+                code: 1,
+                last_acked: None,
+                resume_from: None,
+            }),
+            Err(GrblError::Aborted {
+                last_acked: None,
+                resume_from: None,
+            }),
+            Err(GrblError::LinkLost {
+                reason: String::new(),
+                last_acked: None,
+                resume_from: None,
+            }),
+        ];
+        let codes: Vec<u8> = outcomes.iter().map(|o| ExitStatus::of(o) as u8).collect();
+        assert_eq!(codes, [0, 2, 3, 4, 5, 6, 7]);
     }
 }

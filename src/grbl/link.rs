@@ -137,6 +137,7 @@ impl Link {
     }
 
     /// Sends one real-time byte, as a byte (0x85+ must not become UTF-8).
+    /// Logged as `[0xNN]`, except `?` queries: their answers are logged.
     pub fn send_realtime(&mut self, byte: u8) -> Result<(), GrblError> {
         if byte != super::protocol::STATUS_QUERY {
             self.log(">", &format!("[0x{byte:02X}]"));
@@ -154,9 +155,7 @@ impl Link {
         }
         match self.rx.recv_timeout(timeout) {
             Ok(Incoming::Line(line)) => {
-                if !line.starts_with('<') {
-                    self.log("<", &line);
-                }
+                self.log("<", &line);
                 Ok(Some(line))
             }
             Ok(Incoming::Closed(reason)) => Err(self.lost(reason)),

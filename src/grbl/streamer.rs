@@ -483,9 +483,12 @@ impl Streamer {
         let mut next_poll = Instant::now();
         let mut last_rx = Instant::now();
         let mut last_fill = Instant::now();
-        // Set when everything is acknowledged: the first status query sent after.
-        let mut final_poll: Option<Instant> = None;
-        let mut final_poll_answered = false;
+        // Completion needs a status report answering a query sent after the last
+        // acknowledgement (GRBL answers `?` in order), so a stale `Idle` from
+        // before the last moves were planned does not count.
+        let mut polls_sent: u64 = 0;
+        let mut reports: u64 = 0;
+        let mut final_poll: Option<u64> = None;
         loop {
             // Operator requests.
             loop {
@@ -561,10 +564,10 @@ impl Streamer {
                     break;
                 }
                 if final_poll.is_none() {
-                    final_poll = Some(now);
+                    final_poll = Some(polls_sent + 1);
                     next_poll = now;
                 }
-                if final_poll_answered
+                if final_poll.is_some_and(|seq| reports >= seq)
                     && matches!(
                         self.status.as_ref().map(|s| &s.state),
                         Some(MachineState::Idle)
@@ -577,6 +580,7 @@ impl Streamer {
                 self.link
                     .send_realtime(STATUS_QUERY)
                     .map_err(|e| lost(e, &r))?;
+                polls_sent += 1;
                 next_poll = now + interval;
             }
             let wait = next_poll
@@ -632,9 +636,7 @@ impl Streamer {
                 }
                 Response::Status(report) => {
                     self.note_status(&report);
-                    if final_poll.is_some() {
-                        final_poll_answered = true;
-                    }
+                    reports += 1;
                     if !matches!(report.state, MachineState::Hold(_)) {
                         r.awaiting_run = false;
                     }
@@ -684,10 +686,11 @@ impl Streamer {
         )
     }
 
+    /// Stopped and resumable: `Hold:0`, or `Door:0` (door closed again).
     fn hold_complete(&self) -> bool {
         matches!(
             self.status.as_ref().map(|s| &s.state),
-            Some(MachineState::Hold(0))
+            Some(MachineState::Hold(0)) | Some(MachineState::Door(0))
         )
     }
 
