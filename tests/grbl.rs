@@ -764,4 +764,23 @@ fn stream_command_exit_codes() {
         format!("{code:?}"),
         format!("{:?}", std::process::ExitCode::from(4))
     );
+    drop(emu);
+
+    let emu = Emulator::start(Config {
+        alarm_after: Some((40, 2)),
+        ..Config::default()
+    });
+    let code = pfcam::grbl::stream_command(&args(&emu, &file));
+    assert_eq!(
+        format!("{code:?}"),
+        format!("{:?}", std::process::ExitCode::from(5))
+    );
+    drop(emu);
+
+    let emu = Emulator::start(Config::default());
+    let code = pfcam::grbl::stream_command(&args(&emu, &file));
+    assert_eq!(
+        format!("{code:?}"),
+        format!("{:?}", std::process::ExitCode::from(4))
+    );
 }

@@ -244,8 +244,11 @@ pub fn stream_command(args: &StreamArgs) -> ExitCode {
     };
     match &outcome {
         Ok(report) => {
-            for f in &report.faults {
-                eprintln!("rejected: {f}");
+            if !report.faults.is_empty() {
+                eprintln!("lines GRBL rejected (not executed):");
+                for f in &report.faults {
+                    eprintln!("  {f}");
+                }
             }
             let what = if args.check { "checked" } else { "sent" };
             eprintln!(
@@ -278,10 +281,9 @@ pub fn stream_command(args: &StreamArgs) -> ExitCode {
                      stop was controlled, so `$X` unlocks (home with `$H` if in doubt)"
                 );
             }
-            if let GrblError::Alarm { code, .. } = e {
+            if let GrblError::Alarm { .. } = e {
                 eprintln!(
-                    "GRBL has stopped and locks out G-code: ALARM:{code} means {}",
-                    codes::alarm_meaning(*code)
+                    "GRBL has stopped and locks out G-code until it is unlocked (`$X`) or homed (`$H`)"
                 );
             }
             if let Some(resume) = e.resume_from() {
@@ -432,7 +434,7 @@ impl Observer for Terminal {
                 self.line = line;
                 self.update();
             }
-            Event::Rejected(f) => self.say(&format!("rejected: {f}")),
+            Event::Rejected(f) => self.say(&format!("GRBL rejected {f}; continuing")),
             Event::HoldRequested => self.say("feed hold sent; waiting for the machine to stop..."),
             Event::HoldComplete => {
                 self.held.store(true, Ordering::SeqCst);
