@@ -15,7 +15,6 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::codes;
 use super::link::Link;
 use super::protocol::StatusReport;
 use super::streamer::{
