@@ -493,8 +493,17 @@ impl Streamer {
             // Operator requests.
             loop {
                 match operator.try_recv() {
+                    Ok(OperatorCommand::Hold) if mode == Mode::Check => {
+                        // Check mode moves nothing: a hold there means "stop checking".
+                        obs.event(Event::Stopping("check aborted by the operator"));
+                        self.stop_machine(&mut r, obs)?;
+                        return Err(GrblError::Aborted {
+                            last_acked: r.last_acked,
+                            resume_from: None,
+                        });
+                    }
                     Ok(OperatorCommand::Hold) => {
-                        if !r.held && mode == Mode::Run {
+                        if !r.held {
                             self.link
                                 .send_realtime(FEED_HOLD)
                                 .map_err(|e| lost(e, &r))?;
