@@ -63,7 +63,7 @@ impl Default for Settings {
             stop_on_error: true,
             banner_timeout: Duration::from_millis(2000),
             response_timeout: Duration::from_secs(10),
-            hold_timeout: Duration::from_secs(30),
+            hold_timeout: Duration::from_secs(10),
             unlock: false,
         }
     }
@@ -225,6 +225,7 @@ struct Run<'a> {
     awaiting_run: bool,
     fill_integral: f64,
     fill_time: f64,
+    last_change: Instant,
     max_in_flight: usize,
 }
 
@@ -477,12 +478,12 @@ impl Streamer {
             awaiting_run: false,
             fill_integral: 0.0,
             fill_time: 0.0,
+            last_change: Instant::now(),
             max_in_flight: 0,
         };
         let interval = self.settings.status_interval;
         let mut next_poll = Instant::now();
         let mut last_rx = Instant::now();
-        let mut last_fill = Instant::now();
         // Completion needs a status report answering a query sent after the last
         // acknowledgement (GRBL answers `?` in order), so a stale `Idle` from
         // before the last moves were planned does not count.
@@ -554,6 +555,7 @@ impl Streamer {
                     self.link
                         .send_line(&blocks[r.next].text)
                         .map_err(|e| lost(e, &r))?;
+                    r.account();
                     r.pending.push_back((r.next, len));
                     r.in_flight += len;
                     r.max_in_flight = r.max_in_flight.max(r.in_flight);
@@ -561,12 +563,6 @@ impl Streamer {
                 }
             }
             let now = Instant::now();
-            if r.next < blocks.len() {
-                let dt = (now - last_fill).as_secs_f64();
-                r.fill_integral += dt * r.in_flight as f64;
-                r.fill_time += dt;
-            }
-            last_fill = now;
             // Done?
             if r.next == blocks.len() && r.pending.is_empty() {
                 if mode == Mode::Check {
@@ -711,6 +707,7 @@ impl Streamer {
             ));
             return None;
         };
+        r.account();
         r.in_flight -= len;
         r.acked += 1;
         let block = &r.blocks[index];
@@ -837,6 +834,20 @@ pub fn check_blocks(blocks: &[Block], settings: &Settings) -> Result<(), GrblErr
         }
     }
     Ok(())
+}
+
+impl Run<'_> {
+    /// Adds the time since the last change of `in_flight` to the fill average,
+    /// while lines remain to be sent (the drain at the end is not streaming).
+    fn account(&mut self) {
+        let now = Instant::now();
+        if self.next < self.blocks.len() {
+            let dt = (now - self.last_change).as_secs_f64();
+            self.fill_integral += dt * self.in_flight as f64;
+            self.fill_time += dt;
+        }
+        self.last_change = now;
+    }
 }
 
 fn lost(e: GrblError, r: &Run<'_>) -> GrblError {
