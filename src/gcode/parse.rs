@@ -482,6 +482,26 @@ impl ModalState {
         }
         let axes = [v('X'), v('Y'), v('Z')];
         let has_axes = axes.iter().any(Option::is_some);
+        let explicit_motion = gcodes
+            .iter()
+            .any(|g| g_group(*g) == Some(Group::Motion) && !matches!(g, 0 | 10 | 800));
+        if explicit_motion && !has_axes && non_modal.is_none() {
+            return Err(BlockError::new(26, "G2/G3/G38.x without axis words"));
+        }
+        if v('P').is_some() && !matches!(non_modal, Some(40) | Some(100)) {
+            return Err(BlockError::new(36, "P word without G4 or G10"));
+        }
+        if v('L').is_some() && non_modal != Some(100) {
+            return Err(BlockError::new(36, "L word without G10"));
+        }
+        if let Some(n) = v('N') {
+            if n.fract() != 0.0 || n > 9_999_999.0 {
+                return Err(BlockError::new(
+                    27,
+                    "line number N must be an integer up to 9999999",
+                ));
+            }
+        }
         let scale = if self.units == Units::Inch {
             MM_PER_INCH
         } else {
@@ -545,13 +565,25 @@ impl ModalState {
                 }
                 Motion::Rapid => {}
             }
-            if matches!(self.motion, Motion::ArcCw | Motion::ArcCcw)
-                && v('R').is_none()
-                && v('I').is_none()
-                && v('J').is_none()
-                && v('K').is_none()
-            {
-                return Err(BlockError::new(35, "arc without I/J/K or R"));
+            if matches!(self.motion, Motion::ArcCw | Motion::ArcCcw) {
+                // In-plane axes and offset words: XY uses X/Y and I/J, ZX uses Z/X
+                // and K/I, YZ uses Y/Z and J/K.
+                let (axes_in_plane, offsets) = match self.plane {
+                    Plane::XY => (['X', 'Y'], ['I', 'J']),
+                    Plane::ZX => (['Z', 'X'], ['K', 'I']),
+                    Plane::YZ => (['Y', 'Z'], ['J', 'K']),
+                };
+                if axes_in_plane.iter().all(|&c| v(c).is_none()) {
+                    return Err(BlockError::new(32, "arc without an axis word in its plane"));
+                }
+                if v('R').is_none() && offsets.iter().all(|&c| v(c).is_none()) {
+                    return Err(BlockError::new(
+                        35,
+                        "arc without R or an offset word (I/J/K) in its plane",
+                    ));
+                }
+            } else if ['I', 'J', 'K', 'R'].iter().any(|&c| v(c).is_some()) {
+                return Err(BlockError::new(36, "I/J/K/R words without an arc"));
             }
             for (axis, value) in axes.iter().enumerate() {
                 if let Some(value) = value {
@@ -721,6 +753,14 @@ mod tests {
         assert_eq!(run(&["F100", "G2 X1 Y1"]).unwrap_err().code, 35);
         assert_eq!(run(&["S-1"]).unwrap_err().code, 4);
         assert!(run(&["G38.2 Z-5 F50"]).is_ok());
+        assert_eq!(run(&["F100", "G2 Z1 I1"]).unwrap_err().code, 32);
+        assert_eq!(run(&["F100", "G2 X1 K1"]).unwrap_err().code, 35);
+        assert_eq!(run(&["F100", "G1 X1 I1"]).unwrap_err().code, 36);
+        assert_eq!(run(&["G0 X1 P2"]).unwrap_err().code, 36);
+        assert_eq!(run(&["G2"]).unwrap_err().code, 26);
+        assert_eq!(run(&["N1.5 G0 X1"]).unwrap_err().code, 27);
+        assert!(run(&["F100", "G18 G2 X1 Z1 K1"]).is_ok());
+        assert!(run(&["G4 P0.5", "N10 G1 X1 F5", "G1"]).is_ok());
         assert!(run(&["M7 M8"]).is_ok());
     }
 
