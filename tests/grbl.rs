@@ -784,3 +784,22 @@ fn stream_command_exit_codes() {
         format!("{:?}", std::process::ExitCode::from(4))
     );
 }
+
+#[test]
+fn smaller_receive_buffer_is_respected() {
+    let emu = Emulator::start(Config {
+        rx_buffer: 64,
+        ..Config::default()
+    });
+    let file = job_file("rx64", &zigzag(500));
+    let mut a = args(&emu, &file);
+    a.rx_buffer = 64;
+    let (r, _) = run(&a);
+    let report = r.expect("completes");
+    assert!(report.max_in_flight <= 64, "{}", report.max_in_flight);
+    let s = emu.shared();
+    assert!(s.overflow.is_none(), "{:?}", s.overflow);
+    assert!(s.max_rx <= 64);
+    drop(s);
+    assert_eq!(emu.lines(), file_blocks(&a));
+}
