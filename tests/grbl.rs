@@ -803,3 +803,19 @@ fn smaller_receive_buffer_is_respected() {
     drop(s);
     assert_eq!(emu.lines(), file_blocks(&a));
 }
+
+#[test]
+fn push_messages_are_shown_not_counted_as_acks() {
+    let emu = Emulator::start(Config::default());
+    let mut text = String::from("G21 G90\nG0 Z2\nG38.2 Z-5 F50\nG0 Z2\n");
+    for i in 0..100 {
+        text.push_str(&format!("G1 X{i} F300\n"));
+    }
+    let file = job_file("probe", &text);
+    let a = args(&emu, &file);
+    let (r, events) = run(&a);
+    let report = r.expect("completes");
+    assert!(events.iter().any(|e| e.contains("[PRB:")), "{events:?}");
+    assert_eq!(report.acked, 104);
+    assert_eq!(emu.lines(), file_blocks(&a));
+}

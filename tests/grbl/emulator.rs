@@ -27,7 +27,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use pfcam::gcode::parse::{ModalState, Spindle};
+use pfcam::gcode::parse::{ModalState, Motion, Spindle};
 use serialport::{SerialPort, TTYPort};
 
 /// What is on the other end of the cable.
@@ -568,6 +568,10 @@ impl Machine {
             check_mode: check,
             error,
         });
+        if error.is_none() && !check && matches!(self.modal.motion, Motion::Probe(_)) {
+            let p = self.position_end();
+            self.say(&format!("[PRB:{:.3},{:.3},{:.3}:1]", p[0], p[1], p[2]));
+        }
         if pgm_end {
             self.say("[MSG:Pgm End]");
             self.modal.ended = false;
@@ -601,7 +605,7 @@ impl Machine {
             return;
         }
         let rate = match self.modal.motion {
-            pfcam::gcode::parse::Motion::Rapid => RAPID_MM_PER_MIN,
+            Motion::Rapid => RAPID_MM_PER_MIN,
             _ => self.modal.feed_mm_per_min().unwrap_or(RAPID_MM_PER_MIN),
         };
         self.planner.push_back(Block {
