@@ -68,11 +68,10 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-    // ---------------------------------------------------------------------
-    // `pfcam stream`: the lead adds it here (sending a .nc file to GRBL over a
-    // serial port with pfcam::grbl), with a `Command::Stream { .. } =>` arm in
-    // `run` below. Its errors should map to their own exit code in `exit_code`.
-    // ---------------------------------------------------------------------
+    /// Stream a G-code file to a GRBL 1.1 controller over a serial port
+    /// (character counting, status, feed hold on Ctrl-C, resume with --from-line).
+    /// Exit codes: docs/grbl.md.
+    Stream(pfcam::grbl::StreamArgs),
 }
 
 /// Run a parsed command line.
@@ -87,6 +86,8 @@ pub fn run(args: Args) -> Result<()> {
         Command::Validate { job } => cmd_validate(&job),
         Command::Glyphs => cmd_glyphs(),
         Command::Convergence { glyph, n, json } => cmd_convergence(glyph, &n, json),
+        // Dispatched in main.rs: the streamer has its own exit codes.
+        Command::Stream(_) => Ok(()),
     }
 }
 

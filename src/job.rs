@@ -841,12 +841,18 @@ fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProf
         if v.is_finite() && v > 0.0 && v < 1.0 {
             Ok(v)
         } else {
-            Err(invalid(key, format!("must be an equipotential value in (0, 1), got {}", show(v))))
+            Err(invalid(
+                key,
+                format!("must be an equipotential value in (0, 1), got {}", show(v)),
+            ))
         }
     };
     let unused = |key: &str, present: bool| -> Result<(), JobError> {
         if present {
-            Err(invalid(key, format!("does not apply to profile.kind = {kind:?}")))
+            Err(invalid(
+                key,
+                format!("does not apply to profile.kind = {kind:?}"),
+            ))
         } else {
             Ok(())
         }
@@ -873,7 +879,12 @@ fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProf
                 ));
             }
             let steepness = positive("profile.steepness", p.steepness.unwrap_or(dk), "")?;
-            Ok(DepthProfile::Sigmoid { s1, s2, steepness, depth })
+            Ok(DepthProfile::Sigmoid {
+                s1,
+                s2,
+                steepness,
+                depth,
+            })
         }
         _ => {
             unused("profile.s_bottom", p.s_bottom.is_some())?;

@@ -7,6 +7,7 @@
 pub mod field;
 pub mod gcode;
 pub mod geometry;
+pub mod grbl;
 pub mod job;
 pub mod levels;
 pub mod output;

@@ -19,6 +19,9 @@ fn main() -> ExitCode {
             };
         }
     };
+    if let cli::Command::Stream(stream) = &args.command {
+        return pfcam::grbl::stream_command(stream);
+    }
     match cli::run(args) {
         Ok(()) => ExitCode::from(cli::EXIT_OK),
         Err(e) if cli::is_broken_pipe(&e) => ExitCode::from(cli::EXIT_OK),

@@ -4,9 +4,9 @@ use crate::field::{self, Boundary, FieldError, Layout, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape};
 use crate::job::{Direction, Job, OperationKind};
 use crate::levels::plan::{plan_levels, LevelInfo, LevelJob};
-use crate::toolpath::zlevel::{link_levels, LevelParams};
 use crate::toolpath::gouge::{self, GougeReport};
 use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
+use crate::toolpath::zlevel::{link_levels, LevelParams};
 use crate::toolpath::Toolpath;
 
 /// Singularities per region when `field.singularities = "auto"`: enough for a
@@ -252,17 +252,26 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         .profile
         .as_ref()
         .ok_or_else(|| PipelineError::Other("a boss or cavity needs a [profile]".into()))?;
-    progress(Progress::Stage { name: "solving the potential field".into(), total: 1 });
+    progress(Progress::Stage {
+        name: "solving the potential field".into(),
+        total: 1,
+    });
     let prep = Prepared::new(boundary)?;
     let n_total = job.field.singularities.unwrap_or(
         AUTO_N_PER_REGION * shape.regions.len()
             + field::setup::OUTER_CHARGES
             + prep.sinks.len() * field::setup::SINK_CHARGES,
     );
-    let base = Layout { n_total, distance: 1.0, corner_clusters: true, corner_fraction: field::DEFAULT_CORNER_FRACTION };
+    let base = Layout {
+        n_total,
+        distance: 1.0,
+        corner_clusters: true,
+        corner_fraction: field::DEFAULT_CORNER_FRACTION,
+    };
     let solved = field::solve_with(&prep, base, job.field.pseudo_boundary)?;
     progress(Progress::Step);
-    let glyphs: Vec<Vec<crate::geometry::Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
+    let glyphs: Vec<Vec<crate::geometry::Vec2>> =
+        shape.contours().map(|c| c.flatten(flat_tol)).collect();
     let params = LevelParams {
         radius: job.tool.diameter / 2.0,
         tol,
@@ -288,7 +297,10 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         outer_radius,
         params,
     };
-    progress(Progress::Stage { name: "solving and tracing the levels".into(), total: 1 });
+    progress(Progress::Stage {
+        name: "solving and tracing the levels".into(),
+        total: 1,
+    });
     let planned = plan_levels(&lj).map_err(|e| PipelineError::Other(e.to_string()))?;
     progress(Progress::Step);
     let toolpath = link_levels(&planned.cuts, &planned.params);
@@ -296,15 +308,27 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let mut min_clearance = f64::INFINITY;
     for (section, cut) in toolpath.sections.iter().zip(&planned.cuts) {
         let part = DistanceIndex::new(&cut.part);
-        let one = Toolpath { start: toolpath.start, sections: vec![section.clone()] };
+        let one = Toolpath {
+            start: toolpath.start,
+            sections: vec![section.clone()],
+        };
         let rep = gouge::check(&one, &part, params.radius, job.stock.top);
         if !rep.passes(tol) {
-            return Err(PipelineError::Gouge { clearance: rep.min_clearance, at: rep.at, tol });
+            return Err(PipelineError::Gouge {
+                clearance: rep.min_clearance,
+                at: rep.at,
+                tol,
+            });
         }
         min_clearance = min_clearance.min(rep.min_clearance);
     }
     let mut solves = vec![SolveReport {
-        label: shape.regions.iter().map(|r| r.name.clone()).collect::<Vec<_>>().join(" "),
+        label: shape
+            .regions
+            .iter()
+            .map(|r| r.name.clone())
+            .collect::<Vec<_>>()
+            .join(" "),
         n: solved.layout.n_total,
         m: solved.m,
         distance: solved.layout.distance,

@@ -75,24 +75,42 @@ impl Grid {
         let mut values = vec![0.0; nx * ny];
         values.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
             for (i, v) in row.iter_mut().enumerate() {
-                *v = if inside[j * nx + i] { 1.0 } else { field.value(Vec2::new(lo.x + h * i as f64, lo.y + h * j as f64)) };
+                *v = if inside[j * nx + i] {
+                    1.0
+                } else {
+                    field.value(Vec2::new(lo.x + h * i as f64, lo.y + h * j as f64))
+                };
             }
         });
-        Grid { origin: lo, h, nx, ny, values, inside }
+        Grid {
+            origin: lo,
+            h,
+            nx,
+            ny,
+            values,
+            inside,
+        }
     }
 
     fn point(&self, i: usize, j: usize) -> Vec2 {
-        Vec2::new(self.origin.x + self.h * i as f64, self.origin.y + self.h * j as f64)
+        Vec2::new(
+            self.origin.x + self.h * i as f64,
+            self.origin.y + self.h * j as f64,
+        )
     }
 
     /// Largest u on the grid's border (levels above it close inside the grid).
     pub fn border_max(&self) -> f64 {
         let mut m = f64::NEG_INFINITY;
         for i in 0..self.nx {
-            m = m.max(self.values[i]).max(self.values[(self.ny - 1) * self.nx + i]);
+            m = m
+                .max(self.values[i])
+                .max(self.values[(self.ny - 1) * self.nx + i]);
         }
         for j in 0..self.ny {
-            m = m.max(self.values[j * self.nx]).max(self.values[j * self.nx + self.nx - 1]);
+            m = m
+                .max(self.values[j * self.nx])
+                .max(self.values[j * self.nx + self.nx - 1]);
         }
         m
     }
@@ -107,12 +125,22 @@ fn trace_loops(grid: &Grid, s: f64) -> Vec<Vec<Edge>> {
     for j in 0..grid.ny - 1 {
         for i in 0..nx - 1 {
             // Corners counter-clockwise: (i,j), (i+1,j), (i+1,j+1), (i,j+1).
-            let c = [high(i, j), high(i + 1, j), high(i + 1, j + 1), high(i, j + 1)];
+            let c = [
+                high(i, j),
+                high(i + 1, j),
+                high(i + 1, j + 1),
+                high(i, j + 1),
+            ];
             if c.iter().all(|&b| b) || c.iter().all(|&b| !b) {
                 continue;
             }
             // Cell edges counter-clockwise from corner k to corner k+1.
-            let edges = [Edge::H(i, j), Edge::V(i + 1, j), Edge::H(i, j + 1), Edge::V(i, j)];
+            let edges = [
+                Edge::H(i, j),
+                Edge::V(i + 1, j),
+                Edge::H(i, j + 1),
+                Edge::V(i, j),
+            ];
             let mut a_list = Vec::new(); // low → high along the boundary
             let mut b_list = Vec::new(); // high → low
             for k in 0..4 {
@@ -135,7 +163,10 @@ fn trace_loops(grid: &Grid, s: f64) -> Vec<Vec<Edge>> {
                 // Order crossings along the boundary: A1, B1, A2, B2 starting from A1.
                 let (a1, a2) = (a_list[0], a_list[1]);
                 let b_after = |a: (usize, Edge)| {
-                    *b_list.iter().min_by_key(|b| (b.0 + 4 - a.0) % 4).unwrap_or(&b_list[0])
+                    *b_list
+                        .iter()
+                        .min_by_key(|b| (b.0 + 4 - a.0) % 4)
+                        .unwrap_or(&b_list[0])
                 };
                 let (b1, b2) = (b_after(a1), b_after(a2));
                 if centre >= s {
@@ -212,7 +243,10 @@ pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> V
                     let (fa, fb) = (grid.values[ia] - s, grid.values[ib] - s);
                     if grid.inside[ia] || grid.inside[ib] {
                         let u = |p: Vec2| {
-                            let w: i32 = material.iter().map(|m| crate::geometry::polygon_winding_number(m, p)).sum();
+                            let w: i32 = material
+                                .iter()
+                                .map(|m| crate::geometry::polygon_winding_number(m, p))
+                                .sum();
                             if w != 0 {
                                 1.0
                             } else {
@@ -231,12 +265,23 @@ pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> V
 
 /// Root of u − s on the segment pa–pb (u − s = fa at pa, fb at pb, opposite signs)
 /// by the Illinois variant of regula falsi.
-fn edge_root(pa: Vec2, pb: Vec2, fa: f64, fb: f64, s: f64, value_at: &(dyn Fn(Vec2) -> f64 + Sync)) -> Vec2 {
+fn edge_root(
+    pa: Vec2,
+    pb: Vec2,
+    fa: f64,
+    fb: f64,
+    s: f64,
+    value_at: &(dyn Fn(Vec2) -> f64 + Sync),
+) -> Vec2 {
     let (mut ta, mut tb, mut fa, mut fb) = (0.0_f64, 1.0_f64, fa, fb);
     let mut side = 0;
     let mut t = 0.5;
     for _ in 0..40 {
-        t = if (fb - fa).abs() > 0.0 { (ta * fb - tb * fa) / (fb - fa) } else { 0.5 * (ta + tb) };
+        t = if (fb - fa).abs() > 0.0 {
+            (ta * fb - tb * fa) / (fb - fa)
+        } else {
+            0.5 * (ta + tb)
+        };
         if !(t > ta.min(tb) && t < ta.max(tb)) {
             t = 0.5 * (ta + tb);
         }
@@ -288,7 +333,10 @@ fn edge_ends(grid: &Grid, e: Edge, s: f64) -> ((Vec2, f64), (Vec2, f64)) {
         Edge::V(i, j) => ((i, j), (i, j + 1)),
     };
     let nx = grid.nx;
-    ((grid.point(a.0, a.1), grid.values[a.1 * nx + a.0] - s), (grid.point(b.0, b.1), grid.values[b.1 * nx + b.0] - s))
+    (
+        (grid.point(a.0, a.1), grid.values[a.1 * nx + a.0] - s),
+        (grid.point(b.0, b.1), grid.values[b.1 * nx + b.0] - s),
+    )
 }
 
 /// Signed area of a closed polygon (positive counter-clockwise).
@@ -310,7 +358,10 @@ mod tests {
             let loops = isolines(&grid, s, &f, &[]);
             assert_eq!(loops.len(), 1, "s = {s}");
             let r = f64::exp(s);
-            let worst = loops[0].iter().map(|p| (p.norm() - r).abs()).fold(0.0, f64::max);
+            let worst = loops[0]
+                .iter()
+                .map(|p| (p.norm() - r).abs())
+                .fold(0.0, f64::max);
             assert!(worst < 1e-9, "s = {s}: radius error {worst:e}");
             // u grows outward, so the high side (left) is outside: clockwise.
             assert!(polygon_area(&loops[0]) < 0.0);
@@ -326,15 +377,29 @@ mod tests {
         // square [-0.5, 0.5]² is masked; level 0.9 is the circle r = 0.5·e^0.5.
         let f = Field::new(vec![Vec2::ZERO], vec![0.2 * std::f64::consts::TAU]);
         // u = −0.2 ln r = 1 − 0.2 ln(r/ r0) with r0 = e^{-5}: shift by choosing s.
-        let sq = vec![Vec2::new(-0.5, -0.5), Vec2::new(0.5, -0.5), Vec2::new(0.5, 0.5), Vec2::new(-0.5, 0.5)];
-        let grid = Grid::sample(&f, Vec2::new(-3.0, -3.0), Vec2::new(3.0, 3.0), 0.05, std::slice::from_ref(&sq));
+        let sq = vec![
+            Vec2::new(-0.5, -0.5),
+            Vec2::new(0.5, -0.5),
+            Vec2::new(0.5, 0.5),
+            Vec2::new(-0.5, 0.5),
+        ];
+        let grid = Grid::sample(
+            &f,
+            Vec2::new(-3.0, -3.0),
+            Vec2::new(3.0, 3.0),
+            0.05,
+            std::slice::from_ref(&sq),
+        );
         assert!(grid.inside[grid.nx * (grid.ny / 2) + grid.nx / 2]);
         let s = -0.2 * 1.5f64.ln();
         let loops = isolines(&grid, s, &f, std::slice::from_ref(&sq));
         assert_eq!(loops.len(), 1);
         // u decreases outward: high side inside, loop counter-clockwise around the material.
         assert!(polygon_area(&loops[0]) > 0.0);
-        let worst = loops[0].iter().map(|p| (p.norm() - 1.5).abs()).fold(0.0, f64::max);
+        let worst = loops[0]
+            .iter()
+            .map(|p| (p.norm() - 1.5).abs())
+            .fold(0.0, f64::max);
         assert!(worst < 1e-9, "radius error {worst:e}");
     }
 }

@@ -204,7 +204,16 @@ pub fn solve_quick(prep: &Prepared, base: Layout) -> Result<Solved, FieldError> 
     let ds: Vec<f64> = (0..4).map(|i| h * 0.5 * 2f64.powf(i as f64)).collect();
     let res: Vec<Result<(Solution, usize, f64), FieldError>> = ds
         .par_iter()
-        .map(|&d| solve_layout(prep, &Layout { distance: d, ..base }).map(|(s, m)| (s, m, d)))
+        .map(|&d| {
+            solve_layout(
+                prep,
+                &Layout {
+                    distance: d,
+                    ..base
+                },
+            )
+            .map(|(s, m)| (s, m, d))
+        })
         .collect();
     let mut best: Option<(Solution, usize, f64)> = None;
     let mut err = None;
@@ -219,7 +228,15 @@ pub fn solve_quick(prep: &Prepared, base: Layout) -> Result<Solved, FieldError> 
         }
     }
     match best {
-        Some((solution, m, d)) => Ok(Solved { solution, layout: Layout { distance: d, ..base }, solves: 4, m }),
+        Some((solution, m, d)) => Ok(Solved {
+            solution,
+            layout: Layout {
+                distance: d,
+                ..base
+            },
+            solves: 4,
+            m,
+        }),
         None => Err(err.unwrap_or(FieldError::Invalid("no distance could be solved".into()))),
     }
 }

@@ -63,12 +63,18 @@ fn logistic(x: f64) -> f64 {
 /// where α² + β² > 9 so each cubic piece stays monotone.
 fn fritsch_carlson(s: &[f64], z: &[f64]) -> Vec<f64> {
     let n = s.len();
-    let d: Vec<f64> = (0..n - 1).map(|i| (z[i + 1] - z[i]) / (s[i + 1] - s[i])).collect();
+    let d: Vec<f64> = (0..n - 1)
+        .map(|i| (z[i + 1] - z[i]) / (s[i + 1] - s[i]))
+        .collect();
     let mut m = vec![0.0; n];
     m[0] = d[0];
     m[n - 1] = d[n - 2];
     for i in 1..n - 1 {
-        m[i] = if d[i - 1] * d[i] <= 0.0 { 0.0 } else { 0.5 * (d[i - 1] + d[i]) };
+        m[i] = if d[i - 1] * d[i] <= 0.0 {
+            0.0
+        } else {
+            0.5 * (d[i - 1] + d[i])
+        };
     }
     for i in 0..n - 1 {
         if d[i] == 0.0 {
@@ -94,7 +100,10 @@ impl DepthProfile {
     /// Errors name the offending points.
     pub fn from_points(points: &[[f64; 2]], spline: bool) -> Result<DepthProfile, ProfileError> {
         if points.len() < 2 {
-            return Err(ProfileError::Invalid(format!("needs at least two (s, z) points, got {}", points.len())));
+            return Err(ProfileError::Invalid(format!(
+                "needs at least two (s, z) points, got {}",
+                points.len()
+            )));
         }
         for p in points {
             if !(p[0].is_finite() && p[1].is_finite()) || p[0] <= 0.0 || p[0] > 1.0 {
@@ -141,7 +150,9 @@ impl DepthProfile {
         match self {
             DepthProfile::Linear { s_bottom, .. } => (*s_bottom, 1.0),
             DepthProfile::Sigmoid { s1, s2, .. } => (*s2, *s1),
-            DepthProfile::Spline { s, .. } | DepthProfile::Table { s, .. } => (s[0], s[s.len() - 1]),
+            DepthProfile::Spline { s, .. } | DepthProfile::Table { s, .. } => {
+                (s[0], s[s.len() - 1])
+            }
         }
     }
 
@@ -156,8 +167,15 @@ impl DepthProfile {
         let (lo, hi) = self.s_range();
         let s = s.clamp(lo, hi);
         match self {
-            DepthProfile::Linear { s_bottom, depth } => -depth * (1.0 - (s - s_bottom) / (1.0 - s_bottom)),
-            DepthProfile::Sigmoid { s1, s2, steepness, depth } => {
+            DepthProfile::Linear { s_bottom, depth } => {
+                -depth * (1.0 - (s - s_bottom) / (1.0 - s_bottom))
+            }
+            DepthProfile::Sigmoid {
+                s1,
+                s2,
+                steepness,
+                depth,
+            } => {
                 let t = (s - s2) / (s1 - s2);
                 let k = *steepness;
                 let (a, b) = (logistic(-0.5 * k), logistic(0.5 * k));
@@ -218,7 +236,13 @@ fn segment(xs: &[f64], s: f64) -> usize {
 /// `gap(z_a, z_b)` (the horizontal distance between the contours of neighbouring
 /// levels, mm) exceeds `max_scallop`, a level is added half way in z, until every
 /// gap is within bound or the levels are `min_dz` apart.
-pub fn schedule(depth: f64, stepdown: f64, max_scallop: f64, min_dz: f64, gap: &dyn Fn(f64, f64) -> f64) -> Vec<f64> {
+pub fn schedule(
+    depth: f64,
+    stepdown: f64,
+    max_scallop: f64,
+    min_dz: f64,
+    gap: &dyn Fn(f64, f64) -> f64,
+) -> Vec<f64> {
     let n = ((depth / stepdown) - 1e-9).ceil().max(1.0) as usize;
     let mut zs: Vec<f64> = (0..=n).map(|k| -depth * k as f64 / n as f64).collect();
     let mut i = 0;
@@ -239,10 +263,29 @@ mod tests {
 
     fn all() -> Vec<DepthProfile> {
         vec![
-            DepthProfile::Linear { s_bottom: 0.8, depth: 6.0 },
-            DepthProfile::Sigmoid { s1: 0.99, s2: 0.75, steepness: 8.0, depth: 6.0 },
-            DepthProfile::from_points(&[[0.7, -6.0], [0.8, -5.0], [0.9, -1.0], [0.97, -0.2], [1.0, 0.0]], true).unwrap(),
-            DepthProfile::from_points(&[[0.7, -6.0], [0.8, -5.0], [0.9, -1.0], [1.0, 0.0]], false).unwrap(),
+            DepthProfile::Linear {
+                s_bottom: 0.8,
+                depth: 6.0,
+            },
+            DepthProfile::Sigmoid {
+                s1: 0.99,
+                s2: 0.75,
+                steepness: 8.0,
+                depth: 6.0,
+            },
+            DepthProfile::from_points(
+                &[
+                    [0.7, -6.0],
+                    [0.8, -5.0],
+                    [0.9, -1.0],
+                    [0.97, -0.2],
+                    [1.0, 0.0],
+                ],
+                true,
+            )
+            .unwrap(),
+            DepthProfile::from_points(&[[0.7, -6.0], [0.8, -5.0], [0.9, -1.0], [1.0, 0.0]], false)
+                .unwrap(),
         ]
     }
 
@@ -275,7 +318,13 @@ mod tests {
 
     #[test]
     fn spline_interpolates_its_points_and_is_c1() {
-        let pts = [[0.7, -6.0], [0.8, -5.0], [0.9, -1.0], [0.97, -0.2], [1.0, 0.0]];
+        let pts = [
+            [0.7, -6.0],
+            [0.8, -5.0],
+            [0.9, -1.0],
+            [0.97, -0.2],
+            [1.0, 0.0],
+        ];
         let p = DepthProfile::from_points(&pts, true).unwrap();
         for q in pts {
             assert!((p.z(q[0]) - q[1]).abs() < 1e-12);
@@ -285,16 +334,25 @@ mod tests {
             let h = 1e-7;
             let left = (p.z(q[0]) - p.z(q[0] - h)) / h;
             let right = (p.z(q[0] + h) - p.z(q[0])) / h;
-            assert!((left - right).abs() < 1e-4 * left.abs().max(1.0), "at {q:?}: {left} vs {right}");
+            assert!(
+                (left - right).abs() < 1e-4 * left.abs().max(1.0),
+                "at {q:?}: {left} vs {right}"
+            );
         }
     }
 
     #[test]
     fn non_monotone_points_are_named() {
-        let e = DepthProfile::from_points(&[[0.7, -6.0], [0.8, -3.0], [0.9, -3.5], [1.0, 0.0]], true).unwrap_err();
+        let e =
+            DepthProfile::from_points(&[[0.7, -6.0], [0.8, -3.0], [0.9, -3.5], [1.0, 0.0]], true)
+                .unwrap_err();
         let msg = e.to_string();
-        assert!(msg.contains("(0.8, -3)") && msg.contains("(0.9, -3.5)"), "{msg}");
-        let e = DepthProfile::from_points(&[[0.8, -6.0], [0.8, -3.0], [1.0, 0.0]], false).unwrap_err();
+        assert!(
+            msg.contains("(0.8, -3)") && msg.contains("(0.9, -3.5)"),
+            "{msg}"
+        );
+        let e =
+            DepthProfile::from_points(&[[0.8, -6.0], [0.8, -3.0], [1.0, 0.0]], false).unwrap_err();
         assert!(e.to_string().contains("s must increase"), "{e}");
         let e = DepthProfile::from_points(&[[0.8, -6.0], [1.0, -1.0]], false).unwrap_err();
         assert!(e.to_string().contains("z = 0"), "{e}");

@@ -94,7 +94,15 @@ fn refine(poly: &[Vec2], field: &Field, s: f64, tol: f64) -> Vec<Vec2> {
     out
 }
 
-fn refine_edge(a: Vec2, b: Vec2, field: &Field, s: f64, tol: f64, depth: usize, out: &mut Vec<Vec2>) {
+fn refine_edge(
+    a: Vec2,
+    b: Vec2,
+    field: &Field,
+    s: f64,
+    tol: f64,
+    depth: usize,
+    out: &mut Vec<Vec2>,
+) {
     if depth == 0 {
         return;
     }
@@ -110,7 +118,12 @@ fn refine_edge(a: Vec2, b: Vec2, field: &Field, s: f64, tol: f64, depth: usize, 
 
 fn to_contour(poly: &[Vec2]) -> Option<Contour> {
     let n = poly.len();
-    let segs: Vec<Segment> = (0..n).map(|i| Segment::Line { a: poly[i], b: poly[(i + 1) % n] }).collect();
+    let segs: Vec<Segment> = (0..n)
+        .map(|i| Segment::Line {
+            a: poly[i],
+            b: poly[(i + 1) % n],
+        })
+        .collect();
     Contour::new(segs).ok()
 }
 
@@ -154,7 +167,13 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
     let tol = job.params.tol;
     // Γ(s) at the level of z: s from the profile (mirrored for a cavity).
     let depth = job.profile.depth();
-    let s_of = |zrel: f64| if job.cavity { job.profile.s_at(-depth - zrel) } else { job.profile.s_at(zrel) };
+    let s_of = |zrel: f64| {
+        if job.cavity {
+            job.profile.s_at(-depth - zrel)
+        } else {
+            job.profile.s_at(zrel)
+        }
+    };
     let cache: Mutex<HashMap<u64, Vec<Vec<Vec2>>>> = Mutex::new(HashMap::new());
     let contours_at = |s: f64| -> Vec<Vec<Vec2>> {
         if let Some(c) = cache.lock().ok().and_then(|m| m.get(&s.to_bits()).cloned()) {
@@ -180,7 +199,10 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
         let (ca, cb) = (contours_at(s_of(za)), contours_at(s_of(zb)));
         let (wide, narrow) = if job.cavity { (ca, cb) } else { (cb, ca) };
         let idx = DistanceIndex::new(&narrow);
-        wide.iter().flatten().map(|&p| idx.distance(p)).fold(0.0, f64::max)
+        wide.iter()
+            .flatten()
+            .map(|&p| idx.distance(p))
+            .fold(0.0, f64::max)
     };
     let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, &gap);
     let _ = (s_hi, &mut lo, &mut hi);
@@ -194,40 +216,76 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
 
     // Every level below the top, in parallel.
     let levels: Vec<(usize, f64, f64)> = (1..zs.len()).map(|k| (k, zs[k - 1], zs[k])).collect();
-    let results: Vec<Result<(LevelCut, LevelInfo, Vec<String>), PlanError>> = levels
+    type LevelResult = Result<(LevelCut, LevelInfo, Vec<String>), PlanError>;
+    let results: Vec<LevelResult> = levels
         .par_iter()
         .map(|&(k, z_prev, z)| {
             let s = s_of(z);
             let polys = contours_at(s);
             if polys.is_empty() {
-                return Err(PlanError::Invalid(format!("level {k} (z {:.3}, s = {s:.4}) has no contour", job.top + z)));
+                return Err(PlanError::Invalid(format!(
+                    "level {k} (z {:.3}, s = {s:.4}) has no contour",
+                    job.top + z
+                )));
             }
             // The level's own MFS problem on Γ(s): material on the left (for a
             // cavity the mould is outside Γ(s), so the loops are reversed).
             let oriented: Vec<Vec<Vec2>> = if job.cavity {
-                polys.iter().map(|p| p.iter().rev().copied().collect()).collect()
+                polys
+                    .iter()
+                    .map(|p| p.iter().rev().copied().collect())
+                    .collect()
             } else {
                 polys.clone()
             };
             let contours: Vec<Contour> = oriented.iter().filter_map(|p| to_contour(p)).collect();
             let is_counter: Vec<bool> = oriented.iter().map(|p| polygon_area(p) < 0.0).collect();
-            let loops = oriented.iter().filter(|p| polygon_area(p) > 0.0).count().max(1);
+            let loops = oriented
+                .iter()
+                .filter(|p| polygon_area(p) > 0.0)
+                .count()
+                .max(1);
             let centre = field::centroid(&contours, tol);
-            let b = Boundary { contours, is_counter, centre, radius: job.outer_radius, flat_tol: tol };
+            let b = Boundary {
+                contours,
+                is_counter,
+                centre,
+                radius: job.outer_radius,
+                flat_tol: tol,
+            };
             let prep = Prepared::new(b)?;
             let n_total = LEVEL_N_PER_LOOP * loops
                 + field::setup::OUTER_CHARGES
                 + prep.sinks.len() * (field::setup::SINK_CHARGES + LEVEL_N_PER_LOOP);
-            let base = Layout { n_total, distance: 1.0, corner_clusters: true, corner_fraction: 0.2 };
+            let base = Layout {
+                n_total,
+                distance: 1.0,
+                corner_clusters: true,
+                corner_fraction: 0.2,
+            };
             let solved = field::solve_quick(&prep, base)?;
             let mut warnings = Vec::new();
             let label = format!("level {k} (z {:.3})", job.top + z);
             let (paths, uncut) = if job.cavity {
-                let (p, f) =
-                    crate::toolpath::zlevel::cavity_paths(&oriented, &solved.solution.field, &params, &label, &mut warnings)?;
+                let (p, f) = crate::toolpath::zlevel::cavity_paths(
+                    &oriented,
+                    &solved.solution.field,
+                    &params,
+                    &label,
+                    &mut warnings,
+                )?;
                 (p, Some(f))
             } else {
-                (boss_paths(&oriented, &solved.solution.field, &params, &label, &mut warnings)?, None)
+                (
+                    boss_paths(
+                        &oriented,
+                        &solved.solution.field,
+                        &params,
+                        &label,
+                        &mut warnings,
+                    )?,
+                    None,
+                )
             };
             let info = LevelInfo {
                 z: job.top + z,
@@ -237,7 +295,17 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                 max_error: solved.solution.max_error,
                 uncut,
             };
-            Ok((LevelCut { z: job.top + z, z_prev: job.top + z_prev, s, part: polys, paths }, info, warnings))
+            Ok((
+                LevelCut {
+                    z: job.top + z,
+                    z_prev: job.top + z_prev,
+                    s,
+                    part: polys,
+                    paths,
+                },
+                info,
+                warnings,
+            ))
         })
         .collect();
     let mut cuts = Vec::new();
@@ -249,7 +317,12 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
         info.push(i);
         warnings.extend(w);
     }
-    Ok(Planned { cuts, info, warnings, params })
+    Ok(Planned {
+        cuts,
+        info,
+        warnings,
+        params,
+    })
 }
 
 fn bbox(polys: &[Vec<Vec2>]) -> (Vec2, Vec2) {

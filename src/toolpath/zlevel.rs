@@ -100,7 +100,13 @@ fn clip_ring(ring: &[Vec2], lo: Vec2, hi: Vec2) -> Vec<(Vec<Vec2>, bool)> {
 }
 
 fn lowest(poly: &[Vec2]) -> Vec2 {
-    poly.iter().copied().fold(poly[0], |a, b| if b.y < a.y || (b.y == a.y && b.x < a.x) { b } else { a })
+    poly.iter().copied().fold(poly[0], |a, b| {
+        if b.y < a.y || (b.y == a.y && b.x < a.x) {
+            b
+        } else {
+            a
+        }
+    })
 }
 
 fn signed_area(p: &[Vec2]) -> f64 {
@@ -124,14 +130,29 @@ pub fn boss_paths<N: Navigator + Sync>(
     let r = p.radius;
     let grow = Vec2::new(r, r);
     let (lo, hi) = (p.stock_lo - grow, p.stock_hi + grow);
-    let corners = [p.stock_lo, p.stock_hi, Vec2::new(p.stock_lo.x, p.stock_hi.y), Vec2::new(p.stock_hi.x, p.stock_lo.y)];
-    let dmax = corners.iter().map(|&c| index.distance(c)).fold(0.0, f64::max);
+    let corners = [
+        p.stock_lo,
+        p.stock_hi,
+        Vec2::new(p.stock_lo.x, p.stock_hi.y),
+        Vec2::new(p.stock_hi.x, p.stock_lo.y),
+    ];
+    let dmax = corners
+        .iter()
+        .map(|&c| index.distance(c))
+        .fold(0.0, f64::max);
     let rings = ((dmax - 2.0 * r) / p.stepover).ceil().max(0.0) as usize;
     let outer: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
     let holes: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
-    let tp = |radius: f64| TraceParams { radius, tol: p.tol, part_on_left: !p.climb };
+    let tp = |radius: f64| TraceParams {
+        radius,
+        tol: p.tol,
+        part_on_left: !p.climb,
+    };
     // Trace every (ring, outer loop) pair in parallel; drop duplicates of merged rings.
-    let jobs: Vec<(usize, usize)> = (0..=rings).rev().flat_map(|j| (0..outer.len()).map(move |i| (j, i))).collect();
+    let jobs: Vec<(usize, usize)> = (0..=rings)
+        .rev()
+        .flat_map(|j| (0..outer.len()).map(move |i| (j, i)))
+        .collect();
     let traced: Vec<Result<(usize, Vec<Vec2>), ProfileError>> = jobs
         .par_iter()
         .map(|&(j, i)| {
@@ -139,19 +160,29 @@ pub fn boss_paths<N: Navigator + Sync>(
             let start = lowest(outer[i]) - Vec2::new(0.0, rj + 1.0);
             trace(nav, &index, start, tp(rj))
                 .map(|t| (j, t.points))
-                .map_err(|source| ProfileError::Trace { label: format!("{label}: ring {j} around the part"), source })
+                .map_err(|source| ProfileError::Trace {
+                    label: format!("{label}: ring {j} around the part"),
+                    source,
+                })
         })
         .collect();
     let mut paths = Vec::new();
     let mut kept: Vec<(usize, DistanceIndex)> = Vec::new();
     for res in traced {
         let (j, ring) = res?;
-        if kept.iter().any(|(jj, idx)| *jj == j && idx.distance(ring[0]) < 10.0 * p.tol) {
+        if kept
+            .iter()
+            .any(|(jj, idx)| *jj == j && idx.distance(ring[0]) < 10.0 * p.tol)
+        {
             continue;
         }
         kept.push((j, DistanceIndex::new(&[ring[..ring.len() - 1].to_vec()])));
         for (run, closed) in clip_ring(&ring, lo, hi) {
-            paths.push(CutPath { label: format!("{label}: ring {j} around the part"), points: run, closed });
+            paths.push(CutPath {
+                label: format!("{label}: ring {j} around the part"),
+                points: run,
+                closed,
+            });
         }
     }
     // Holes (counters of the sign): rings from the innermost out to the finishing ring.
@@ -170,9 +201,15 @@ pub fn boss_paths<N: Navigator + Sync>(
             if rj > room - p.tol {
                 continue;
             }
-            let t = trace(nav, &index, deep, tp(rj))
-                .map_err(|source| ProfileError::Trace { label: format!("{label}: ring {j} in hole {}", h + 1), source })?;
-            paths.push(CutPath { label: format!("{label}: ring {j} in hole {}", h + 1), points: t.points, closed: true });
+            let t = trace(nav, &index, deep, tp(rj)).map_err(|source| ProfileError::Trace {
+                label: format!("{label}: ring {j} in hole {}", h + 1),
+                source,
+            })?;
+            paths.push(CutPath {
+                label: format!("{label}: ring {j} in hole {}", h + 1),
+                points: t.points,
+                closed: true,
+            });
         }
     }
     Ok(paths)
@@ -181,7 +218,15 @@ pub fn boss_paths<N: Navigator + Sync>(
 /// Moves that enter a closed loop by ramping down along it from `z_from` to `z`
 /// at `angle` degrees (several laps if the loop is short), then cut one full lap
 /// at `z` from where the ramp ended.
-fn ramp_loop(lp: &[Vec2], z_from: f64, z: f64, angle: f64, plunge_feed: f64, feed: f64, out: &mut Vec<Move>) {
+fn ramp_loop(
+    lp: &[Vec2],
+    z_from: f64,
+    z: f64,
+    angle: f64,
+    plunge_feed: f64,
+    feed: f64,
+    out: &mut Vec<Move>,
+) {
     let n = lp.len() - 1;
     let drop = (z_from - z).max(0.0);
     let ramp_len = drop / angle.to_radians().tan();
@@ -195,15 +240,25 @@ fn ramp_loop(lp: &[Vec2], z_from: f64, z: f64, angle: f64, plunge_feed: f64, fee
             let next = lp[(k + 1) % n];
             let seg = at.dist(next);
             if travelled + seg >= ramp_len {
-                let t = if seg > 0.0 { (ramp_len - travelled) / seg } else { 1.0 };
+                let t = if seg > 0.0 {
+                    (ramp_len - travelled) / seg
+                } else {
+                    1.0
+                };
                 let q = at.lerp(next, t);
-                out.push(Move::Linear { to: Vec3::new(q.x, q.y, z), feed: plunge_feed });
+                out.push(Move::Linear {
+                    to: Vec3::new(q.x, q.y, z),
+                    feed: plunge_feed,
+                });
                 at = q;
                 break;
             }
             travelled += seg;
             let zz = z_from - drop * travelled / ramp_len;
-            out.push(Move::Linear { to: Vec3::new(next.x, next.y, zz), feed: plunge_feed });
+            out.push(Move::Linear {
+                to: Vec3::new(next.x, next.y, zz),
+                feed: plunge_feed,
+            });
             at = next;
             k = (k + 1) % n;
             guard += 1;
@@ -215,15 +270,23 @@ fn ramp_loop(lp: &[Vec2], z_from: f64, z: f64, angle: f64, plunge_feed: f64, fee
     // One full lap at z from `at` (which lies on segment k → k+1).
     for step in 1..=n {
         let q = lp[(k + step) % n];
-        out.push(Move::Linear { to: Vec3::new(q.x, q.y, z), feed });
+        out.push(Move::Linear {
+            to: Vec3::new(q.x, q.y, z),
+            feed,
+        });
     }
-    out.push(Move::Linear { to: Vec3::new(at.x, at.y, z), feed });
+    out.push(Move::Linear {
+        to: Vec3::new(at.x, at.y, z),
+        feed,
+    });
 }
 
 /// Rotate a closed loop (last = first) so it starts at the vertex nearest to `p`.
 fn start_near(lp: &[Vec2], p: Vec2) -> Vec<Vec2> {
     let n = lp.len() - 1;
-    let k = (0..n).min_by(|&a, &b| lp[a].dist(p).total_cmp(&lp[b].dist(p))).unwrap_or(0);
+    let k = (0..n)
+        .min_by(|&a, &b| lp[a].dist(p).total_cmp(&lp[b].dist(p)))
+        .unwrap_or(0);
     let mut out: Vec<Vec2> = (0..n).map(|i| lp[(k + i) % n]).collect();
     out.push(out[0]);
     out
@@ -257,27 +320,54 @@ pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
                     && index.segment_distance(*a, first, 2.0 * p.radius) >= p.radius - 0.5 * p.tol
             });
             if sideways.is_some() {
-                moves.push(Move::Linear { to: Vec3::new(first.x, first.y, lv.z), feed: p.feed });
-                if path.closed {
-                    for q in &pts[1..] {
-                        moves.push(Move::Linear { to: Vec3::new(q.x, q.y, lv.z), feed: p.feed });
-                    }
-                } else {
-                    for q in &pts[1..] {
-                        moves.push(Move::Linear { to: Vec3::new(q.x, q.y, lv.z), feed: p.feed });
-                    }
+                moves.push(Move::Linear {
+                    to: Vec3::new(first.x, first.y, lv.z),
+                    feed: p.feed,
+                });
+                for q in &pts[1..] {
+                    moves.push(Move::Linear {
+                        to: Vec3::new(q.x, q.y, lv.z),
+                        feed: p.feed,
+                    });
                 }
             } else {
-                moves.push(Move::Rapid { to: Vec3::new(at.map_or(first.x, |a| a.x), at.map_or(first.y, |a| a.y), p.safe_z) });
-                moves.push(Move::Rapid { to: Vec3::new(first.x, first.y, p.safe_z) });
-                moves.push(Move::Rapid { to: Vec3::new(first.x, first.y, above) });
+                moves.push(Move::Rapid {
+                    to: Vec3::new(
+                        at.map_or(first.x, |a| a.x),
+                        at.map_or(first.y, |a| a.y),
+                        p.safe_z,
+                    ),
+                });
+                moves.push(Move::Rapid {
+                    to: Vec3::new(first.x, first.y, p.safe_z),
+                });
+                moves.push(Move::Rapid {
+                    to: Vec3::new(first.x, first.y, above),
+                });
                 if path.closed {
-                    moves.push(Move::Linear { to: Vec3::new(first.x, first.y, lv.z_prev), feed: p.plunge_feed });
-                    ramp_loop(&pts, lv.z_prev, lv.z, p.ramp_angle, p.plunge_feed, p.feed, &mut moves);
+                    moves.push(Move::Linear {
+                        to: Vec3::new(first.x, first.y, lv.z_prev),
+                        feed: p.plunge_feed,
+                    });
+                    ramp_loop(
+                        &pts,
+                        lv.z_prev,
+                        lv.z,
+                        p.ramp_angle,
+                        p.plunge_feed,
+                        p.feed,
+                        &mut moves,
+                    );
                 } else {
-                    moves.push(Move::Linear { to: Vec3::new(first.x, first.y, lv.z), feed: p.plunge_feed });
+                    moves.push(Move::Linear {
+                        to: Vec3::new(first.x, first.y, lv.z),
+                        feed: p.plunge_feed,
+                    });
                     for q in &pts[1..] {
-                        moves.push(Move::Linear { to: Vec3::new(q.x, q.y, lv.z), feed: p.feed });
+                        moves.push(Move::Linear {
+                            to: Vec3::new(q.x, q.y, lv.z),
+                            feed: p.feed,
+                        });
                     }
                 }
             }
@@ -287,9 +377,15 @@ pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
             });
         }
         if let Some(a) = at {
-            moves.push(Move::Rapid { to: Vec3::new(a.x, a.y, p.safe_z) });
+            moves.push(Move::Rapid {
+                to: Vec3::new(a.x, a.y, p.safe_z),
+            });
         }
-        sections.push(Section { label: format!("level z {:.3} (s = {:.4})", lv.z, lv.s), z: lv.z, moves });
+        sections.push(Section {
+            label: format!("level z {:.3} (s = {:.4})", lv.z, lv.s),
+            z: lv.z,
+            moves,
+        });
     }
     Toolpath { start, sections }
 }
@@ -304,7 +400,10 @@ fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
         return f64::INFINITY;
     }
     let ia = DistanceIndex::new(a);
-    b.iter().flatten().map(|&p| ia.distance(p)).fold(0.0, f64::max)
+    b.iter()
+        .flatten()
+        .map(|&p| ia.distance(p))
+        .fold(0.0, f64::max)
 }
 
 /// The paths of one cavity level. `part` holds the level's Γ(s) loops with the
@@ -333,7 +432,11 @@ pub fn cavity_paths<N: Navigator + Sync>(
     use crate::field::{self, Boundary, Layout, Prepared, Sink};
     let index = DistanceIndex::new(part);
     let r = p.radius;
-    let tp = TraceParams { radius: r, tol: p.tol, part_on_left: !p.climb };
+    let tp = TraceParams {
+        radius: r,
+        tol: p.tol,
+        part_on_left: !p.climb,
+    };
     let pockets: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
     let islands: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
     // 1. Finishing loops.
@@ -341,18 +444,28 @@ pub fn cavity_paths<N: Navigator + Sync>(
     for (i, pk) in pockets.iter().enumerate() {
         let (deep, room) = deepest_point(pk, &index);
         if room < r + p.tol {
-            warnings.push(format!("{label}: pocket {} is too narrow for the tool (room {room:.3} mm): not cut", i + 1));
+            warnings.push(format!(
+                "{label}: pocket {} is too narrow for the tool (room {room:.3} mm): not cut",
+                i + 1
+            ));
             continue;
         }
-        let t = trace(nav, &index, deep, tp)
-            .map_err(|source| ProfileError::Trace { label: format!("{label}: wall of pocket {}", i + 1), source })?;
+        let t = trace(nav, &index, deep, tp).map_err(|source| ProfileError::Trace {
+            label: format!("{label}: wall of pocket {}", i + 1),
+            source,
+        })?;
         finish.push(t.points);
     }
     for (i, is) in islands.iter().enumerate() {
         let start = lowest(is) - Vec2::new(0.0, r + p.tol);
         match trace(nav, &index, start, tp) {
             Ok(t) => finish.push(t.points),
-            Err(source) => return Err(ProfileError::Trace { label: format!("{label}: around island {}", i + 1), source }),
+            Err(source) => {
+                return Err(ProfileError::Trace {
+                    label: format!("{label}: around island {}", i + 1),
+                    source,
+                })
+            }
         }
     }
     if finish.is_empty() {
@@ -363,7 +476,11 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // more than the tool can bridge (the measured uncut area sat in those corners).
     // The inverse problem is then solved inside these loops.
     let r2 = r + 0.9 * p.stepover;
-    let tp2 = TraceParams { radius: r2, tol: p.tol, part_on_left: !p.climb };
+    let tp2 = TraceParams {
+        radius: r2,
+        tol: p.tol,
+        part_on_left: !p.climb,
+    };
     let mut second: Vec<Vec<Vec2>> = Vec::new();
     let mut n_pockets2 = 0;
     for pk in &pockets {
@@ -384,7 +501,11 @@ pub fn cavity_paths<N: Navigator + Sync>(
     let inner_paths: Vec<Vec<Vec2>> = second.clone();
     let finish_all = finish.clone();
     let finish = if n_pockets2 > 0 { second } else { finish };
-    let pockets_in_finish = if n_pockets2 > 0 { n_pockets2 } else { pockets.len() };
+    let pockets_in_finish = if n_pockets2 > 0 {
+        n_pockets2
+    } else {
+        pockets.len()
+    };
     // V's boundary, oriented for the inverse problem: pocket loops clockwise
     // (outside V on their left), island loops counter-clockwise.
     let loops: Vec<Vec<Vec2>> = finish
@@ -414,7 +535,12 @@ pub fn cavity_paths<N: Navigator + Sync>(
         hi = Vec2::new(hi.x.max(q.x), hi.y.max(q.y));
     }
     let pad = Vec2::new(2.0 * r, 2.0 * r);
-    let rect = vec![lo - pad, Vec2::new(hi.x + pad.x, lo.y - pad.y), hi + pad, Vec2::new(lo.x - pad.x, hi.y + pad.y)];
+    let rect = vec![
+        lo - pad,
+        Vec2::new(hi.x + pad.x, lo.y - pad.y),
+        hi + pad,
+        Vec2::new(lo.x - pad.x, hi.y + pad.y),
+    ];
     let mut mask = vec![rect];
     mask.extend(oriented.iter().cloned());
     let h = (p.stepover / 4.0).max(0.05);
@@ -429,7 +555,11 @@ pub fn cavity_paths<N: Navigator + Sync>(
             }
         }
     }
-    cand.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.x.total_cmp(&b.1.x)).then(a.1.y.total_cmp(&b.1.y)));
+    cand.sort_by(|a, b| {
+        b.0.total_cmp(&a.0)
+            .then(a.1.x.total_cmp(&b.1.x))
+            .then(a.1.y.total_cmp(&b.1.y))
+    });
     // Only deep points: a sink near ∂V would force u from 1 to 0 over a short
     // distance there and crowd the rings against the wall.
     let dmax = cand.first().map_or(0.0, |c| c.0);
@@ -438,16 +568,31 @@ pub fn cavity_paths<N: Navigator + Sync>(
         if d < 0.5 * dmax || d < 0.5 * h {
             break;
         }
-        if sinks.iter().all(|s| s.centre.dist(q) >= 2.5 * d.max(4.0 * s.radius)) {
-            sinks.push(Sink { centre: q, radius: 0.25 * d });
+        if sinks
+            .iter()
+            .all(|s| s.centre.dist(q) >= 2.5 * d.max(4.0 * s.radius))
+        {
+            sinks.push(Sink {
+                centre: q,
+                radius: 0.25 * d,
+            });
             if sinks.len() >= 80 {
                 break;
             }
         }
     }
     if sinks.is_empty() {
-        warnings.push(format!("{label}: no room inside the finishing loops: only the walls are cut"));
-        let paths = finish_all.into_iter().map(|pts| CutPath { label: format!("{label}: wall"), points: pts, closed: true }).collect();
+        warnings.push(format!(
+            "{label}: no room inside the finishing loops: only the walls are cut"
+        ));
+        let paths = finish_all
+            .into_iter()
+            .map(|pts| CutPath {
+                label: format!("{label}: wall"),
+                points: pts,
+                closed: true,
+            })
+            .collect();
         return Ok((paths, 0.0));
     }
     let contours: Vec<crate::geometry::Contour> = oriented
@@ -455,19 +600,38 @@ pub fn cavity_paths<N: Navigator + Sync>(
         .filter_map(|l| {
             let n = l.len();
             crate::geometry::Contour::new(
-                (0..n).map(|i| crate::geometry::Segment::Line { a: l[i], b: l[(i + 1) % n] }).collect(),
+                (0..n)
+                    .map(|i| crate::geometry::Segment::Line {
+                        a: l[i],
+                        b: l[(i + 1) % n],
+                    })
+                    .collect(),
             )
             .ok()
         })
         .collect();
     let is_counter = vec![false; contours.len()];
     let centre = field::centroid(&contours, p.tol);
-    let b = Boundary { contours, is_counter, centre, radius: 20.0 * (hi - lo).norm().max(1.0), flat_tol: p.tol };
+    let b = Boundary {
+        contours,
+        is_counter,
+        centre,
+        radius: 20.0 * (hi - lo).norm().max(1.0),
+        flat_tol: p.tol,
+    };
     let prep = Prepared::with_sinks(b, sinks.clone())?;
     let n_total = field::setup::OUTER_CHARGES
         + sinks.len() * field::setup::SINK_CHARGES
         + (prep.perimeter() / (0.5 * p.stepover)).ceil().max(60.0) as usize;
-    let solved = field::solve_quick(&prep, Layout { n_total, distance: 1.0, corner_clusters: false, corner_fraction: 0.0 })?;
+    let solved = field::solve_quick(
+        &prep,
+        Layout {
+            n_total,
+            distance: 1.0,
+            corner_clusters: false,
+            corner_fraction: 0.0,
+        },
+    )?;
     let inv = &solved.solution.field;
     let mut grid = Grid::sample(inv, lo, hi, h, &mask);
     // Inside the sinks the sum is singular at the charges: pin the values to 0.
@@ -500,7 +664,9 @@ pub fn cavity_paths<N: Navigator + Sync>(
         let safe = |set: &[Vec<Vec2>]| {
             set.iter().all(|l| {
                 let n = l.len();
-                (0..n).all(|i| index.segment_distance(l[i], l[(i + 1) % n], 2.0 * r) >= r - 0.25 * p.tol)
+                (0..n).all(|i| {
+                    index.segment_distance(l[i], l[(i + 1) % n], 2.0 * r) >= r - 0.25 * p.tol
+                })
             })
         };
         let (mut a, mut bnd) = (0.0_f64, c_prev);
@@ -569,26 +735,56 @@ pub fn cavity_paths<N: Navigator + Sync>(
         for l in set {
             let mut pts = l.clone();
             pts.push(pts[0]);
-            paths.push(CutPath { label: format!("{label}: ring {}", k + 1), points: pts, closed: true });
+            paths.push(CutPath {
+                label: format!("{label}: ring {}", k + 1),
+                points: pts,
+                closed: true,
+            });
         }
     }
     if n_pockets2 > 0 {
         for pts in inner_paths {
-            paths.push(CutPath { label: format!("{label}: one stepover from the wall"), points: pts, closed: true });
+            paths.push(CutPath {
+                label: format!("{label}: one stepover from the wall"),
+                points: pts,
+                closed: true,
+            });
         }
     }
     for pts in finish_all {
-        paths.push(CutPath { label: format!("{label}: wall"), points: pts, closed: true });
+        paths.push(CutPath {
+            label: format!("{label}: wall"),
+            points: pts,
+            closed: true,
+        });
     }
     // 4. Coverage: reachable points (in V, or within r of V) not within r of a path.
-    let all: Vec<Vec<Vec2>> = paths.iter().map(|c| c.points[..c.points.len() - 1].to_vec()).collect();
+    let all: Vec<Vec<Vec2>> = paths
+        .iter()
+        .map(|c| c.points[..c.points.len() - 1].to_vec())
+        .collect();
     let pindex = DistanceIndex::new(&all);
     let hc = (r / 10.0).max(0.05);
-    let cov = Grid::sample(&crate::field::Field::new(vec![], vec![]), lo - pad, hi + pad, hc, part);
+    let cov = Grid::sample(
+        &crate::field::Field::new(vec![], vec![]),
+        lo - pad,
+        hi + pad,
+        hc,
+        part,
+    );
     let mut reach = 0usize;
     let mut uncut = 0usize;
-    let pocket_mask: Vec<Vec<Vec2>> = part.iter().map(|q| q.iter().rev().copied().collect()).collect();
-    let in_cavity = Grid::sample(&crate::field::Field::new(vec![], vec![]), lo - pad, hi + pad, hc, &pocket_mask);
+    let pocket_mask: Vec<Vec<Vec2>> = part
+        .iter()
+        .map(|q| q.iter().rev().copied().collect())
+        .collect();
+    let in_cavity = Grid::sample(
+        &crate::field::Field::new(vec![], vec![]),
+        lo - pad,
+        hi + pad,
+        hc,
+        &pocket_mask,
+    );
     for j in 0..cov.ny {
         for i in 0..cov.nx {
             let k = j * cov.nx + i;
@@ -606,10 +802,17 @@ pub fn cavity_paths<N: Navigator + Sync>(
             }
         }
     }
-    let frac = if reach > 0 { uncut as f64 / reach as f64 } else { 0.0 };
+    let frac = if reach > 0 {
+        uncut as f64 / reach as f64
+    } else {
+        0.0
+    };
     Ok((paths, frac))
 }
 
 fn probe_inside(mask: &[Vec<Vec2>], q: Vec2) -> bool {
-    mask.iter().map(|m| crate::geometry::polygon_winding_number(m, q)).sum::<i32>() != 0
+    mask.iter()
+        .map(|m| crate::geometry::polygon_winding_number(m, q))
+        .sum::<i32>()
+        != 0
 }

@@ -1,0 +1,818 @@
+//! G-code tokenizer and GRBL 1.1 modal-state tracker.
+//!
+//! Three layers, each usable alone:
+//! - [`clean_line`]: what a sender puts on the wire: comments (`(...)`, `;...`) and
+//!   whitespace removed, letters upper-cased, a `%` program delimiter dropped.
+//! - [`tokenize`]: a cleaned block split into [`Word`]s (`G1`, `X10.5`, ...), with
+//!   GRBL's error code for a malformed block (1: a value without a letter,
+//!   2: a letter without a valid number).
+//! - [`ModalState::execute`]: runs one block through the modal state GRBL keeps
+//!   (motion mode, units, distance mode, plane, feed, spindle, coolant, work
+//!   coordinate system, program position), rejecting what GRBL 1.1 rejects with
+//!   GRBL's own error number (20 unsupported command, 21 modal group violation,
+//!   22 undefined feed, 25 repeated word, ...).
+//!
+//! [`Program`] ties them together with file line numbers; the streamer uses it for
+//! `--from-line` and the emulator in the tests uses it to answer `error:N`.
+
+/// One G-code word: a letter and its number (`X-1.5` → `('X', -1.5)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Word {
+    /// Upper-case letter.
+    pub letter: char,
+    /// The number after it.
+    pub value: f64,
+}
+
+/// A block GRBL would reject, with GRBL 1.1's error number for it.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("error {code}: {detail}")]
+pub struct BlockError {
+    /// GRBL 1.1 error number (`error:N`).
+    pub code: u8,
+    /// What in the block is wrong, in pfcam's words.
+    pub detail: String,
+}
+
+impl BlockError {
+    fn new(code: u8, detail: impl Into<String>) -> Self {
+        BlockError {
+            code,
+            detail: detail.into(),
+        }
+    }
+}
+
+/// A [`BlockError`] located in a file.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("line {line}: `{text}`: {error}")]
+pub struct LineError {
+    /// 1-based line number in the file.
+    pub line: usize,
+    /// The cleaned block.
+    pub text: String,
+    /// What GRBL would say.
+    pub error: BlockError,
+}
+
+/// Strips comments and whitespace and upper-cases, as a sender does before sending.
+///
+/// `(...)` comments and everything after `;` are removed; an unclosed `(` comments
+/// out the rest of the line. A line holding only `%` becomes empty.
+pub fn clean_line(raw: &str) -> String {
+    let mut out = String::with_capacity(raw.len());
+    let mut in_paren = false;
+    for c in raw.chars() {
+        if in_paren {
+            if c == ')' {
+                in_paren = false;
+            }
+            continue;
+        }
+        match c {
+            '(' => in_paren = true,
+            ';' => break,
+            c if c.is_whitespace() => {}
+            c => out.push(c.to_ascii_uppercase()),
+        }
+    }
+    if out == "%" {
+        out.clear();
+    }
+    out
+}
+
+/// Splits a cleaned block (see [`clean_line`]) into words.
+///
+/// Errors: 1 when a character that is not a letter starts a word, 2 when a letter
+/// is not followed by a valid number.
+pub fn tokenize(block: &str) -> Result<Vec<Word>, BlockError> {
+    let bytes = block.as_bytes();
+    let mut words = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        let c = bytes[i] as char;
+        if !c.is_ascii_alphabetic() {
+            return Err(BlockError::new(
+                1,
+                format!("`{c}` where a word letter was expected"),
+            ));
+        }
+        let letter = c.to_ascii_uppercase();
+        i += 1;
+        let start = i;
+        if i < bytes.len() && (bytes[i] == b'-' || bytes[i] == b'+') {
+            i += 1;
+        }
+        let mut digits = 0;
+        let mut dots = 0;
+        while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'.') {
+            if bytes[i] == b'.' {
+                dots += 1;
+            } else {
+                digits += 1;
+            }
+            i += 1;
+        }
+        if digits == 0 || dots > 1 {
+            return Err(BlockError::new(
+                2,
+                format!("`{letter}` has no valid number after it"),
+            ));
+        }
+        let text = &block[start..i];
+        let value: f64 = text
+            .parse()
+            .map_err(|_| BlockError::new(2, format!("`{letter}{text}` is not a number")))?;
+        words.push(Word { letter, value });
+    }
+    Ok(words)
+}
+
+/// G0/G1/G2/G3/G38.x/G80.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    /// G0.
+    Rapid,
+    /// G1.
+    Linear,
+    /// G2.
+    ArcCw,
+    /// G3.
+    ArcCcw,
+    /// G38.2 – G38.5 (the number ×10, e.g. 382).
+    Probe(u16),
+    /// G80: motion cancelled.
+    None,
+}
+
+/// G20/G21.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Units {
+    /// G20.
+    Inch,
+    /// G21.
+    Mm,
+}
+
+/// G90/G91.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Distance {
+    /// G90.
+    Absolute,
+    /// G91.
+    Incremental,
+}
+
+/// G17/G18/G19.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Plane {
+    /// G17.
+    XY,
+    /// G18.
+    ZX,
+    /// G19.
+    YZ,
+}
+
+/// M3/M4/M5.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Spindle {
+    /// M5.
+    Off,
+    /// M3.
+    Cw,
+    /// M4.
+    Ccw,
+}
+
+/// G93/G94.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FeedMode {
+    /// G93.
+    InverseTime,
+    /// G94.
+    UnitsPerMinute,
+}
+
+/// The modal state GRBL 1.1 keeps between blocks, plus the program position.
+///
+/// Starts as GRBL does after reset: G0 G54 G17 G21 G90 G94 M5 M9, feed undefined.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModalState {
+    /// Motion mode.
+    pub motion: Motion,
+    /// Units of the numbers in the program.
+    pub units: Units,
+    /// Distance mode.
+    pub distance: Distance,
+    /// Arc plane.
+    pub plane: Plane,
+    /// Feed-rate mode.
+    pub feed_mode: FeedMode,
+    /// Work coordinate system, 54 ..= 59.
+    pub wcs: u8,
+    /// Feed rate in **mm/min** (GRBL converts F when it reads it, so a later
+    /// G20/G21 does not change it), `None` until set.
+    pub feed: Option<f64>,
+    /// Spindle speed S (rpm), 0 until set.
+    pub spindle_speed: f64,
+    /// Spindle state.
+    pub spindle: Spindle,
+    /// M7 mist coolant.
+    pub mist: bool,
+    /// M8 flood coolant.
+    pub flood: bool,
+    /// Tool number T.
+    pub tool: u32,
+    /// Work position X, Y, Z in **mm**, `None` while unknown (before the first
+    /// absolute move on that axis, after G28/G30/G53/G10).
+    pub position: [Option<f64>; 3],
+    /// M2/M30 seen.
+    pub ended: bool,
+}
+
+impl Default for ModalState {
+    fn default() -> Self {
+        ModalState {
+            motion: Motion::Rapid,
+            units: Units::Mm,
+            distance: Distance::Absolute,
+            plane: Plane::XY,
+            feed_mode: FeedMode::UnitsPerMinute,
+            wcs: 54,
+            feed: None,
+            spindle_speed: 0.0,
+            spindle: Spindle::Off,
+            mist: false,
+            flood: false,
+            tool: 0,
+            position: [None; 3],
+            ended: false,
+        }
+    }
+}
+
+/// Modal groups of GRBL 1.1 (for the "two words of one group" check, error 21).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Group {
+    NonModal,
+    Motion,
+    Plane,
+    Distance,
+    ArcDistance,
+    FeedMode,
+    Units,
+    CutterComp,
+    ToolLength,
+    Wcs,
+    PathControl,
+    Stop,
+    Spindle,
+    Coolant,
+    Override,
+}
+
+/// G code ×10 (G38.2 → 382) to its group; `None` = unsupported (error 20).
+fn g_group(code10: u32) -> Option<Group> {
+    Some(match code10 {
+        40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 | 921 => Group::NonModal,
+        0 | 10 | 20 | 30 | 382 | 383 | 384 | 385 | 800 => Group::Motion,
+        170 | 180 | 190 => Group::Plane,
+        900 | 910 => Group::Distance,
+        911 => Group::ArcDistance,
+        930 | 940 => Group::FeedMode,
+        200 | 210 => Group::Units,
+        400 => Group::CutterComp,
+        431 | 490 => Group::ToolLength,
+        540 | 550 | 560 | 570 | 580 | 590 => Group::Wcs,
+        610 => Group::PathControl,
+        _ => return None,
+    })
+}
+
+fn m_group(code: u32) -> Option<Group> {
+    Some(match code {
+        0 | 1 | 2 | 30 => Group::Stop,
+        3..=5 => Group::Spindle,
+        7..=9 => Group::Coolant,
+        56 => Group::Override,
+        _ => return None,
+    })
+}
+
+const MM_PER_INCH: f64 = 25.4;
+
+impl ModalState {
+    /// Runs one cleaned block (see [`clean_line`]) through the state, as GRBL's
+    /// parser would. On error the state is left unchanged, like GRBL does.
+    ///
+    /// An empty block is accepted and changes nothing. `$` system commands are not
+    /// G-code and are rejected with error 3 here; a sender handles them itself.
+    pub fn execute(&mut self, block: &str) -> Result<(), BlockError> {
+        if block.is_empty() {
+            return Ok(());
+        }
+        if block.starts_with('$') {
+            return Err(BlockError::new(3, "a `$` system command is not G-code"));
+        }
+        let words = tokenize(block)?;
+        let mut next = self.clone();
+        next.apply(&words)?;
+        *self = next;
+        Ok(())
+    }
+
+    fn apply(&mut self, words: &[Word]) -> Result<(), BlockError> {
+        let mut groups: Vec<Group> = Vec::new();
+        let mut gcodes: Vec<u32> = Vec::new();
+        let mut mcodes: Vec<u32> = Vec::new();
+        let mut values: [Option<f64>; 26] = [None; 26];
+        for w in words {
+            match w.letter {
+                'G' => {
+                    let code10 = (w.value * 10.0).round();
+                    if w.value < 0.0 || (w.value * 10.0 - code10).abs() > 1e-6 {
+                        return Err(BlockError::new(20, format!("G{} is not a G-code", w.value)));
+                    }
+                    let code10 = code10 as u32;
+                    let group = g_group(code10).ok_or_else(|| {
+                        let what = match code10 {
+                            410 | 420 | 411 | 421 => " (cutter compensation is not in GRBL)",
+                            810..=890 => " (canned cycles are not in GRBL)",
+                            591..=599 => " (G59.x is not in GRBL)",
+                            _ => "",
+                        };
+                        BlockError::new(
+                            if (591..=599).contains(&code10) {
+                                29
+                            } else {
+                                20
+                            },
+                            format!(
+                                "G{}{} is not supported by GRBL{what}",
+                                code10 / 10,
+                                frac(code10)
+                            ),
+                        )
+                    })?;
+                    if groups.contains(&group) && group != Group::NonModal {
+                        return Err(BlockError::new(
+                            21,
+                            format!(
+                                "two G-codes of one modal group (G{}{})",
+                                code10 / 10,
+                                frac(code10)
+                            ),
+                        ));
+                    }
+                    groups.push(group);
+                    gcodes.push(code10);
+                }
+                'M' => {
+                    if w.value < 0.0 || w.value.fract() != 0.0 {
+                        return Err(BlockError::new(
+                            20,
+                            format!("M{} is not an M-code", w.value),
+                        ));
+                    }
+                    let code = w.value as u32;
+                    let group = m_group(code).ok_or_else(|| {
+                        BlockError::new(20, format!("M{code} is not supported by GRBL"))
+                    })?;
+                    if groups.contains(&group) && group != Group::Coolant {
+                        return Err(BlockError::new(
+                            21,
+                            format!("two M-codes of one modal group (M{code})"),
+                        ));
+                    }
+                    groups.push(group);
+                    mcodes.push(code);
+                }
+                'F' | 'I' | 'J' | 'K' | 'L' | 'N' | 'P' | 'R' | 'S' | 'T' | 'X' | 'Y' | 'Z' => {
+                    let slot = &mut values[(w.letter as u8 - b'A') as usize];
+                    if slot.is_some() {
+                        return Err(BlockError::new(25, format!("`{}` appears twice", w.letter)));
+                    }
+                    if w.value < 0.0 && matches!(w.letter, 'F' | 'N' | 'P' | 'S' | 'T') {
+                        return Err(BlockError::new(
+                            4,
+                            format!("`{}` must not be negative", w.letter),
+                        ));
+                    }
+                    *slot = Some(w.value);
+                }
+                other => {
+                    return Err(BlockError::new(
+                        20,
+                        format!("`{other}` is not a word GRBL knows"),
+                    ))
+                }
+            }
+        }
+        let v = |c: char| values[(c as u8 - b'A') as usize];
+
+        // Order of execution follows GRBL: feed mode, F, S, T, spindle, coolant,
+        // plane, units, distance, WCS, non-modal, motion, stop.
+        for &g in &gcodes {
+            match g {
+                930 => self.feed_mode = FeedMode::InverseTime,
+                940 => self.feed_mode = FeedMode::UnitsPerMinute,
+                170 => self.plane = Plane::XY,
+                180 => self.plane = Plane::ZX,
+                190 => self.plane = Plane::YZ,
+                200 => self.units = Units::Inch,
+                210 => self.units = Units::Mm,
+                900 => self.distance = Distance::Absolute,
+                910 => self.distance = Distance::Incremental,
+                540..=590 => self.wcs = (g / 10) as u8,
+                _ => {}
+            }
+        }
+        if let Some(f) = v('F') {
+            self.feed = Some(match self.units {
+                Units::Inch => f * MM_PER_INCH,
+                Units::Mm => f,
+            });
+        }
+        if let Some(s) = v('S') {
+            self.spindle_speed = s;
+        }
+        if let Some(t) = v('T') {
+            if t.fract() != 0.0 {
+                return Err(BlockError::new(23, "T needs an integer"));
+            }
+            if t > 255.0 {
+                return Err(BlockError::new(38, "tool number above 255"));
+            }
+            self.tool = t as u32;
+        }
+        for &m in &mcodes {
+            match m {
+                3 => self.spindle = Spindle::Cw,
+                4 => self.spindle = Spindle::Ccw,
+                5 => self.spindle = Spindle::Off,
+                7 => self.mist = true,
+                8 => self.flood = true,
+                9 => {
+                    self.mist = false;
+                    self.flood = false;
+                }
+                _ => {}
+            }
+        }
+
+        let non_modal = gcodes
+            .iter()
+            .copied()
+            .find(|g| g_group(*g) == Some(Group::NonModal));
+        if let Some(m) = gcodes
+            .iter()
+            .copied()
+            .find(|g| g_group(*g) == Some(Group::Motion))
+        {
+            self.motion = match m {
+                0 => Motion::Rapid,
+                10 => Motion::Linear,
+                20 => Motion::ArcCw,
+                30 => Motion::ArcCcw,
+                800 => Motion::None,
+                p => Motion::Probe(p as u16),
+            };
+        }
+        let axes = [v('X'), v('Y'), v('Z')];
+        let has_axes = axes.iter().any(Option::is_some);
+        let explicit_motion = gcodes
+            .iter()
+            .any(|g| g_group(*g) == Some(Group::Motion) && !matches!(g, 0 | 10 | 800));
+        if explicit_motion && !has_axes && non_modal.is_none() {
+            return Err(BlockError::new(26, "G2/G3/G38.x without axis words"));
+        }
+        if v('P').is_some() && !matches!(non_modal, Some(40) | Some(100)) {
+            return Err(BlockError::new(36, "P word without G4 or G10"));
+        }
+        if v('L').is_some() && non_modal != Some(100) {
+            return Err(BlockError::new(36, "L word without G10"));
+        }
+        if let Some(n) = v('N') {
+            if n.fract() != 0.0 || n > 9_999_999.0 {
+                return Err(BlockError::new(
+                    27,
+                    "line number N must be an integer up to 9999999",
+                ));
+            }
+        }
+        let scale = if self.units == Units::Inch {
+            MM_PER_INCH
+        } else {
+            1.0
+        };
+
+        match non_modal {
+            Some(40) => {
+                if v('P').is_none() {
+                    return Err(BlockError::new(28, "G4 needs a P word (dwell seconds)"));
+                }
+                return Ok(());
+            }
+            Some(100) => {
+                // G10 L2/L20 change work offsets: the work position is no longer known.
+                for (axis, value) in axes.iter().enumerate() {
+                    if value.is_some() {
+                        self.position[axis] = None;
+                    }
+                }
+                return Ok(());
+            }
+            Some(280) | Some(300) => {
+                self.position = [None; 3];
+                return Ok(());
+            }
+            Some(920) => {
+                for (axis, value) in axes.iter().enumerate() {
+                    if let Some(value) = value {
+                        self.position[axis] = Some(value * scale);
+                    }
+                }
+                return Ok(());
+            }
+            Some(530) => {
+                if !matches!(self.motion, Motion::Rapid | Motion::Linear) {
+                    return Err(BlockError::new(30, "G53 only with G0 or G1"));
+                }
+                for (axis, value) in axes.iter().enumerate() {
+                    if value.is_some() {
+                        self.position[axis] = None;
+                    }
+                }
+                return Ok(());
+            }
+            _ => {}
+        }
+
+        if has_axes {
+            match self.motion {
+                Motion::None => {
+                    return Err(BlockError::new(31, "axis words with no motion mode (G80)"))
+                }
+                Motion::Linear | Motion::ArcCw | Motion::ArcCcw | Motion::Probe(_) => {
+                    if self.feed.is_none() && self.feed_mode == FeedMode::UnitsPerMinute {
+                        return Err(BlockError::new(22, "feed move before any F word"));
+                    }
+                    if self.feed_mode == FeedMode::InverseTime && v('F').is_none() {
+                        return Err(BlockError::new(22, "inverse-time feed move without F"));
+                    }
+                }
+                Motion::Rapid => {}
+            }
+            if matches!(self.motion, Motion::ArcCw | Motion::ArcCcw) {
+                // In-plane axes and offset words: XY uses X/Y and I/J, ZX uses Z/X
+                // and K/I, YZ uses Y/Z and J/K.
+                let (axes_in_plane, offsets) = match self.plane {
+                    Plane::XY => (['X', 'Y'], ['I', 'J']),
+                    Plane::ZX => (['Z', 'X'], ['K', 'I']),
+                    Plane::YZ => (['Y', 'Z'], ['J', 'K']),
+                };
+                if axes_in_plane.iter().all(|&c| v(c).is_none()) {
+                    return Err(BlockError::new(32, "arc without an axis word in its plane"));
+                }
+                if v('R').is_none() && offsets.iter().all(|&c| v(c).is_none()) {
+                    return Err(BlockError::new(
+                        35,
+                        "arc without R or an offset word (I/J/K) in its plane",
+                    ));
+                }
+            } else if ['I', 'J', 'K', 'R'].iter().any(|&c| v(c).is_some()) {
+                return Err(BlockError::new(36, "I/J/K/R words without an arc"));
+            }
+            for (axis, value) in axes.iter().enumerate() {
+                if let Some(value) = value {
+                    let value = value * scale;
+                    self.position[axis] = match self.distance {
+                        Distance::Absolute => Some(value),
+                        Distance::Incremental => self.position[axis].map(|p| p + value),
+                    };
+                }
+            }
+        } else if v('R').is_some() || v('I').is_some() || v('J').is_some() || v('K').is_some() {
+            return Err(BlockError::new(36, "arc words without axis words"));
+        }
+        if mcodes.iter().any(|&m| m == 2 || m == 30) {
+            self.ended = true;
+            // GRBL's program end restores these modes.
+            self.motion = Motion::Linear;
+            self.distance = Distance::Absolute;
+            self.plane = Plane::XY;
+            self.feed_mode = FeedMode::UnitsPerMinute;
+            self.wcs = 54;
+            self.spindle = Spindle::Off;
+            self.mist = false;
+            self.flood = false;
+        }
+        Ok(())
+    }
+
+    /// The feed rate in mm/min, if set.
+    pub fn feed_mm_per_min(&self) -> Option<f64> {
+        self.feed
+    }
+}
+
+fn frac(code10: u32) -> String {
+    if code10 % 10 == 0 {
+        String::new()
+    } else {
+        format!(".{}", code10 % 10)
+    }
+}
+
+/// One line of a G-code file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Line {
+    /// 1-based line number in the file.
+    pub number: usize,
+    /// The line as written.
+    pub raw: String,
+    /// The block to send (see [`clean_line`]); empty for comment-only lines.
+    pub block: String,
+}
+
+/// A G-code file as lines.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Program {
+    /// Every line of the file, blank ones included, in order.
+    pub lines: Vec<Line>,
+}
+
+impl Program {
+    /// Splits a file into lines (never fails: errors are found by [`Program::check`]).
+    pub fn parse(text: &str) -> Program {
+        Program {
+            lines: text
+                .lines()
+                .enumerate()
+                .map(|(i, raw)| Line {
+                    number: i + 1,
+                    raw: raw.to_string(),
+                    block: clean_line(raw),
+                })
+                .collect(),
+        }
+    }
+
+    /// Lines with something to send.
+    pub fn blocks(&self) -> impl Iterator<Item = &Line> {
+        self.lines.iter().filter(|l| !l.block.is_empty())
+    }
+
+    /// Runs every line through a fresh [`ModalState`]; returns every error (a
+    /// failing line leaves the state unchanged, as in GRBL).
+    pub fn check(&self) -> Vec<LineError> {
+        let mut state = ModalState::default();
+        let mut errors = Vec::new();
+        for line in self.blocks() {
+            if line.block.starts_with('$') {
+                continue;
+            }
+            if let Err(error) = state.execute(&line.block) {
+                errors.push(LineError {
+                    line: line.number,
+                    text: line.block.clone(),
+                    error,
+                });
+            }
+        }
+        errors
+    }
+
+    /// The modal state in force when line `number` (1-based) starts, i.e. after
+    /// lines `1 .. number`. Fails on the first invalid line before it.
+    pub fn state_before(&self, number: usize) -> Result<ModalState, LineError> {
+        let mut state = ModalState::default();
+        for line in self.blocks().take_while(|l| l.number < number) {
+            if line.block.starts_with('$') {
+                continue;
+            }
+            state.execute(&line.block).map_err(|error| LineError {
+                line: line.number,
+                text: line.block.clone(),
+                error,
+            })?;
+        }
+        Ok(state)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(blocks: &[&str]) -> Result<ModalState, BlockError> {
+        let mut s = ModalState::default();
+        for b in blocks {
+            s.execute(&clean_line(b))?;
+        }
+        Ok(s)
+    }
+
+    #[test]
+    fn cleans_comments_and_whitespace() {
+        assert_eq!(clean_line("g1 x1 (move) y2 ; tail"), "G1X1Y2");
+        assert_eq!(clean_line("(only a comment)"), "");
+        assert_eq!(clean_line(" % "), "");
+        assert_eq!(clean_line("G0 X1 (unclosed"), "G0X1");
+    }
+
+    #[test]
+    fn tokenizes_numbers() {
+        let w = tokenize("G1X-1.5Y+.25F300").unwrap();
+        assert_eq!(w.len(), 4);
+        assert_eq!(
+            w[1],
+            Word {
+                letter: 'X',
+                value: -1.5
+            }
+        );
+        assert_eq!(w[2].value, 0.25);
+        assert_eq!(tokenize("G1X").unwrap_err().code, 2);
+        assert_eq!(tokenize("G1X1..2").unwrap_err().code, 2);
+        assert_eq!(tokenize("12").unwrap_err().code, 1);
+    }
+
+    #[test]
+    fn grbl_error_codes_for_bad_words() {
+        assert_eq!(run(&["G41 X1"]).unwrap_err().code, 20);
+        assert_eq!(run(&["G81 X1 Y1 Z-1 R1 F100"]).unwrap_err().code, 20);
+        assert_eq!(run(&["G1 E5"]).unwrap_err().code, 20);
+        assert_eq!(run(&["G0 G1 X1"]).unwrap_err().code, 21);
+        assert_eq!(run(&["G1 X1"]).unwrap_err().code, 22);
+        assert_eq!(run(&["G0 X1 X2"]).unwrap_err().code, 25);
+        assert_eq!(run(&["G59.1"]).unwrap_err().code, 29);
+        assert_eq!(run(&["G80", "X1"]).unwrap_err().code, 31);
+        assert_eq!(run(&["F100", "G2 X1 Y1"]).unwrap_err().code, 35);
+        assert_eq!(run(&["S-1"]).unwrap_err().code, 4);
+        assert!(run(&["G38.2 Z-5 F50"]).is_ok());
+        assert_eq!(run(&["F100", "G2 Z1 I1"]).unwrap_err().code, 32);
+        assert_eq!(run(&["F100", "G2 X1 K1"]).unwrap_err().code, 35);
+        assert_eq!(run(&["F100", "G1 X1 I1"]).unwrap_err().code, 36);
+        assert_eq!(run(&["G0 X1 P2"]).unwrap_err().code, 36);
+        assert_eq!(run(&["G2"]).unwrap_err().code, 26);
+        assert_eq!(run(&["N1.5 G0 X1"]).unwrap_err().code, 27);
+        assert!(run(&["F100", "G18 G2 X1 Z1 K1"]).is_ok());
+        assert!(run(&["G4 P0.5", "N10 G1 X1 F5", "G1"]).is_ok());
+        assert!(run(&["M7 M8"]).is_ok());
+    }
+
+    #[test]
+    fn tracks_modal_state_and_position() {
+        let s = run(&[
+            "G20 G91",
+            "G0 X1",
+            "G90 G0 X1 Y2 Z0.5",
+            "G91 G1 X1 F10",
+            "M4 S9000 M8",
+            "G18",
+            "G55",
+        ])
+        .unwrap();
+        assert_eq!(s.units, Units::Inch);
+        assert_eq!(s.distance, Distance::Incremental);
+        assert_eq!(s.plane, Plane::ZX);
+        assert_eq!(s.wcs, 55);
+        assert_eq!(s.motion, Motion::Linear);
+        assert_eq!(s.feed, Some(254.0));
+        let s2 = run(&["G20 F10", "G21"]).unwrap();
+        assert_eq!(s2.feed, Some(254.0), "F is kept in mm/min across G21");
+        assert_eq!(s.spindle, Spindle::Ccw);
+        assert_eq!(s.spindle_speed, 9000.0);
+        assert!(s.flood && !s.mist);
+        assert!((s.position[0].unwrap() - 50.8).abs() < 1e-9);
+        assert!((s.position[1].unwrap() - 50.8).abs() < 1e-9);
+        assert!((s.position[2].unwrap() - 12.7).abs() < 1e-9);
+        let s = run(&["G0 X1 Y1 Z1", "G28"]).unwrap();
+        assert_eq!(s.position, [None; 3]);
+    }
+
+    #[test]
+    fn error_leaves_state_unchanged() {
+        let mut s = ModalState::default();
+        s.execute("G1X1F100").unwrap();
+        let before = s.clone();
+        assert!(s.execute("G20G41X5").is_err());
+        assert_eq!(s, before);
+    }
+
+    #[test]
+    fn program_state_before_line() {
+        let p = Program::parse("G21 G90\n(c)\nM3 S1000\nG1 X5 F200\nG1 X6\nM5\n");
+        let s = p.state_before(5).unwrap();
+        assert_eq!(s.position[0], Some(5.0));
+        assert_eq!(s.spindle, Spindle::Cw);
+        let p = Program::parse("G1 X1 F1\nG41\nG1 X2\n");
+        let errs = p.check();
+        assert_eq!(errs.len(), 1);
+        assert_eq!(errs[0].line, 2);
+        assert_eq!(p.state_before(3).unwrap_err().line, 2);
+    }
+}

@@ -1,0 +1,496 @@
+//! `pfcam stream`: the front end of the streamer.
+//!
+//! This is the one part of the `grbl` module that talks to the user: it draws the
+//! progress bar, prints GRBL's messages, asks resume-or-abort after Ctrl-C, and maps
+//! the outcome to an exit code ([`ExitStatus`]). [`run_stream`] is the same flow
+//! without the terminal, for tests and other front ends.
+
+use std::io::{BufRead, IsTerminal, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::link::Link;
+use super::protocol::StatusReport;
+use super::streamer::{
+    check_blocks, resume_blocks, Block, Event, Observer, OperatorCommand, Resume, Settings,
+    StreamReport, Streamer,
+};
+use super::GrblError;
+use crate::gcode::parse::Program;
+
+/// `pfcam stream FILE --port PORT [...]`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct StreamArgs {
+    /// G-code file to send.
+    pub file: PathBuf,
+    /// Serial port of the GRBL controller (e.g. /dev/ttyUSB0).
+    #[arg(long)]
+    pub port: String,
+    /// Baud rate (8N1, no flow control).
+    #[arg(long, default_value_t = 115200)]
+    pub baud: u32,
+    /// GRBL's serial receive buffer, bytes (character counting never exceeds it).
+    #[arg(long, default_value_t = 128, value_name = "BYTES")]
+    pub rx_buffer: usize,
+    /// Status report (`?`) polling rate, Hz.
+    #[arg(long, default_value_t = 5.0, value_name = "HZ")]
+    pub status_hz: f64,
+    /// Do not stop at `error:N`: keep streaming and list the rejected lines at the end.
+    #[arg(long)]
+    pub continue_on_error: bool,
+    /// Run the file in GRBL's check mode ($C) only: report every error, move nothing.
+    #[arg(long, conflicts_with = "check_first")]
+    pub check: bool,
+    /// Run the check mode pass first; stream only if GRBL accepts every line.
+    #[arg(long)]
+    pub check_first: bool,
+    /// Resume at this file line (1-based): restore the modal state in force there,
+    /// go to the resume point through safe Z, then continue.
+    #[arg(long, value_name = "N")]
+    pub from_line: Option<usize>,
+    /// Safe Z for --from-line, mm in work coordinates [default: highest Z before N].
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    pub safe_z: Option<f64>,
+    /// Spindle spin-up dwell for --from-line, seconds.
+    #[arg(long, default_value_t = 3.0, value_name = "S")]
+    pub spindle_delay: f64,
+    /// Send `$X` if GRBL is in alarm at connect (only if you know the position is good).
+    #[arg(long)]
+    pub unlock: bool,
+    /// Record every line sent and every response, with timestamps, to FILE.
+    #[arg(long, value_name = "FILE")]
+    pub log: Option<PathBuf>,
+    /// Seconds to wait for GRBL's banner (before and after a soft reset).
+    #[arg(long, default_value_t = 2.0, value_name = "S")]
+    pub connect_timeout: f64,
+    /// Seconds of silence (not even a status report) after which GRBL counts as gone.
+    #[arg(long, default_value_t = 10.0, value_name = "S")]
+    pub response_timeout: f64,
+}
+
+impl StreamArgs {
+    /// Minimal arguments: `FILE --port PORT`, everything else default.
+    pub fn new(file: impl Into<PathBuf>, port: impl Into<String>) -> StreamArgs {
+        StreamArgs {
+            file: file.into(),
+            port: port.into(),
+            baud: 115200,
+            rx_buffer: 128,
+            status_hz: 5.0,
+            continue_on_error: false,
+            check: false,
+            check_first: false,
+            from_line: None,
+            safe_z: None,
+            spindle_delay: 3.0,
+            unlock: false,
+            log: None,
+            connect_timeout: 2.0,
+            response_timeout: 10.0,
+        }
+    }
+
+    /// The protocol settings these arguments ask for.
+    pub fn settings(&self) -> Settings {
+        let secs = |s: f64, min: f64| {
+            Duration::from_secs_f64(if s.is_finite() { s.max(min) } else { min })
+        };
+        Settings {
+            rx_buffer: self.rx_buffer.max(2),
+            status_interval: secs(1.0 / self.status_hz.max(0.1), 0.01),
+            stop_on_error: !self.continue_on_error,
+            banner_timeout: secs(self.connect_timeout, 0.05),
+            response_timeout: secs(self.response_timeout, 0.5),
+            unlock: self.unlock,
+            ..Settings::default()
+        }
+    }
+}
+
+/// Exit codes of `pfcam stream` (documented in `docs/grbl.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum ExitStatus {
+    /// 0: every line sent and acknowledged, machine idle (or check mode clean).
+    Completed = 0,
+    /// 2: the file or the arguments are unusable (unreadable, line too long,
+    /// `--from-line` impossible).
+    BadInput = 2,
+    /// 3: no GRBL: port cannot be opened, no banner, no answer to a command.
+    Connection = 3,
+    /// 4: GRBL rejected lines (`error:N`: stopped, or listed with
+    /// `--continue-on-error`, or found by `--check`/`--check-first`).
+    GrblError = 4,
+    /// 5: GRBL is in alarm (at connect or mid-job).
+    Alarm = 5,
+    /// 6: the operator aborted.
+    Aborted = 6,
+    /// 7: the link died mid-job (port gone, GRBL silent, GRBL reset itself).
+    LinkLost = 7,
+}
+
+impl ExitStatus {
+    /// The exit status for an outcome.
+    pub fn of(outcome: &Result<StreamReport, GrblError>) -> ExitStatus {
+        match outcome {
+            Ok(r) if r.faults.is_empty() => ExitStatus::Completed,
+            Ok(_) => ExitStatus::GrblError,
+            Err(e) => match e {
+                GrblError::Input(_) => ExitStatus::BadInput,
+                GrblError::Open { .. } | GrblError::NoGrbl { .. } | GrblError::Command { .. } => {
+                    ExitStatus::Connection
+                }
+                GrblError::Rejected { .. } | GrblError::CheckFailed { .. } => ExitStatus::GrblError,
+                GrblError::Alarm { .. } | GrblError::AlarmAtConnect { .. } => ExitStatus::Alarm,
+                GrblError::Aborted { .. } => ExitStatus::Aborted,
+                GrblError::LinkLost { .. }
+                | GrblError::Unresponsive { .. }
+                | GrblError::UnexpectedReset { .. } => ExitStatus::LinkLost,
+            },
+        }
+    }
+}
+
+impl From<ExitStatus> for ExitCode {
+    fn from(s: ExitStatus) -> ExitCode {
+        ExitCode::from(s as u8)
+    }
+}
+
+/// Reads the file and builds the blocks to send (with the resume preamble if
+/// `--from-line`).
+pub fn job_blocks(args: &StreamArgs) -> Result<(Program, Vec<Block>), GrblError> {
+    let text = std::fs::read_to_string(&args.file)
+        .map_err(|e| GrblError::Input(format!("cannot read {}: {e}", args.file.display())))?;
+    let program = Program::parse(&text);
+    let blocks = match args.from_line {
+        Some(line) => resume_blocks(
+            &program,
+            &Resume {
+                line,
+                safe_z: args.safe_z,
+                spindle_delay: args.spindle_delay,
+            },
+        )?,
+        None => Block::from_program(&program),
+    };
+    Ok((program, blocks))
+}
+
+/// The whole `pfcam stream` flow without a terminal: read the file, open the port,
+/// connect, optionally check, stream. `operator` carries hold/resume/abort requests.
+pub fn run_stream(
+    args: &StreamArgs,
+    operator: &Receiver<OperatorCommand>,
+    obs: &mut dyn Observer,
+) -> Result<StreamReport, GrblError> {
+    let (_program, blocks) = job_blocks(args)?;
+    check_blocks(&blocks, &args.settings())?;
+    let mut link = Link::open(&args.port, args.baud)?;
+    if let Some(path) = &args.log {
+        let file = std::fs::File::create(path)
+            .map_err(|e| GrblError::Input(format!("cannot create log {}: {e}", path.display())))?;
+        link.set_log(Box::new(std::io::LineWriter::new(file)));
+    }
+    let mut streamer = Streamer::connect(link, args.settings(), obs)?;
+    if args.check || args.check_first {
+        let report = streamer.check(&blocks, operator, obs)?;
+        if !report.faults.is_empty() {
+            return Err(GrblError::CheckFailed {
+                faults: report.faults,
+            });
+        }
+        if args.check {
+            return Ok(report);
+        }
+    }
+    streamer.stream(&blocks, operator, obs)
+}
+
+/// `pfcam stream`: streams, shows progress, handles Ctrl-C, returns the exit code.
+pub fn stream_command(args: &StreamArgs) -> ExitCode {
+    let (tx, rx) = mpsc::channel();
+    let held = Arc::new(AtomicBool::new(false));
+    {
+        let tx = tx.clone();
+        let held = held.clone();
+        // First Ctrl-C: feed hold and ask; second (while held): abort.
+        let installed = ctrlc::set_handler(move || {
+            let _ = tx.send(ctrl_c(&held));
+        });
+        if let Err(e) = installed {
+            eprintln!("warning: cannot catch Ctrl-C ({e}); Ctrl-C will kill pfcam without stopping the machine");
+        }
+    }
+    spawn_prompt_reader(tx);
+    let mut ui = Terminal::new(held);
+    let outcome = run_stream(args, &rx, &mut ui);
+    ui.finish();
+    let status = ExitStatus::of(&outcome);
+    let program = job_blocks(args).ok().map(|(p, _)| p);
+    let line_text = |n: usize| {
+        program
+            .as_ref()
+            .and_then(|p| p.lines.get(n.wrapping_sub(1)))
+            .map(|l| l.raw.trim().to_string())
+            .unwrap_or_default()
+    };
+    match &outcome {
+        Ok(report) => {
+            if !report.faults.is_empty() {
+                eprintln!("lines GRBL rejected (not executed):");
+                for f in &report.faults {
+                    eprintln!("  {f}");
+                }
+            }
+            let what = if args.check { "checked" } else { "sent" };
+            eprintln!(
+                "{what} {} lines in {:.1} s (mean receive-buffer fill {:.0}%){}",
+                report.acked,
+                report.elapsed.as_secs_f64(),
+                report.mean_fill * 100.0,
+                if report.faults.is_empty() {
+                    String::new()
+                } else {
+                    format!(", {} rejected by GRBL", report.faults.len())
+                }
+            );
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            if let GrblError::CheckFailed { faults } = e {
+                for f in faults {
+                    eprintln!("  {f}");
+                }
+                if args.check_first {
+                    eprintln!("nothing was streamed: fix these lines first");
+                }
+            }
+            let stopped = matches!(e, GrblError::Rejected { .. } | GrblError::Aborted { .. });
+            if stopped {
+                eprintln!(
+                    "the machine was stopped with a feed hold and a soft reset: spindle and \
+                     coolant are off. GRBL may report ALARM:3 after a reset from a hold; the \
+                     stop was controlled, so `$X` unlocks (home with `$H` if in doubt)"
+                );
+            }
+            if let GrblError::Alarm { .. } = e {
+                eprintln!(
+                    "GRBL has stopped and locks out G-code until it is unlocked (`$X`) or homed (`$H`)"
+                );
+            }
+            if let Some(resume) = e.resume_from() {
+                match e.last_acked() {
+                    Some(n) => eprintln!("last line acknowledged by GRBL: {n}: `{}`", line_text(n)),
+                    None => eprintln!("no line of the file was acknowledged by GRBL"),
+                }
+                match resume {
+                    Some(n) => eprintln!(
+                        "lines from {n} on may not have been (fully) executed; to resume after \
+                         fixing the cause: pfcam stream {} --port {} --from-line {n}",
+                        args.file.display(),
+                        args.port
+                    ),
+                    None => eprintln!("to resume, restart the job from the beginning"),
+                }
+            }
+        }
+    }
+    status.into()
+}
+
+/// What a Ctrl-C means: a feed hold, or an abort when already held (second
+/// Ctrl-C, or Ctrl-C at the resume-or-abort prompt).
+pub fn ctrl_c(held: &AtomicBool) -> OperatorCommand {
+    if held.swap(true, Ordering::SeqCst) {
+        OperatorCommand::Abort
+    } else {
+        OperatorCommand::Hold
+    }
+}
+
+/// Reads `r`/`a` answers to the hold prompt from stdin.
+fn spawn_prompt_reader(tx: Sender<OperatorCommand>) {
+    if !std::io::stdin().is_terminal() {
+        return;
+    }
+    let _ = std::thread::Builder::new()
+        .name("hold-prompt".into())
+        .spawn(move || {
+            for line in std::io::stdin().lock().lines() {
+                let Ok(line) = line else { return };
+                let cmd = match line.trim().to_ascii_lowercase().as_str() {
+                    "r" | "resume" => OperatorCommand::Resume,
+                    "a" | "abort" => OperatorCommand::Abort,
+                    _ => continue,
+                };
+                if tx.send(cmd).is_err() {
+                    return;
+                }
+            }
+        });
+}
+
+/// Progress bar on a terminal, plain periodic lines otherwise.
+struct Terminal {
+    bar: Option<ProgressBar>,
+    held: Arc<AtomicBool>,
+    status: Option<StatusReport>,
+    acked: usize,
+    total: usize,
+    line: usize,
+    start: Instant,
+    last_plain: Instant,
+}
+
+impl Terminal {
+    fn new(held: Arc<AtomicBool>) -> Terminal {
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let bar = ProgressBar::new(0);
+            if let Ok(style) = ProgressStyle::with_template(
+                "{bar:30.cyan/blue} {percent:>3}% {pos}/{len} lines  {elapsed_precise} ETA {eta_precise}  {msg}",
+            ) {
+                bar.set_style(style);
+            }
+            bar
+        });
+        Terminal {
+            bar,
+            held,
+            status: None,
+            acked: 0,
+            total: 0,
+            line: 0,
+            start: Instant::now(),
+            last_plain: Instant::now(),
+        }
+    }
+
+    fn say(&self, text: &str) {
+        match &self.bar {
+            Some(bar) => bar.println(text),
+            None => eprintln!("{text}"),
+        }
+    }
+
+    fn machine(&self) -> String {
+        match &self.status {
+            Some(s) => {
+                let p = s.work_position(None).or(s.mpos).unwrap_or([0.0; 3]);
+                format!(
+                    "line {}  {}  X{:.3} Y{:.3} Z{:.3}",
+                    self.line, s.state, p[0], p[1], p[2]
+                )
+            }
+            None => format!("line {}", self.line),
+        }
+    }
+
+    fn update(&mut self) {
+        if let Some(bar) = &self.bar {
+            bar.set_length(self.total as u64);
+            bar.set_position(self.acked as u64);
+            bar.set_message(self.machine());
+        } else if self.last_plain.elapsed() >= Duration::from_secs(5) {
+            self.last_plain = Instant::now();
+            let pct = (self.acked * 100).checked_div(self.total).unwrap_or(0);
+            eprintln!(
+                "stream: {}/{} lines ({pct}%), {:.0} s, {}",
+                self.acked,
+                self.total,
+                self.start.elapsed().as_secs_f64(),
+                self.machine()
+            );
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish();
+        }
+        let _ = std::io::stderr().flush();
+    }
+}
+
+impl Observer for Terminal {
+    fn event(&mut self, event: Event<'_>) {
+        match event {
+            Event::Connected { version } => self.say(&format!("connected to GRBL {version}")),
+            Event::Message(m) => self.say(&format!("GRBL: {m}")),
+            Event::Status(s) => {
+                self.status = Some(s.clone());
+                self.update();
+            }
+            Event::Progress { acked, total, line } => {
+                self.acked = acked;
+                self.total = total;
+                self.line = line;
+                self.update();
+            }
+            Event::Rejected(f) => self.say(&format!("GRBL rejected {f}; continuing")),
+            Event::HoldRequested => self.say("feed hold sent; waiting for the machine to stop..."),
+            Event::HoldComplete => {
+                self.held.store(true, Ordering::SeqCst);
+                self.say(
+                    "machine stopped (feed hold). Type `r` + Enter to resume, `a` + Enter to \
+                     abort; Ctrl-C again aborts.",
+                );
+            }
+            Event::Resumed => {
+                self.held.store(false, Ordering::SeqCst);
+                self.say("resumed");
+            }
+            Event::Stopping(why) => self.say(&format!("stopping the machine: {why}")),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn first_ctrl_c_holds_second_aborts() {
+        let held = AtomicBool::new(false);
+        assert_eq!(ctrl_c(&held), OperatorCommand::Hold);
+        assert_eq!(ctrl_c(&held), OperatorCommand::Abort);
+        // After a resume the front end clears the flag: Ctrl-C holds again.
+        held.store(false, Ordering::SeqCst);
+        assert_eq!(ctrl_c(&held), OperatorCommand::Hold);
+    }
+
+    #[test]
+    fn every_outcome_has_a_distinct_exit_code() {
+        let outcomes = [
+            Ok(StreamReport::default()),
+            Err(GrblError::Input("x".into())),
+            Err(GrblError::NoGrbl {
+                port: "p".into(),
+                heard: String::new(),
+            }),
+            Err(GrblError::CheckFailed { faults: Vec::new() }),
+            Err(GrblError::Alarm {
+                code: 1,
+                last_acked: None,
+                resume_from: None,
+            }),
+            Err(GrblError::Aborted {
+                last_acked: None,
+                resume_from: None,
+            }),
+            Err(GrblError::LinkLost {
+                reason: String::new(),
+                last_acked: None,
+                resume_from: None,
+            }),
+        ];
+        let codes: Vec<u8> = outcomes.iter().map(|o| ExitStatus::of(o) as u8).collect();
+        assert_eq!(codes, [0, 2, 3, 4, 5, 6, 7]);
+    }
+}
