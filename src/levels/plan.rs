@@ -146,7 +146,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
     // One grid for the whole job, grown until Γ(s_lo) closes inside it.
     let (mut lo, mut hi) = bbox(job.glyphs);
     let diag = (hi - lo).norm();
-    let mut pad = 0.25 * diag;
+    let mut pad = 0.1 * diag;
     let h = GRID_SPACING.max(diag / 2000.0);
     let mut grid;
     let mut tries = 0;
@@ -205,6 +205,23 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
             .fold(0.0, f64::max)
     };
     let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, &gap);
+    // The levels of the plain stepdown schedule clear everything; the ones added
+    // for the scallop bound only the band down to the next of those below.
+    let n_rough = ((depth / job.stepdown) - 1e-9).ceil().max(1.0) as usize;
+    let rough: Vec<f64> = (0..=n_rough)
+        .map(|k| -depth * k as f64 / n_rough as f64)
+        .collect();
+    let next_rough_below = |z: f64| -> Option<f64> {
+        if rough.iter().any(|&zr| (zr - z).abs() < 1e-9) {
+            None
+        } else {
+            rough
+                .iter()
+                .copied()
+                .filter(|&zr| zr < z)
+                .fold(None, |m: Option<f64>, zr| Some(m.map_or(zr, |m| m.max(zr))))
+        }
+    };
     let _ = (s_hi, &mut lo, &mut hi);
 
     // The stock: the largest level (a boss's base, a cavity's rim) plus the margin.
@@ -266,6 +283,22 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
             let solved = field::solve_quick(&prep, base)?;
             let mut warnings = Vec::new();
             let label = format!("level {k} (z {:.3})", job.top + z);
+            // A level added for the scallop bound clears only the band out to the
+            // contour of the next stepdown level below (wider for a boss, narrower
+            // for a cavity): the largest distance between the two.
+            let reach = next_rough_below(z).map(|zr| {
+                let other = contours_at(s_of(zr));
+                let (wide, narrow) = if job.cavity {
+                    (&polys, &other)
+                } else {
+                    (&other, &polys)
+                };
+                let idx = DistanceIndex::new(narrow);
+                wide.iter()
+                    .flatten()
+                    .map(|&q| idx.distance(q))
+                    .fold(0.0, f64::max)
+            });
             let (paths, uncut) = if job.cavity {
                 let (p, f) = crate::toolpath::zlevel::cavity_paths(
                     &oriented,
@@ -273,6 +306,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                     &params,
                     &label,
                     &mut warnings,
+                    reach,
                 )?;
                 (p, Some(f))
             } else {
@@ -283,6 +317,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                         &params,
                         &label,
                         &mut warnings,
+                        reach,
                     )?,
                     None,
                 )

@@ -116,14 +116,16 @@ fn signed_area(p: &[Vec2]) -> f64 {
 
 /// The paths of one boss level: around every outer loop of the part, clearing
 /// rings (rolling-disk offsets of radius r + j·stepover) from the outermost that
-/// still reaches into the stock down to the finishing ring at r, clipped to the
-/// stock grown by r; inside every hole of the part, rings from the innermost out.
+/// still reaches into the stock (or, with `reach`, the band of that width) down to
+/// the finishing ring at r, clipped to the stock grown by r; inside every hole of
+/// the part, rings from the innermost out.
 pub fn boss_paths<N: Navigator + Sync>(
     part: &[Vec<Vec2>],
     nav: &N,
     p: &LevelParams,
     label: &str,
     warnings: &mut Vec<String>,
+    reach: Option<f64>,
 ) -> Result<Vec<CutPath>, ProfileError> {
     use rayon::prelude::*;
     let index = DistanceIndex::new(part);
@@ -140,7 +142,13 @@ pub fn boss_paths<N: Navigator + Sync>(
         .iter()
         .map(|&c| index.distance(c))
         .fold(0.0, f64::max);
-    let rings = ((dmax - 2.0 * r) / p.stepover).ceil().max(0.0) as usize;
+    let full = ((dmax - 2.0 * r) / p.stepover).ceil().max(0.0) as usize;
+    // A level added for the scallop bound only clears the band out to the contour
+    // of the next stepdown level below, which clears everything beyond it.
+    let rings = match reach {
+        Some(d) => ((d / p.stepover).ceil() as usize).min(full),
+        None => full,
+    };
     let outer: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
     let holes: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
     let tp = |radius: f64| TraceParams {
@@ -148,41 +156,48 @@ pub fn boss_paths<N: Navigator + Sync>(
         tol: p.tol,
         part_on_left: !p.climb,
     };
-    // Trace every (ring, outer loop) pair in parallel; drop duplicates of merged rings.
-    let jobs: Vec<(usize, usize)> = (0..=rings)
+    // Rings in parallel over j; for each j the outer loops in turn, skipping a loop
+    // whose ring was already traced from another (the rings of neighbouring letters
+    // merge as they grow).
+    let traced: Vec<Result<Vec<(usize, Vec<Vec2>)>, ProfileError>> = (0..=rings)
         .rev()
-        .flat_map(|j| (0..outer.len()).map(move |i| (j, i)))
-        .collect();
-    let traced: Vec<Result<(usize, Vec<Vec2>), ProfileError>> = jobs
+        .collect::<Vec<_>>()
         .par_iter()
-        .map(|&(j, i)| {
+        .map(|&j| {
             let rj = r + j as f64 * p.stepover;
-            let start = lowest(outer[i]) - Vec2::new(0.0, rj + 1.0);
-            trace(nav, &index, start, tp(rj))
-                .map(|t| (j, t.points))
-                .map_err(|source| ProfileError::Trace {
-                    label: format!("{label}: ring {j} around the part"),
-                    source,
-                })
+            let mut done: Vec<Vec<Vec2>> = Vec::new();
+            let mut out = Vec::new();
+            for lp in &outer {
+                let low = lowest(lp);
+                let probe = low - Vec2::new(0.0, rj);
+                if !done.is_empty() {
+                    let idx = DistanceIndex::new(&done);
+                    if idx.distance(probe) < 0.5 * rj.min(p.stepover) + 10.0 * p.tol {
+                        continue;
+                    }
+                }
+                let start = low - Vec2::new(0.0, rj + 1.0);
+                let t =
+                    trace(nav, &index, start, tp(rj)).map_err(|source| ProfileError::Trace {
+                        label: format!("{label}: ring {j} around the part"),
+                        source,
+                    })?;
+                done.push(t.points[..t.points.len() - 1].to_vec());
+                out.push((j, t.points));
+            }
+            Ok(out)
         })
         .collect();
     let mut paths = Vec::new();
-    let mut kept: Vec<(usize, DistanceIndex)> = Vec::new();
     for res in traced {
-        let (j, ring) = res?;
-        if kept
-            .iter()
-            .any(|(jj, idx)| *jj == j && idx.distance(ring[0]) < 10.0 * p.tol)
-        {
-            continue;
-        }
-        kept.push((j, DistanceIndex::new(&[ring[..ring.len() - 1].to_vec()])));
-        for (run, closed) in clip_ring(&ring, lo, hi) {
-            paths.push(CutPath {
-                label: format!("{label}: ring {j} around the part"),
-                points: run,
-                closed,
-            });
+        for (j, ring) in res? {
+            for (run, closed) in clip_ring(&ring, lo, hi) {
+                paths.push(CutPath {
+                    label: format!("{label}: ring {j} around the part"),
+                    points: run,
+                    closed,
+                });
+            }
         }
     }
     // Holes (counters of the sign): rings from the innermost out to the finishing ring.
@@ -421,12 +436,17 @@ fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
 ///    distance, measured), until every ring is small enough for the tool to cover
 ///    its inside.
 /// 4. Coverage: the uncut share of the reachable area, on a grid.
+///
+/// With `band` (a level added for the scallop bound) the rings stop once they
+/// are deeper than that from the wall and coverage is measured within it: the
+/// next stepdown level below clears the rest.
 pub fn cavity_paths<N: Navigator + Sync>(
     part: &[Vec<Vec2>],
     nav: &N,
     p: &LevelParams,
     label: &str,
     warnings: &mut Vec<String>,
+    band: Option<f64>,
 ) -> Result<(Vec<CutPath>, f64), ProfileError> {
     use crate::field::isolines::{isolines_linear, polygon_area, Grid};
     use crate::field::{self, Boundary, Layout, Prepared, Sink};
@@ -673,14 +693,20 @@ pub fn cavity_paths<N: Navigator + Sync>(
         let mut best: Option<f64> = None;
         // The safe ring with the smallest gap, for when none meets the target.
         let mut fallback: Option<(f64, f64)> = None;
-        for _ in 0..30 {
+        for _ in 0..14 {
             let c = 0.5 * (a + bnd);
             let set = isolines_linear(&grid, c);
             if !safe(&set) {
                 bnd = c;
                 continue;
             }
-            let g = ring_gap(&prev, &set);
+            // The first ring is bounded one way (see `ring_gap`); between two inner
+            // rings both ways, so that no lobe of an outer ring is left behind.
+            let g = if rings.is_empty() {
+                ring_gap(&prev, &set)
+            } else {
+                ring_gap(&prev, &set).max(ring_gap(&set, &prev))
+            };
             if fallback.is_none_or(|f| g < f.1) {
                 fallback = Some((c, g));
             }
@@ -703,7 +729,13 @@ pub fn cavity_paths<N: Navigator + Sync>(
                 ));
                 c
             }
-            _ => break,
+            (None, f) => {
+                warnings.push(format!(
+                    "{label}: clearing rings stop at u = {c_prev:.4}: no safe ring within 1.25 stepovers of the last (closest {})",
+                    f.map_or("none".into(), |f| format!("{:.3} mm", f.1))
+                ));
+                break;
+            }
         };
         // The exact ring (vertices on the level by regula falsi) must be safe too;
         // if not, step the value down until it is.
@@ -720,11 +752,22 @@ pub fn cavity_paths<N: Navigator + Sync>(
             c *= 0.98;
         }
         if exact.is_empty() {
+            warnings.push(format!(
+                "{label}: clearing rings stop at u = {c:.4}: the exact ring left the safe region"
+            ));
             break;
         }
+        let depth_in = exact
+            .iter()
+            .flatten()
+            .map(|&q| vindex.distance(q))
+            .fold(f64::INFINITY, f64::min);
         prev = exact.clone();
         c_prev = c;
         rings.push(exact);
+        if band.is_some_and(|d| depth_in > d) {
+            break;
+        }
         if c < 1e-4 {
             break;
         }
@@ -758,61 +801,100 @@ pub fn cavity_paths<N: Navigator + Sync>(
             closed: true,
         });
     }
-    // 4. Coverage: reachable points (in V, or within r of V) not within r of a path.
-    let all: Vec<Vec<Vec2>> = paths
-        .iter()
-        .map(|c| c.points[..c.points.len() - 1].to_vec())
-        .collect();
-    let pindex = DistanceIndex::new(&all);
+    // 4. Coverage: reachable points (in V, or within r of V) not within r of a path,
+    // on a grid of r/10. Where points are left (between rings that part around a
+    // lobe), small loops of radius r/2 are added at them, centred where the tool
+    // centre may go, and coverage is measured again.
     let hc = (r / 10.0).max(0.05);
-    let cov = Grid::sample(
-        &crate::field::Field::new(vec![], vec![]),
-        lo - pad,
-        hi + pad,
-        hc,
-        part,
-    );
-    let mut reach = 0usize;
-    let mut uncut = 0usize;
+    let empty = crate::field::Field::new(vec![], vec![]);
     let pocket_mask: Vec<Vec<Vec2>> = part
         .iter()
         .map(|q| q.iter().rev().copied().collect())
         .collect();
-    let in_cavity = Grid::sample(
-        &crate::field::Field::new(vec![], vec![]),
-        lo - pad,
-        hi + pad,
-        hc,
-        &pocket_mask,
-    );
-    for j in 0..cov.ny {
-        for i in 0..cov.nx {
-            let k = j * cov.nx + i;
-            if !in_cavity.inside[k] {
-                continue;
-            }
-            let q = Vec2::new(cov.origin.x + hc * i as f64, cov.origin.y + hc * j as f64);
-            let dv = vindex.distance(q);
-            let in_v = !probe_inside(&mask, q);
-            if in_v || dv <= r {
-                reach += 1;
-                if pindex.distance(q) > r + 1e-9 {
-                    uncut += 1;
+    let in_cavity = Grid::sample(&empty, lo - pad, hi + pad, hc, &pocket_mask);
+    let out_v = Grid::sample(&empty, lo - pad, hi + pad, hc, &mask);
+    let measure = |paths: &[CutPath]| -> (usize, Vec<Vec2>) {
+        let all: Vec<Vec<Vec2>> = paths
+            .iter()
+            .map(|c| c.points[..c.points.len() - 1].to_vec())
+            .collect();
+        let pindex = DistanceIndex::new(&all);
+        let mut reach = 0usize;
+        let mut left = Vec::new();
+        for j in 0..in_cavity.ny {
+            for i in 0..in_cavity.nx {
+                let k = j * in_cavity.nx + i;
+                if !in_cavity.inside[k] {
+                    continue;
+                }
+                let q = Vec2::new(
+                    in_cavity.origin.x + hc * i as f64,
+                    in_cavity.origin.y + hc * j as f64,
+                );
+                if band.is_some_and(|d| index.distance(q) > d + r) {
+                    continue;
+                }
+                let in_v = !out_v.inside[k];
+                if in_v || vindex.distance(q) <= r {
+                    reach += 1;
+                    if pindex.distance(q) > r + 1e-9 {
+                        left.push(q);
+                    }
                 }
             }
         }
+        (reach, left)
+    };
+    let (reach, left) = measure(&paths);
+    let mut left = left;
+    if !left.is_empty() {
+        let dab_r = 0.5 * r;
+        let mut dabs: Vec<Vec2> = Vec::new();
+        for &q in &left {
+            if dabs.iter().any(|d| d.dist(q) <= r + dab_r - 2.0 * hc) {
+                continue;
+            }
+            // Centre the loop at q, or pulled toward the inside of V if q is near ∂V.
+            let (dv, near) = vindex.nearest(q);
+            let inside = !out_v.inside[{
+                let i = ((q.x - in_cavity.origin.x) / hc).round() as usize;
+                let j = ((q.y - in_cavity.origin.y) / hc).round() as usize;
+                (j.min(in_cavity.ny - 1)) * in_cavity.nx + i.min(in_cavity.nx - 1)
+            }];
+            let c = if inside && dv >= dab_r + p.tol {
+                q
+            } else if inside {
+                q + (q - near).normalized() * (dab_r + p.tol - dv)
+            } else {
+                continue;
+            };
+            if vindex.distance(c) < dab_r + 0.5 * p.tol || index.distance(c) < r + dab_r {
+                continue;
+            }
+            dabs.push(c);
+            let n = 24;
+            let mut pts: Vec<Vec2> = (0..n)
+                .map(|k| {
+                    let a = std::f64::consts::TAU * k as f64 / n as f64;
+                    c + Vec2::new(a.cos(), a.sin()) * dab_r
+                })
+                .collect();
+            pts.push(pts[0]);
+            paths.insert(
+                0,
+                CutPath {
+                    label: format!("{label}: loop at an uncut spot"),
+                    points: pts,
+                    closed: true,
+                },
+            );
+        }
+        left = measure(&paths).1;
     }
     let frac = if reach > 0 {
-        uncut as f64 / reach as f64
+        left.len() as f64 / reach as f64
     } else {
         0.0
     };
     Ok((paths, frac))
-}
-
-fn probe_inside(mask: &[Vec<Vec2>], q: Vec2) -> bool {
-    mask.iter()
-        .map(|m| crate::geometry::polygon_winding_number(m, q))
-        .sum::<i32>()
-        != 0
 }
