@@ -159,7 +159,8 @@ pub fn boss_paths<N: Navigator + Sync>(
     // Rings in parallel over j; for each j the outer loops in turn, skipping a loop
     // whose ring was already traced from another (the rings of neighbouring letters
     // merge as they grow).
-    let traced: Vec<Result<Vec<(usize, Vec<Vec2>)>, ProfileError>> = (0..=rings)
+    type Rings = Result<Vec<(usize, Vec<Vec2>)>, ProfileError>;
+    let traced: Vec<Rings> = (0..=rings)
         .rev()
         .collect::<Vec<_>>()
         .par_iter()
