@@ -31,6 +31,7 @@ fn main() {
         },
         field: FieldSpec::default(),
         machine: Machine::default(),
+        output: Output::default(),
     };
     let t = std::time::Instant::now();
     let out = pfcam::pipeline::run(&job, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));

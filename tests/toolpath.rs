@@ -37,6 +37,7 @@ fn job(text: &str, height: f64) -> Job {
         },
         field: FieldSpec::default(),
         machine: Machine::default(),
+        output: Output::default(),
     }
 }
 
