@@ -3,6 +3,7 @@
 use crate::field::{self, Boundary, FieldError, Layout, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape};
 use crate::job::{Direction, Job};
+use crate::toolpath::arcfit::{self, ArcFitParams};
 use crate::toolpath::gouge::{self, GougeReport};
 use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
 use crate::toolpath::Toolpath;
@@ -231,7 +232,10 @@ pub fn plan_shape(
 /// failing check is an error: no tool path is returned).
 pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
     let plan = plan(job, progress)?;
-    let toolpath = profile::link(&plan.loops, &plan.params);
+    let traced = profile::link(&plan.loops, &plan.params);
+    // Arcs (and merged lines) within tol/2 of the traced path, before the gouge
+    // check so that it checks the moves as written.
+    let toolpath = arcfit::fit_toolpath(&traced, &ArcFitParams::for_job(job));
     let part = DistanceIndex::new(&plan.polys);
     let report: GougeReport = gouge::check(&toolpath, &part, plan.params.radius, plan.params.top);
     let tol = plan.params.tol;
