@@ -6,7 +6,7 @@ use pfcam::gcode::write_gcode;
 use pfcam::geometry::{DistanceIndex, Vec2};
 use pfcam::job::{load_job, Job};
 use pfcam::pipeline;
-use pfcam::toolpath::arcfit::{fit_toolpath, ArcFitParams, MIN_ARC_CHORD};
+use pfcam::toolpath::arcfit::{fit_toolpath, legalize, ArcFitParams, MIN_ARC_CHORD};
 use pfcam::toolpath::{gouge, profile};
 use pfcam::toolpath::{Move, Section, Toolpath, Vec3};
 use std::f64::consts::TAU;
@@ -221,6 +221,22 @@ fn grbl_reads_back_every_arc_on_its_circle() {
         let g = write_gcode(&out.toolpath, &job).unwrap_or_else(|e| panic!("{e}"));
         let arcs = written_arcs(&g);
         assert!(!arcs.is_empty(), "{}", job.name);
+        // The fitted arcs reach the writer unchanged, one line each.
+        let limits = pfcam::gcode::writer::arc_limits(&job);
+        assert_eq!(legalize(&out.toolpath, &limits), out.toolpath);
+        let fitted: Vec<(Vec3, Vec2)> = out
+            .toolpath
+            .moves()
+            .filter_map(|m| match *m {
+                Move::Arc { to, cx, cy, .. } => Some((to, Vec2::new(cx, cy))),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(fitted.len(), arcs.len(), "{}", job.name);
+        for ((to, centre), (line, _, e, c)) in fitted.iter().zip(&arcs) {
+            assert!(c.dist(*centre) <= 0.0036, "{line}: centre {centre:?}");
+            assert!(e.dist(Vec2::new(to.x, to.y)) <= 0.00071, "{line}");
+        }
         for (line, s, e, c) in &arcs {
             let (r1, r2) = (s.dist(*c), e.dist(*c));
             assert!(

@@ -14,8 +14,8 @@
 //!    only when its written value changes (always X and Y on arcs, which GRBL
 //!    requires), arc centres as `I`/`J` offsets from the arc's start as written
 //!    (GRBL's only arc distance mode), chosen on the 0.001 mm grid so that the
-//!    written start and end are equidistant from the written centre within
-//!    0.0015 mm, `F` only when the feed changes;
+//!    written start and end are as nearly equidistant from the written centre
+//!    as the grid allows (see [`CENTRE_SEARCH`]), `F` only when the feed changes;
 //! 5. a retract to safe Z if the tool is below it, `M9` with coolant, `M5`, `M2`.
 //!
 //! Arcs reach the program only as [`arcfit::legalize`] lets them: none with
@@ -45,9 +45,14 @@ const SCALE: f64 = 1000.0;
 
 /// How far (in units of the last decimal, each way) the writer may move an arc's
 /// written centre from the rounded true centre to make the written start and end
-/// equidistant from it: ±2 units always contains a grid point within 0.71 units
-/// of the perpendicular bisector of the written ends, so the written radii
-/// differ by at most about 1.4 units (0.0014 mm), under GRBL's 0.005 mm.
+/// equidistant from it (GRBL's error 33 when their radii differ by more than
+/// 0.005 mm and 0.1 %). Plain rounding of the start, end and centre (each within
+/// 0.0005 mm per axis) already bounds the difference by 2 · 2 · 0.0007 ≈
+/// 0.0028 mm; of the 25 grid centres within ±2 units the writer takes the
+/// nearest to the true centre among those whose radii differ by at most
+/// [`RADIUS_SLACK`] units, else the one with the smallest difference. Measured on
+/// every sample in `gcode-samples/`: at most 0.0006 mm (`tests/arcs.rs` asserts
+/// < 0.002 mm on every job).
 const CENTRE_SEARCH: i128 = 2;
 
 /// Radii that differ by no more than this many units of the last decimal count as
