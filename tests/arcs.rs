@@ -2,8 +2,9 @@
 //! measured by sampling both ways, the radius bound, lines only when asked, the
 //! arcs GRBL reads back from the written G-code, and byte-identical output.
 
+use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use pfcam::gcode::write_gcode;
-use pfcam::geometry::{DistanceIndex, Vec2};
+use pfcam::geometry::{build_shape, DistanceIndex, Vec2};
 use pfcam::job::{load_job, Job};
 use pfcam::pipeline;
 use pfcam::toolpath::arcfit::{fit_toolpath, legalize, ArcFitParams, MIN_ARC_CHORD};
@@ -340,6 +341,140 @@ fn same_gcode_on_every_run_and_thread_count() {
     assert_eq!(one, gcode(1));
     assert_eq!(one, gcode(2));
     assert_eq!(one, gcode(4));
+}
+
+/// Points every `step` mm along a closed cavalier polyline (lines and arcs), as
+/// in `tests/toolpath.rs`.
+fn sample_pline(pl: &Polyline, step: f64) -> Vec<Vec2> {
+    let n = pl.vertex_count();
+    let mut out = Vec::new();
+    for i in 0..n {
+        let v1 = pl.at(i);
+        let v2 = pl.at((i + 1) % n);
+        let (a, b) = (Vec2::new(v1.x, v1.y), Vec2::new(v2.x, v2.y));
+        if v1.bulge.abs() < 1e-12 {
+            let k = ((a.dist(b) / step).ceil() as usize).max(1);
+            out.extend((0..k).map(|j| a.lerp(b, j as f64 / k as f64)));
+        } else {
+            let theta = 4.0 * v1.bulge.atan();
+            let chord = b - a;
+            let r = chord.norm() / (2.0 * (theta / 2.0).sin()).abs();
+            let mid = a.lerp(b, 0.5);
+            let h = (r * r - chord.norm2() / 4.0).max(0.0).sqrt();
+            let side = if (theta > 0.0) == (theta.abs() < std::f64::consts::PI) {
+                1.0
+            } else {
+                -1.0
+            };
+            let c = mid + chord.perp().normalized() * (h * side);
+            let a0 = (a.y - c.y).atan2(a.x - c.x);
+            let k = (((r * theta.abs()) / step).ceil() as usize).max(1);
+            out.extend((0..k).map(|j| {
+                let t = a0 + theta * j as f64 / k as f64;
+                Vec2::new(c.x + r * t.cos(), c.y + r * t.sin())
+            }));
+        }
+    }
+    out
+}
+
+/// Points every 0.002 mm along the first level pass of every section.
+fn sample_passes(tp: &Toolpath) -> Vec<Vec<Vec2>> {
+    let mut out = Vec::new();
+    let mut at = tp.start;
+    for s in &tp.sections {
+        let mut pts: Vec<Vec2> = Vec::new();
+        let mut z = None;
+        for m in &s.moves {
+            let to = m.to();
+            let level = at.z == to.z && !matches!(m, Move::Rapid { .. });
+            if level && z.is_none_or(|z| z == to.z) {
+                z = Some(to.z);
+                let (a, b) = (Vec2::new(at.x, at.y), Vec2::new(to.x, to.y));
+                match *m {
+                    Move::Arc { cx, cy, ccw, .. } => {
+                        let c = Vec2::new(cx, cy);
+                        let (sw, r) = sweep_radius(a, b, c, ccw);
+                        let n = ((sw * r / 0.002).ceil() as usize).max(1);
+                        pts.extend((0..n).map(|i| arc_point(a, c, ccw, sw * i as f64 / n as f64)));
+                    }
+                    _ => {
+                        let n = ((a.dist(b) / 0.002).ceil() as usize).max(1);
+                        pts.extend((0..n).map(|i| a.lerp(b, i as f64 / n as f64)));
+                    }
+                }
+            }
+            at = to;
+        }
+        out.push(pts);
+    }
+    out
+}
+
+/// Symmetric Hausdorff distance between every sampled pass and the nearest exact
+/// (cavalier) offset of the part's contours by the tool radius.
+fn hausdorff_to_exact(job: &Job, tp: &Toolpath) -> f64 {
+    let shape = build_shape(&job.shape).unwrap_or_else(|e| panic!("{e}"));
+    let r = job.tool.diameter / 2.0;
+    let mut oracles = Vec::new();
+    for c in shape.contours() {
+        let mut pl: Polyline = Polyline::new_closed();
+        for p in c.flatten(3e-4) {
+            pl.add(p.x, p.y, 0.0);
+        }
+        for o in pl.parallel_offset(-r) {
+            oracles.push(sample_pline(&o, 0.002));
+        }
+    }
+    let mut worst: f64 = 0.0;
+    for pass in sample_passes(tp) {
+        let oracle = oracles
+            .iter()
+            .min_by(|a, b| {
+                let d = |o: &Vec<Vec2>| {
+                    o.iter()
+                        .map(|q| q.dist(pass[0]))
+                        .fold(f64::INFINITY, f64::min)
+                };
+                d(a).total_cmp(&d(b))
+            })
+            .expect("an oracle");
+        let oi = DistanceIndex::new(std::slice::from_ref(oracle));
+        let pi = DistanceIndex::new(std::slice::from_ref(&pass));
+        for q in &pass {
+            worst = worst.max(oi.distance(*q));
+        }
+        for q in oracle {
+            worst = worst.max(pi.distance(*q));
+        }
+    }
+    worst
+}
+
+/// The whole budget: traced (tol/2) plus fitted (tol/2) stays within the job
+/// tolerance of the exact offset, arcs on and off. Prints the table of
+/// `docs/gcode.md` with
+/// `cargo test --release --test arcs -- --nocapture exact_offset`.
+#[test]
+fn fitted_path_is_within_tolerance_of_the_exact_offset() {
+    println!("| job | traced | `arcs = false` | `arcs = true` |");
+    println!("|---|---|---|---|");
+    for mut job in jobs() {
+        let plan = pipeline::plan(&job, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));
+        let traced = profile::link(&plan.loops, &plan.params);
+        let mut row = vec![
+            job.name.clone(),
+            format!("{:.4}", hausdorff_to_exact(&job, &traced)),
+        ];
+        for arcs in [false, true] {
+            job.output.arcs = arcs;
+            let fitted = fit_toolpath(&traced, &ArcFitParams::for_job(&job));
+            let h = hausdorff_to_exact(&job, &fitted);
+            assert!(h <= job.operation.tolerance, "{}: {h}", job.name);
+            row.push(format!("{h:.4}"));
+        }
+        println!("| {} |", row.join(" | "));
+    }
 }
 
 /// The table of `docs/gcode.md`:
