@@ -4,6 +4,8 @@
 (operation: profile outside climb, depth 2, stepdown 1, tol 0.01 mm)
 (cut min: X0 Y0 Z-2)
 (cut max: X30 Y20 Z5)
+(levels: 2, z -1 -2)
+(moves: 10 lines, 8 arcs of radius <= 1000 mm)
 (length: cut 199.3 mm, rapid 17 mm)
 (estimated time: 19 s, rapids at 1000 mm/min, acceleration ignored)
 G21 G90 G17 G94

@@ -30,6 +30,8 @@ pub struct Job {
     pub machine: Machine,
     /// The depth profile φ(s) of a boss or cavity (`None` for a profile).
     pub profile: Option<crate::levels::DepthProfile>,
+    /// What the G-code may contain (arcs).
+    pub output: Output,
 }
 
 /// A flat end mill.
@@ -124,6 +126,8 @@ pub struct Machine {
     /// Dwell after `M3` so the spindle reaches speed before the first cut, seconds
     /// (0 writes no `G4`).
     pub spindle_dwell: f64,
+    /// Flood coolant: `M8` after the spindle starts, `M9` before it stops.
+    pub coolant: bool,
 }
 
 impl Default for Machine {
@@ -131,6 +135,26 @@ impl Default for Machine {
         Machine {
             rapid_rate: defaults::RAPID_RATE,
             spindle_dwell: defaults::SPINDLE_DWELL,
+            coolant: defaults::COOLANT,
+        }
+    }
+}
+
+/// What the G-code may contain.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Output {
+    /// Fit arcs (`G2`/`G3`) to the traced path; `false` writes lines only, for
+    /// controllers that handle arcs badly.
+    pub arcs: bool,
+    /// Arcs flatter than this radius are written as lines, mm (> 0).
+    pub max_arc_radius: f64,
+}
+
+impl Default for Output {
+    fn default() -> Self {
+        Output {
+            arcs: defaults::ARCS,
+            max_arc_radius: defaults::MAX_ARC_RADIUS,
         }
     }
 }
@@ -174,6 +198,13 @@ pub mod defaults {
     pub const S_BOTTOM: f64 = 0.8;
     /// `profile.s1`, `profile.s2`, `profile.steepness` for a sigmoid (the paper's Section 7 values).
     pub const SIGMOID: (f64, f64, f64) = (0.99, 0.75, 8.0);
+    /// `machine.coolant`: off (most hobby routers have none).
+    pub const COOLANT: bool = false;
+    /// `output.arcs`: on (GRBL 1.1 cuts arcs well and the file is smaller).
+    pub const ARCS: bool = true;
+    /// `output.max_arc_radius`, mm: a 1000 mm arc over a 100 mm chord bulges
+    /// 1.25 mm, so anything flatter is a line to the eye and to the machine.
+    pub const MAX_ARC_RADIUS: f64 = crate::toolpath::arcfit::DEFAULT_MAX_RADIUS;
 }
 
 /// The accepted values of `operation.kind`.
@@ -263,6 +294,8 @@ pub struct RawJob {
     pub field: Option<RawField>,
     /// `[machine]`
     pub machine: Option<RawMachine>,
+    /// `[output]`
+    pub output: Option<RawOutput>,
     /// `[profile]`
     pub profile: Option<RawProfile>,
 }
@@ -379,6 +412,18 @@ pub struct RawMachine {
     pub rapid_rate: Option<f64>,
     /// `spindle_dwell`, s
     pub spindle_dwell: Option<f64>,
+    /// `coolant`
+    pub coolant: Option<bool>,
+}
+
+/// `[output]`
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutput {
+    /// `arcs`
+    pub arcs: Option<bool>,
+    /// `max_arc_radius`, mm
+    pub max_arc_radius: Option<f64>,
 }
 
 /// A number, or a word (only `"auto"` is accepted; any other word is reported
@@ -816,6 +861,17 @@ impl RawJob {
                 }
                 d
             },
+            coolant: m.coolant.unwrap_or(defaults::COOLANT),
+        };
+
+        let o = self.output.unwrap_or_default();
+        let output = Output {
+            arcs: o.arcs.unwrap_or(defaults::ARCS),
+            max_arc_radius: positive(
+                "output.max_arc_radius",
+                o.max_arc_radius.unwrap_or(defaults::MAX_ARC_RADIUS),
+                "mm",
+            )?,
         };
 
         Ok(Job {
@@ -827,6 +883,7 @@ impl RawJob {
             field,
             machine,
             profile,
+            output,
         })
     }
 }
@@ -1051,6 +1108,9 @@ depth = 3.0
         assert_eq!(j.operation.direction, Direction::Climb);
         assert_eq!(j.field, FieldSpec::default());
         assert_eq!(j.machine, Machine::default());
+        assert_eq!(j.output, Output::default());
+        assert!(j.output.arcs && !j.machine.coolant);
+        assert_eq!(j.output.max_arc_radius, 1000.0);
         match j.shape {
             ShapeSource::Text {
                 font,
@@ -1271,6 +1331,25 @@ depth = 3.0
     }
 
     #[test]
+    fn output_and_coolant() {
+        let j = parse(&with("output", "arcs = false\nmax_arc_radius = 250")).unwrap();
+        assert!(!j.output.arcs);
+        assert_eq!(j.output.max_arc_radius, 250.0);
+        assert!(
+            parse(&with("machine", "coolant = true"))
+                .unwrap()
+                .machine
+                .coolant
+        );
+        assert_eq!(
+            err_key(&with("output", "max_arc_radius = 0")).0,
+            "output.max_arc_radius"
+        );
+        assert_eq!(err_key(&with("output", "arcs = 1")).0, "output.arcs");
+        assert_eq!(err_key(&with("output", "helix = true")).0, "output.helix");
+    }
+
+    #[test]
     fn load_job_names_the_file() {
         let e = load_job(Path::new("/no/such/job.toml")).unwrap_err();
         assert!(matches!(e, JobError::Read { .. }));
@@ -1310,6 +1389,9 @@ mod doc_tests {
             "pseudo_boundary",
             "rapid_rate",
             "spindle_dwell",
+            "coolant",
+            "arcs",
+            "max_arc_radius",
         ];
         for k in keys {
             assert!(
@@ -1325,6 +1407,7 @@ mod doc_tests {
             "operation",
             "field",
             "machine",
+            "output",
         ] {
             assert!(
                 DOC.contains(&format!("## `[{t}]`")),

@@ -4,6 +4,7 @@ use crate::field::{self, Boundary, FieldError, Layout, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape};
 use crate::job::{Direction, Job, OperationKind};
 use crate::levels::plan::{plan_levels, LevelInfo, LevelJob};
+use crate::toolpath::arcfit::{self, ArcFitParams};
 use crate::toolpath::gouge::{self, GougeReport};
 use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
 use crate::toolpath::zlevel::{link_levels, LevelParams};
@@ -303,7 +304,9 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     });
     let planned = plan_levels(&lj).map_err(|e| PipelineError::Other(e.to_string()))?;
     progress(Progress::Step);
-    let toolpath = link_levels(&planned.cuts, &planned.params);
+    let linked = link_levels(&planned.cuts, &planned.params);
+    // Arcs within tol/2 of the traced rings, before the gouge check (as for a profile).
+    let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
     // Gouge check, level by level, against that level's Γ(s_k) as polygons.
     let mut min_clearance = f64::INFINITY;
     for (section, cut) in toolpath.sections.iter().zip(&planned.cuts) {
@@ -356,7 +359,10 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
 
 fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
     let plan = plan(job, progress)?;
-    let toolpath = profile::link(&plan.loops, &plan.params);
+    let traced = profile::link(&plan.loops, &plan.params);
+    // Arcs (and merged lines) within tol/2 of the traced path, before the gouge
+    // check so that it checks the moves as written.
+    let toolpath = arcfit::fit_toolpath(&traced, &ArcFitParams::for_job(job));
     let part = DistanceIndex::new(&plan.polys);
     let report: GougeReport = gouge::check(&toolpath, &part, plan.params.radius, plan.params.top);
     let tol = plan.params.tol;

@@ -1,6 +1,7 @@
 //! Tool paths: the one intermediate representation that G-code, previews, time
 //! estimates and the gouge check all read (see `docs/architecture.md`).
 
+pub mod arcfit;
 pub mod gouge;
 pub mod profile;
 pub mod trace;
