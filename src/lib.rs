@@ -10,4 +10,5 @@ pub mod geometry;
 pub mod job;
 pub mod output;
 pub mod pipeline;
+pub mod report;
 pub mod toolpath;

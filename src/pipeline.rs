@@ -53,6 +53,10 @@ pub struct RunOutput {
     /// the wall being followed (a field-quality statistic, not a hazard: contact
     /// is always judged geometrically).
     pub fallbacks: usize,
+    /// The shape in mm (for the preview and the report's per-level gouge check).
+    pub shape: Shape,
+    /// The solved field (for the preview's equipotential curves and colour map).
+    pub field: field::Field,
 }
 
 /// Progress events for a front end's progress bar.
@@ -249,5 +253,7 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
         warnings: plan.warnings,
         glyphs: plan.shape.regions.iter().map(|r| r.name.clone()).collect(),
         fallbacks: plan.loops.iter().map(|l| l.fallbacks).sum(),
+        shape: plan.shape,
+        field: plan.field,
     })
 }
