@@ -10,5 +10,6 @@ pub mod geometry;
 pub mod job;
 pub mod output;
 pub mod pipeline;
+pub mod preview;
 pub mod report;
 pub mod toolpath;

@@ -206,10 +206,24 @@ impl FieldGrid {
         masked: &(dyn Fn(Vec2) -> bool + Sync),
     ) -> Vec<Equipotential> {
         let (edges, segs) = self.march(s);
-        // Refine every crossing once (each edge is shared by two cells).
+        // Refine every crossing once (each edge is shared by two cells). A linear
+        // position inside the mask (on an edge from a masked grid point) starts
+        // from the edge's free end instead: u is not to be evaluated in there.
         let points: Vec<Vec2> = edges
             .par_iter()
-            .map(|&(_, p)| refine(field, p, s, self.cell, masked))
+            .map(|&(e, p)| {
+                let start = if masked(p) {
+                    let (a, b) = self.edge_ends(e);
+                    if self.is_masked(a.0, a.1) {
+                        self.point(b.0, b.1)
+                    } else {
+                        self.point(a.0, a.1)
+                    }
+                } else {
+                    p
+                };
+                refine(field, start, s, self.cell, masked)
+            })
             .collect();
         chain(&segs, edges.len())
             .into_iter()
@@ -222,6 +236,14 @@ impl FieldGrid {
             .collect()
     }
 
+    /// The grid points at the two ends of an edge.
+    fn edge_ends(&self, e: Edge) -> ((usize, usize), (usize, usize)) {
+        match e {
+            Edge::H(i, j) => ((i, j), (i + 1, j)),
+            Edge::V(i, j) => ((i, j), (i, j + 1)),
+        }
+    }
+
     /// The crossings of level `s` on cell edges (with their linear positions) and
     /// the segments joining them, as pairs of crossing indices.
     #[allow(clippy::type_complexity)]
@@ -231,10 +253,7 @@ impl FieldGrid {
         let mut segs = Vec::new();
         let mut crossing = |e: Edge, edges: &mut Vec<(Edge, Vec2)>| -> usize {
             *ids.entry(e).or_insert_with(|| {
-                let (a, b) = match e {
-                    Edge::H(i, j) => ((i, j), (i + 1, j)),
-                    Edge::V(i, j) => ((i, j), (i, j + 1)),
-                };
+                let (a, b) = self.edge_ends(e);
                 let (va, vb) = (self.value(a.0, a.1), self.value(b.0, b.1));
                 let t = ((s - va) / (vb - va)).clamp(0.0, 1.0);
                 let p = self.point(a.0, a.1).lerp(self.point(b.0, b.1), t);
