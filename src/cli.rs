@@ -48,7 +48,8 @@ pub enum Command {
         /// Overwrite DIR/<name>.nc even if pfcam did not write it.
         #[arg(long)]
         force: bool,
-        /// No progress and no summary (warnings and errors are still printed).
+        /// Print nothing but errors: no progress, no summary, no warnings (they
+        /// are in the JSON report and the preview).
         #[arg(long, short)]
         quiet: bool,
         /// Lay the field's colour map under the SVG preview (a larger file).
@@ -65,7 +66,7 @@ pub enum Command {
         /// Overwrite FILE even if pfcam did not write it.
         #[arg(long)]
         force: bool,
-        /// No progress and no summary.
+        /// Print nothing but errors.
         #[arg(long, short)]
         quiet: bool,
         /// Lay the field's colour map under the drawing (a larger file).
@@ -85,7 +86,7 @@ pub enum Command {
         /// Overwrite FILE even if pfcam did not write it.
         #[arg(long)]
         force: bool,
-        /// No progress and no summary.
+        /// Print nothing but errors.
         #[arg(long, short)]
         quiet: bool,
         /// Resolution, pixels per mm.
@@ -238,10 +239,10 @@ fn cmd_run(path: &Path, out_dir: &Path, force: bool, quiet: bool, field_image: b
     write_atomic(&svg_target, svg.as_bytes(), force)?;
     write_atomic(&json_target, report.to_json().as_bytes(), force)?;
 
-    for w in &output.warnings {
-        eprintln!("warning: {w}");
-    }
     if !quiet {
+        for w in &output.warnings {
+            eprintln!("warning: {w}");
+        }
         let mut s = summary(&job, &output, &target);
         s += &format!(
             "\nwrote {} and {}\n{}",
@@ -263,8 +264,10 @@ fn run_quietly(path: &Path, quiet: bool) -> Result<(Job, RunOutput)> {
     let output = result
         .map_err(|e| anyhow!(e))
         .with_context(|| path.display().to_string())?;
-    for w in &output.warnings {
-        eprintln!("warning: {w}");
+    if !quiet {
+        for w in &output.warnings {
+            eprintln!("warning: {w}");
+        }
     }
     Ok((job, output))
 }

@@ -561,3 +561,35 @@ fn preview_and_field_commands_write_one_file_each() {
     assert!(text(&o.stderr).contains("--power"));
     assert!(!dir.join("b.svg").exists() && !dir.join("b.png").exists());
 }
+
+#[test]
+fn quiet_prints_nothing_and_warnings_go_to_the_report_and_the_preview() {
+    let dir = scratch("warn");
+    // A 12 mm A: its counter is too small for a 1/8" tool, which is a warning.
+    fs::write(
+        dir.join("job.toml"),
+        "[job]\nname = \"small-a\"\n[shape]\ntext = \"A\"\nheight = 12.0\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 2.0\n",
+    )
+    .expect("job");
+    let o = pfcam(&["run", "job.toml", "--out", "out", "--quiet"], &dir);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert!(
+        o.stdout.is_empty() && o.stderr.is_empty(),
+        "{}",
+        text(&o.stderr)
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(dir.join("out/small-a.json")).expect("json"))
+            .expect("JSON");
+    let w = v["warnings"].as_array().expect("warnings");
+    assert_eq!(w.len(), 1);
+    assert!(w[0].as_str().is_some_and(|s| s.contains("too small")));
+    let svg = fs::read_to_string(dir.join("out/small-a.svg")).expect("svg");
+    assert!(
+        svg.contains("1 warning: counter"),
+        "header shows the warning"
+    );
+    // Without --quiet the warning is printed.
+    let o = pfcam(&["run", "job.toml", "--out", "out"], &dir);
+    assert!(text(&o.stderr).contains("warning: counter"));
+}

@@ -15,7 +15,7 @@
 pub mod colormap;
 
 use crate::field::contour::{material_mask, ContourError, FieldGrid, GridSpec};
-use crate::geometry::Vec2;
+use crate::geometry::{DistanceIndex, Vec2};
 use crate::job::Job;
 use crate::pipeline::RunOutput;
 use crate::report::{split_levels, RunReport};
@@ -314,9 +314,9 @@ pub fn preview_svg(
     let (w, h) = (hi.x - lo.x, hi.y - lo.y);
     let size = w.max(h);
     // Type size and line width scale with the drawing (mm).
-    let fs = (size / 60.0).clamp(2.0, 6.0);
+    let fs = (size / 60.0).clamp(1.5, 6.0);
     let lw = (size / 900.0).clamp(0.06, 0.3);
-    let header = 5.6 * fs;
+    let header = if report.warnings.is_empty() { 5.6 } else { 6.8 } * fs;
     let doc_w = w.max(36.0 * fs);
     let x0 = lo.x - 0.5 * (doc_w - w);
     let top_y = -hi.y - header; // SVG y of the document's top edge
@@ -358,6 +358,8 @@ pub fn preview_svg(
     let mut shown: Vec<f64> = Vec::new();
     if !levels.is_empty() {
         let mask = material_mask(&polys_draw);
+        let part = DistanceIndex::new(&polys_draw);
+        let mut placed: Vec<Vec2> = Vec::new();
         let spec = GridSpec {
             lo,
             hi,
@@ -383,25 +385,44 @@ pub fn preview_svg(
             } else {
                 curve_colour(k, levels.len())
             };
-            // Label the longest piece at its highest vertex well inside the frame.
-            let inside = |p: &Vec2| {
-                p.x > lo.x + 2.0 * fs && p.x < hi.x - 2.0 * fs && p.y < hi.y - fs && p.y > lo.y + fs
-            };
             if !curves.is_empty() {
                 shown.push(s);
             }
-            if let Some(top) = curves
+            // Label the longest piece at a vertex inside the frame, clear of the
+            // cut, as far as possible from the labels placed so far (then as high
+            // as possible): labels of close curves do not pile up.
+            let inside = |p: &Vec2| {
+                p.x > lo.x + 2.0 * fs
+                    && p.x < hi.x - 2.0 * fs
+                    && p.y < hi.y - fs
+                    && p.y > lo.y + fs
+                    && part.distance(*p) > job.tool.diameter + 0.5 * fs
+            };
+            let score = |p: &Vec2| {
+                let free = placed
+                    .iter()
+                    .map(|q: &Vec2| q.dist(*p))
+                    .fold(8.0 * fs, f64::min);
+                (free, p.y)
+            };
+            if let Some(at) = curves
                 .iter()
                 .max_by(|a, b| a.length().total_cmp(&b.length()))
                 .and_then(|c| {
                     c.points
                         .iter()
+                        .step_by(3)
                         .filter(|p| inside(p))
-                        .max_by(|a, b| a.y.total_cmp(&b.y))
+                        .max_by(|a, b| {
+                            score(a)
+                                .partial_cmp(&score(b))
+                                .unwrap_or(std::cmp::Ordering::Equal)
+                        })
                 })
             {
+                placed.push(*at);
                 labels = labels.add(
-                    text(top.x, -top.y - 0.25 * fs, 0.6 * fs, &num(s)).set("fill", colour.clone()),
+                    text(at.x, -at.y + 0.2 * fs, 0.6 * fs, &num(s)).set("fill", colour.clone()),
                 );
             }
             let closed: Vec<Vec<Vec2>> = curves
@@ -500,7 +521,7 @@ pub fn preview_svg(
 
     // Direction arrows along the deepest pass.
     let diag = Vec2::new(w, h).norm();
-    let a = 0.7 * fs;
+    let a = (size / 35.0).min(0.7 * fs);
     let mut arrows = String::new();
     for pl in &deepest {
         let len: f64 = pl.windows(2).map(|w| w[0].dist(w[1])).sum();
@@ -599,6 +620,20 @@ pub fn preview_svg(
                 .map_or("-".into(), |c| format!("{c:.4} mm"))
         ),
     ];
+    let mut lines = lines.to_vec();
+    if let Some(w) = report.warnings.first() {
+        let mut w = format!(
+            "{} warning{}: {w}",
+            report.warnings.len(),
+            if report.warnings.len() == 1 { "" } else { "s" }
+        );
+        // Keep it on the page: DejaVu Sans averages about 0.55 em a character.
+        let fit = ((doc_w - 2.0 * fs) / (0.55 * 0.9 * fs)).floor().max(10.0) as usize;
+        if w.chars().count() > fit {
+            w = w.chars().take(fit - 1).collect::<String>() + "…";
+        }
+        lines.push(w);
+    }
     let mut head = Group::new()
         .set("font-family", FONT)
         .set("fill", "#000000")
@@ -606,12 +641,9 @@ pub fn preview_svg(
     head = head
         .add(text(x0 + fs, top_y + 1.5 * fs, 1.25 * fs, &report.job).set("font-weight", "bold"));
     for (k, l) in lines.iter().enumerate() {
-        head = head.add(text(
-            x0 + fs,
-            top_y + (2.9 + 1.2 * k as f64) * fs,
-            0.9 * fs,
-            l,
-        ));
+        let t = text(x0 + fs, top_y + (2.9 + 1.2 * k as f64) * fs, 0.9 * fs, l);
+        // The fourth line, if any, is a warning.
+        head = head.add(if k == 3 { t.set("fill", "#b34700") } else { t });
     }
 
     // Footer: scale bar, then the legend, flowing into rows.
