@@ -802,6 +802,57 @@ mod tests {
     }
 
     #[test]
+    fn arcs_in_a_level_are_drawn_at_their_length() {
+        use crate::report::feed_length_time;
+        use crate::toolpath::{Section, Toolpath};
+        // Plunge at (5, 0), a full circle about the origin, then a half circle back.
+        let from = Vec3::new(5.0, 0.0, 1.0);
+        let moves = vec![
+            Move::Linear {
+                to: Vec3::new(5.0, 0.0, -1.0),
+                feed: 100.0,
+            },
+            Move::Arc {
+                to: Vec3::new(5.0, 0.0, -1.0),
+                cx: 0.0,
+                cy: 0.0,
+                ccw: true,
+                feed: 600.0,
+            },
+            Move::Arc {
+                to: Vec3::new(-5.0, 0.0, -1.0),
+                cx: 0.0,
+                cy: 0.0,
+                ccw: false,
+                feed: 600.0,
+            },
+        ];
+        let tp = Toolpath {
+            start: from,
+            sections: vec![Section {
+                label: "circle".into(),
+                z: -1.0,
+                moves,
+            }],
+        };
+        let lv = split_levels(&tp);
+        assert_eq!(lv.len(), 1);
+        let pls = level_polylines(&lv[0].moves, 0.001);
+        assert_eq!(pls.len(), 1, "one continuous track");
+        let drawn: f64 = pls[0].windows(2).map(|w| w[0].dist(w[1])).sum();
+        let fed: f64 = lv[0]
+            .moves
+            .iter()
+            .map(|(f, m)| feed_length_time(*f, m).0)
+            .sum();
+        let exact = 1.5 * std::f64::consts::TAU * 5.0;
+        assert!((fed - 2.0 - exact).abs() < 1e-9, "{fed}");
+        assert!((drawn - exact).abs() < 1e-3 * exact, "{drawn}");
+        // Clockwise half circle from (5, 0) passes below the centre.
+        assert!(pls[0].iter().any(|p| p.y < -4.9));
+    }
+
+    #[test]
     fn nice_scale_lengths() {
         assert_eq!(nice_length(57.0), 50.0);
         assert_eq!(nice_length(19.0), 10.0);
