@@ -20,7 +20,19 @@
 //!
 //! The z-level stage needs the same curves, so this is the one place they are
 //! extracted: [`equipotentials`] for one value, [`FieldGrid`] to sample once and
-//! extract several values.
+//! extract several values, [`material_mask`] for the mask of a part.
+//!
+//! Measured (tests/preview.rs): for a single charge, Γ(s) a circle of radius r,
+//! the vertices are on it to 2e-11 and the chords within h²/(4r) (r = 20 mm,
+//! h = 0.5 mm: 2.5e-3 mm); Cassini ovals of two charges change from two loops
+//! to one at the lemniscate, vertices on r₁r₂ = b² to 1e-9 relative. On the
+//! letter-A job's field every vertex farther than two cells from the part is on
+//! its level to 1e-12. Nearer the wall a level may touch the material where the
+//! field's own boundary error e exceeds 1 − s; there vertices stop at the wall
+//! (|u − s| ≤ 1 − s + e) and small closed loops appear along it: they are the
+//! field's error made visible, not the extraction's. Speed: a 500 × 492 grid of
+//! that 124-charge field samples in about 0.15 s and four levels extract in
+//! 0.05 s on two cores.
 
 use super::Field;
 use crate::geometry::{polygon_winding_number, Vec2};
