@@ -21,7 +21,7 @@ use crate::pipeline::RunOutput;
 use crate::report::{split_levels, RunReport};
 use crate::toolpath::{Move, Vec3};
 use colormap::{auto_exponent, base64, encode_png, field_image, ColourMap, FieldImageSpec};
-use svg::node::element::{Circle, Group, Image, Line, Path, Rectangle, Text};
+use svg::node::element::{Circle, Group, Image, Line, Path, Rectangle, Text, Title};
 use svg::Document;
 
 /// Equipotential values drawn by default: far (0.9) to close (0.99) to the part.
@@ -739,6 +739,7 @@ pub fn preview_svg(
         )
         .set("width", format!("{}mm", num(doc_w)))
         .set("height", format!("{}mm", num(doc_h)))
+        .add(Title::new(format!("pfcam preview of job {}", job.name)))
         .add(
             Rectangle::new()
                 .set("x", num(x0))
