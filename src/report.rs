@@ -169,6 +169,17 @@ pub struct RunReport {
     pub warnings: Vec<String>,
 }
 
+/// The field a level at depth `z` follows: (s, N, max boundary error). For the
+/// profile every pass follows the shape's own field, s = 1 on the part, so this
+/// is the first solve for every z. Operations with a solve per level (boss,
+/// cavity) look their level up here by z.
+pub fn level_field(out: &RunOutput, z: f64) -> (f64, usize, f64) {
+    let _ = z;
+    out.solves
+        .first()
+        .map_or((1.0, 0, f64::NAN), |r| (1.0, r.n, r.max_error))
+}
+
 fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }
@@ -184,11 +195,6 @@ impl RunReport {
             .map(|c| c.flatten(job.operation.tolerance * FLATTEN_FRACTION))
             .collect();
         let part = DistanceIndex::new(&polys);
-        let (n, max_err) = out
-            .solves
-            .first()
-            .map(|r| (r.n, r.max_error))
-            .unwrap_or((0, f64::NAN));
         let levels = split_levels(&out.toolpath)
             .into_iter()
             .map(|lv| {
@@ -212,9 +218,10 @@ impl RunReport {
                     }],
                 };
                 let g = gouge::check(&sub, &part, radius, top);
+                let (s, n, max_err) = level_field(out, lv.z);
                 LevelReport {
                     z: lv.z,
-                    s: 1.0,
+                    s,
                     n,
                     max_boundary_error: max_err,
                     path_length_mm: len,
