@@ -593,3 +593,28 @@ fn quiet_prints_nothing_and_warnings_go_to_the_report_and_the_preview() {
     let o = pfcam(&["run", "job.toml", "--out", "out"], &dir);
     assert!(text(&o.stderr).contains("warning: counter"));
 }
+
+#[test]
+fn many_levels_get_one_width_and_a_colour_bar() {
+    let mut job = load_job(&shipped("letter-i.toml")).expect("job");
+    job.tool.stepdown = 0.25;
+    let out = pipeline::run(&job, &mut |_| {}).expect("run");
+    let report = RunReport::new(&job, &out);
+    assert_eq!(report.levels.len(), 12);
+    let svg = preview_svg(&job, &out, &report, &PreviewOptions::default()).expect("preview");
+    assert!(svg.contains("12 levels") && svg.contains("class=\"depth-bar\""));
+    assert_eq!(svg.matches("data-z=").count(), 12, "one path per level");
+    // No per-level legend entries: the bar stands for them.
+    assert!(!svg.contains(">z -0.25<"));
+    let img = Rendered::new(&svg, 10.0);
+    // The bar shows the whole ramp: both ends' colours appear in the picture.
+    let px = img.pixmap.pixels();
+    for t in [0.0, 1.0] {
+        let want = hex(&depth_colour(t));
+        assert!(
+            px.iter()
+                .any(|c| close([c.red(), c.green(), c.blue(), c.alpha()], want, 12)),
+            "colour of t = {t}"
+        );
+    }
+}

@@ -21,7 +21,9 @@ use crate::pipeline::RunOutput;
 use crate::report::{split_levels, RunReport};
 use crate::toolpath::{Move, Vec3};
 use colormap::{auto_exponent, base64, encode_png, field_image, ColourMap, FieldImageSpec};
-use svg::node::element::{Circle, Group, Image, Line, Path, Rectangle, Text, Title};
+use svg::node::element::{
+    Circle, Definitions, Group, Image, Line, LinearGradient, Path, Rectangle, Stop, Text, Title,
+};
 use svg::Document;
 
 /// Equipotential values drawn by default: far (0.9) to close (0.99) to the part.
@@ -241,6 +243,10 @@ fn flatten_arc(a: Vec2, b: Vec2, c: Vec2, ccw: bool, tol: f64) -> Vec<Vec2> {
         .collect()
 }
 
+fn polyline_length(pl: &[Vec2]) -> f64 {
+    pl.windows(2).map(|w| w[0].dist(w[1])).sum()
+}
+
 /// Points and unit tangents at `count` evenly spaced arc lengths along `pl`.
 fn along(pl: &[Vec2], count: usize) -> Vec<(Vec2, Vec2)> {
     let len: f64 = pl.windows(2).map(|w| w[0].dist(w[1])).sum();
@@ -280,10 +286,23 @@ fn nice_length(max: f64) -> f64 {
 /// Font families for every text.
 const FONT: &str = "DejaVu Sans, Arial, Helvetica, sans-serif";
 
-/// Stroke width of the level `above` levels above the deepest: each shallower
-/// level is wider by three base widths, so overlapping passes show as bands.
-fn band_width(lw: f64, above: usize) -> f64 {
-    lw * (2.0 + 3.0 * above.min(6) as f64)
+/// Up to this many levels each get a band width and a legend entry of their own;
+/// more (a boss or cavity has dozens) are drawn in one width with a colour bar.
+pub const BAND_LEVELS: usize = 6;
+
+/// At most this many tracks of the deepest level get direction arrows (the
+/// longest ones): a clearing level has many.
+pub const ARROW_TRACKS: usize = 8;
+
+/// Stroke width of the level `above` levels above the deepest of `n` levels:
+/// with few levels each shallower one is wider by three base widths, so passes
+/// over the same track show as bands; with many, all are 1.5 base widths.
+fn band_width(lw: f64, above: usize, n: usize) -> f64 {
+    if n > BAND_LEVELS {
+        1.5 * lw
+    } else {
+        lw * (2.0 + 3.0 * above.min(BAND_LEVELS) as f64)
+    }
 }
 
 fn text(x: f64, y: f64, size: f64, content: &str) -> Text {
@@ -505,7 +524,7 @@ pub fn preview_svg(
         .set("class", "toolpath");
     for (k, l) in lv.iter().enumerate() {
         let pls = level_polylines(&l.moves, tol_draw);
-        let width = band_width(lw, n_lv - 1 - k);
+        let width = band_width(lw, n_lv - 1 - k, n_lv);
         cut = cut.add(
             Path::new()
                 .set("d", path_data(&pls, false))
@@ -523,6 +542,8 @@ pub fn preview_svg(
     let diag = Vec2::new(w, h).norm();
     let a = (size / 35.0).min(0.7 * fs);
     let mut arrows = String::new();
+    deepest.sort_by(|p, q| polyline_length(q).total_cmp(&polyline_length(p)));
+    deepest.truncate(ARROW_TRACKS);
     for pl in &deepest {
         let len: f64 = pl.windows(2).map(|w| w[0].dist(w[1])).sum();
         if len < 3.0 * a {
@@ -674,14 +695,23 @@ pub fn preview_svg(
     enum Swatch {
         Line(String, f64, bool),
         Dot(String),
+        /// The depth colour bar, from the shallowest to the deepest level.
+        Bar,
     }
     let mut entries: Vec<(Swatch, String)> = Vec::new();
-    for (k, l) in lv.iter().enumerate() {
-        let width = band_width(lw, n_lv - 1 - k);
+    if n_lv > BAND_LEVELS {
         entries.push((
-            Swatch::Line(depth_colour(depth_t(l.z)), width.max(0.3 * fs), false),
-            format!("z {}", num(l.z)),
+            Swatch::Bar,
+            format!("z {} … {} mm, {n_lv} levels", num(zmax), num(zmin)),
         ));
+    } else {
+        for (k, l) in lv.iter().enumerate() {
+            let width = band_width(lw, n_lv - 1 - k, n_lv);
+            entries.push((
+                Swatch::Line(depth_colour(depth_t(l.z)), width.max(0.3 * fs), false),
+                format!("z {}", num(l.z)),
+            ));
+        }
     }
     entries.push((Swatch::Line("#6b6b6b".into(), lw, true), "rapid".into()));
     entries.push((Swatch::Dot("#00a650".into()), "start, tool ⌀".into()));
@@ -696,7 +726,9 @@ pub fn preview_svg(
     let mut row_y = by;
     let right = x0 + doc_w - fs;
     for (sw, label) in entries {
-        let ew = 2.5 * fs + 0.5 * fs * label.chars().count() as f64;
+        // The swatch is 1.6 fs long (the colour bar 6 fs), its label follows.
+        let sw_w = if matches!(sw, Swatch::Bar) { 6.0 } else { 1.6 } * fs;
+        let ew = sw_w + 0.9 * fs + 0.5 * fs * label.chars().count() as f64;
         if x + ew > right && x > x0 + 2.0 * fs {
             x = x0 + fs;
             row_y += 1.4 * fs;
@@ -725,8 +757,37 @@ pub fn preview_svg(
                     .set("r", num(0.3 * fs))
                     .set("fill", c),
             ),
+            Swatch::Bar => {
+                let mut grad = LinearGradient::new()
+                    .set("id", "pfcam-depth")
+                    .set("x1", "0")
+                    .set("x2", "1")
+                    .set("y1", "0")
+                    .set("y2", "0");
+                for t in [0.0, 0.35, 0.7, 1.0] {
+                    grad = grad.add(
+                        Stop::new()
+                            .set("offset", num(t))
+                            .set("stop-color", depth_colour(t)),
+                    );
+                }
+                foot.add(Definitions::new().add(grad)).add(
+                    Rectangle::new()
+                        .set("x", num(x))
+                        .set("y", num(row_y - 0.3 * fs))
+                        .set("width", num(sw_w))
+                        .set("height", num(0.6 * fs))
+                        .set("fill", "url(#pfcam-depth)")
+                        .set("class", "depth-bar"),
+                )
+            }
         };
-        foot = foot.add(text(x + 2.0 * fs, row_y + 0.3 * fs, 0.8 * fs, &label));
+        foot = foot.add(text(
+            x + sw_w + 0.4 * fs,
+            row_y + 0.3 * fs,
+            0.8 * fs,
+            &label,
+        ));
         x += ew;
     }
     let bottom = row_y + 1.2 * fs;
