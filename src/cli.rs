@@ -10,6 +10,9 @@ use pfcam::geometry::{build_shape, glyphs::paper_chars};
 use pfcam::job::{load_job, Job, JobError};
 use pfcam::output::{check_target, write_atomic, OutputError};
 use pfcam::pipeline::{self, Progress, RunOutput};
+use pfcam::preview::colormap::ColourMap;
+use pfcam::preview::{field_png, preview_svg, PreviewOptions};
+use pfcam::report::RunReport;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
@@ -45,9 +48,59 @@ pub enum Command {
         /// Overwrite DIR/<name>.nc even if pfcam did not write it.
         #[arg(long)]
         force: bool,
-        /// No progress and no summary (warnings and errors are still printed).
+        /// Print nothing but errors: no progress, no summary, no warnings (they
+        /// are in the JSON report and the preview).
         #[arg(long, short)]
         quiet: bool,
+        /// Lay the field's colour map under the SVG preview (a larger file).
+        #[arg(long)]
+        field_image: bool,
+    },
+    /// Run a job and write only its SVG preview (no G-code, no report).
+    Preview {
+        /// The job file.
+        job: PathBuf,
+        /// The SVG file to write (default: out/<name>.svg).
+        #[arg(long, short, value_name = "FILE.svg")]
+        output: Option<PathBuf>,
+        /// Overwrite FILE even if pfcam did not write it.
+        #[arg(long)]
+        force: bool,
+        /// Print nothing but errors.
+        #[arg(long, short)]
+        quiet: bool,
+        /// Lay the field's colour map under the drawing (a larger file).
+        #[arg(long)]
+        field_image: bool,
+        /// Equipotential values s to draw, comma separated, each in (0, 1).
+        #[arg(long, value_delimiter = ',', default_values_t = pfcam::preview::DEFAULT_LEVELS)]
+        levels: Vec<f64>,
+    },
+    /// Run a job and write its potential field as the paper's colour map (PNG).
+    Field {
+        /// The job file.
+        job: PathBuf,
+        /// The PNG file to write (default: out/<name>.png).
+        #[arg(long, short, value_name = "FILE.png")]
+        output: Option<PathBuf>,
+        /// Overwrite FILE even if pfcam did not write it.
+        #[arg(long)]
+        force: bool,
+        /// Print nothing but errors.
+        #[arg(long, short)]
+        quiet: bool,
+        /// Resolution, pixels per mm.
+        #[arg(long, default_value_t = 8.0)]
+        px_per_mm: f64,
+        /// Colours: `red-cyan` (the paper's R = uⁿ, G = B = 1 − R, material
+        /// yellow), `paper` (the same with the paper's banded n, Section 3.2) or
+        /// `grey` (Appendix II's col(u) = uⁿ).
+        #[arg(long, default_value = "red-cyan", value_parser = ["red-cyan", "paper", "grey"])]
+        map: String,
+        /// The exponent n for `red-cyan` and `grey` (default: fitted so the
+        /// colours span the picture).
+        #[arg(long, value_name = "N")]
+        power: Option<f64>,
     },
     /// Check a job file and its shape without running it; prints `ok: <name>`.
     Validate {
@@ -82,7 +135,25 @@ pub fn run(args: Args) -> Result<()> {
             out,
             force,
             quiet,
-        } => cmd_run(&job, &out, force, quiet),
+            field_image,
+        } => cmd_run(&job, &out, force, quiet, field_image),
+        Command::Preview {
+            job,
+            output,
+            force,
+            quiet,
+            field_image,
+            levels,
+        } => cmd_preview(&job, output, force, quiet, field_image, levels),
+        Command::Field {
+            job,
+            output,
+            force,
+            quiet,
+            px_per_mm,
+            map,
+            power,
+        } => cmd_field(&job, output, force, quiet, px_per_mm, &map, power),
         Command::Validate { job } => cmd_validate(&job),
         Command::Glyphs => cmd_glyphs(),
         Command::Convergence { glyph, n, json } => cmd_convergence(glyph, &n, json),
@@ -130,27 +201,145 @@ fn cmd_validate(path: &Path) -> Result<()> {
     stdout_line(&format!("ok: {}", job.name))
 }
 
-fn cmd_run(path: &Path, out_dir: &Path, force: bool, quiet: bool) -> Result<()> {
+fn cmd_run(path: &Path, out_dir: &Path, force: bool, quiet: bool, field_image: bool) -> Result<()> {
     let job = load(path)?;
     let target = out_dir.join(format!("{}.nc", job.name));
+    let svg_target = target.with_extension("svg");
+    let json_target = target.with_extension("json");
     // Refuse before the (long) run, and again when writing.
-    check_target(&target, force)?;
+    for t in [&target, &svg_target, &json_target] {
+        check_target(t, force)?;
+    }
 
+    let mut progress = Reporter::new(quiet);
+    let result = pipeline::run(&job, &mut |p| progress.event(p));
+    let output = match result {
+        Ok(o) => o,
+        Err(e) => {
+            progress.finish();
+            return Err(anyhow!(e)).with_context(|| path.display().to_string());
+        }
+    };
+    let report = RunReport::new(&job, &output);
+    progress.event(Progress::Stage {
+        name: "drawing the preview".into(),
+        total: 1,
+    });
+    let opts = PreviewOptions {
+        field_image,
+        ..PreviewOptions::default()
+    };
+    let svg = preview_svg(&job, &output, &report, &opts);
+    progress.event(Progress::Step);
+    progress.finish();
+    let svg = svg.context("drawing the preview")?;
+
+    // Everything is in memory: the G-code first, then its companions.
+    let gcode = write_gcode(&output.toolpath, &job)?;
+    write_atomic(&target, gcode.as_bytes(), force)?;
+    write_atomic(&svg_target, svg.as_bytes(), force)?;
+    write_atomic(&json_target, report.to_json().as_bytes(), force)?;
+
+    if !quiet {
+        for w in &output.warnings {
+            eprintln!("warning: {w}");
+        }
+        let mut s = summary(&job, &output, &target);
+        s += &format!(
+            "\nwrote {} and {}\n{}",
+            svg_target.display(),
+            json_target.display(),
+            report.table()
+        );
+        stdout_line(&s)?;
+    }
+    Ok(())
+}
+
+/// Run a job for a command that writes one file derived from the run.
+fn run_quietly(path: &Path, quiet: bool) -> Result<(Job, RunOutput)> {
+    let job = load(path)?;
     let mut progress = Reporter::new(quiet);
     let result = pipeline::run(&job, &mut |p| progress.event(p));
     progress.finish();
     let output = result
         .map_err(|e| anyhow!(e))
         .with_context(|| path.display().to_string())?;
-
-    let gcode = write_gcode(&output.toolpath, &job)?;
-    write_atomic(&target, gcode.as_bytes(), force)?;
-
-    for w in &output.warnings {
-        eprintln!("warning: {w}");
-    }
     if !quiet {
-        stdout_line(&summary(&job, &output, &target))?;
+        for w in &output.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    Ok((job, output))
+}
+
+/// `FILE` as given, or `out/<name>.<ext>`; the job is loaded to know the name.
+fn output_path(path: &Path, given: Option<PathBuf>, ext: &str) -> Result<PathBuf> {
+    match given {
+        Some(p) => Ok(p),
+        None => Ok(Path::new("out").join(format!("{}.{ext}", load(path)?.name))),
+    }
+}
+
+fn cmd_preview(
+    path: &Path,
+    output: Option<PathBuf>,
+    force: bool,
+    quiet: bool,
+    field_image: bool,
+    levels: Vec<f64>,
+) -> Result<()> {
+    if let Some(s) = levels.iter().find(|s| !(**s > 0.0 && **s < 1.0)) {
+        bail!("--levels: every value must lie strictly between 0 and 1, got {s}");
+    }
+    let target = output_path(path, output, "svg")?;
+    check_target(&target, force)?;
+    let (job, out) = run_quietly(path, quiet)?;
+    let report = RunReport::new(&job, &out);
+    let opts = PreviewOptions {
+        levels,
+        field_image,
+        ..PreviewOptions::default()
+    };
+    let svg = preview_svg(&job, &out, &report, &opts).context("drawing the preview")?;
+    write_atomic(&target, svg.as_bytes(), force)?;
+    if !quiet {
+        stdout_line(&format!("wrote {}", target.display()))?;
+    }
+    Ok(())
+}
+
+fn cmd_field(
+    path: &Path,
+    output: Option<PathBuf>,
+    force: bool,
+    quiet: bool,
+    px_per_mm: f64,
+    map: &str,
+    power: Option<f64>,
+) -> Result<()> {
+    if !(px_per_mm > 0.0 && px_per_mm <= 100.0) {
+        bail!("--px-per-mm must be a number in (0, 100], got {px_per_mm}");
+    }
+    match (map, power) {
+        (_, Some(n)) if !(n > 0.0 && n.is_finite()) => {
+            bail!("--power must be a positive number, got {n}")
+        }
+        ("paper", Some(_)) => bail!("--power: the paper map has its own exponents"),
+        _ => {}
+    }
+    let pick = |auto: f64| match map {
+        "paper" => ColourMap::Paper,
+        "grey" => ColourMap::Grey(power.unwrap_or(auto)),
+        _ => ColourMap::RedCyan(power.unwrap_or(auto)),
+    };
+    let target = output_path(path, output, "png")?;
+    check_target(&target, force)?;
+    let (job, out) = run_quietly(path, quiet)?;
+    let png = field_png(&job, &out, px_per_mm, pick).context("drawing the field")?;
+    write_atomic(&target, &png, force)?;
+    if !quiet {
+        stdout_line(&format!("wrote {}", target.display()))?;
     }
     Ok(())
 }

@@ -12,4 +12,6 @@ pub mod job;
 pub mod levels;
 pub mod output;
 pub mod pipeline;
+pub mod preview;
+pub mod report;
 pub mod toolpath;

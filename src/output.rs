@@ -4,12 +4,12 @@
 //! (`.<name>.tmp-<pid>-<k>`), flushed to disk, then renamed over the final name,
 //! so the final name holds either the old file or the whole new one: an error at
 //! any point leaves nothing under the final name. An existing file is replaced
-//! only if pfcam wrote it (its first line is pfcam's header, see
-//! [`crate::gcode::is_pfcam_output`]) or if the caller forces it.
+//! only if pfcam wrote it (G-code, SVG, JSON or PNG with pfcam's marker, see
+//! [`is_pfcam_file`]) or if the caller forces it.
 
 use crate::gcode::is_pfcam_output;
 use std::fs;
-use std::io::{self, BufRead, Read, Write};
+use std::io::{self, Read, Write};
 use std::path::{Path, PathBuf};
 
 /// What can go wrong writing an output file.
@@ -45,14 +45,43 @@ pub enum OutputError {
     },
 }
 
-/// Whether the existing file at `path` was written by pfcam (its first line).
+/// Whether the existing file at `path` was written by pfcam (see [`is_pfcam_file`]).
 pub fn written_by_pfcam(path: &Path) -> io::Result<bool> {
     let f = fs::File::open(path)?;
-    let mut first = Vec::new();
-    // The header line is short; reading a bounded prefix keeps a huge foreign
-    // file without newlines from being read whole.
-    io::BufReader::new(f.take(4096)).read_until(b'\n', &mut first)?;
-    Ok(is_pfcam_output(&String::from_utf8_lossy(&first)))
+    let mut prefix = Vec::new();
+    // The markers are near the start; reading a bounded prefix keeps a huge
+    // foreign file from being read whole.
+    f.take(PREFIX_LEN).read_to_end(&mut prefix)?;
+    Ok(is_pfcam_file(&prefix))
+}
+
+/// How much of an existing file [`written_by_pfcam`] reads.
+pub const PREFIX_LEN: u64 = 4096;
+
+/// The PNG signature.
+const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
+
+/// Whether a file starting with `prefix` is one pfcam wrote:
+/// - G-code: its first line is `(pfcam <version> job <name>)`;
+/// - SVG: its first line is the comment `<!-- pfcam <version> job <name> -->`;
+/// - JSON: its first line is `{` and its second the key `"generator": "pfcam <version>"`;
+/// - PNG: a `tEXt` chunk `Software` = `pfcam <version>` (written right after the
+///   image header).
+pub fn is_pfcam_file(prefix: &[u8]) -> bool {
+    if prefix.starts_with(PNG_SIGNATURE) {
+        let needle = b"tEXtSoftware\0pfcam ";
+        return prefix.windows(needle.len()).any(|w| w == needle);
+    }
+    let text = String::from_utf8_lossy(prefix);
+    let mut lines = text.split('\n');
+    let first = lines.next().unwrap_or("");
+    if is_pfcam_output(first) || crate::preview::is_pfcam_svg(first) {
+        return true;
+    }
+    first.trim_end() == "{"
+        && lines
+            .next()
+            .is_some_and(|l| l.trim_start().starts_with("\"generator\": \"pfcam "))
 }
 
 /// Check that `path` may be written: it does not exist, or it is a regular file
@@ -182,6 +211,37 @@ mod tests {
         write_atomic(&p, b"(pfcam 0.1.0 job x)\n", true).unwrap();
         assert_eq!(fs::read_to_string(&p).unwrap(), "(pfcam 0.1.0 job x)\n");
         fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn recognises_each_kind_of_pfcam_file() {
+        for own in [
+            "(pfcam 0.1.0 job x)\nM2\n",
+            "<!-- pfcam 0.1.0 job x -->\n<svg xmlns=\"http://www.w3.org/2000/svg\"/>\n",
+            "{\n  \"generator\": \"pfcam 0.1.0\",\n  \"job\": \"x\"\n}\n",
+        ] {
+            assert!(is_pfcam_file(own.as_bytes()), "{own}");
+        }
+        for foreign in [
+            "G0 X1\n",
+            "<svg xmlns=\"http://www.w3.org/2000/svg\"/>\n<!-- pfcam 0.1.0 job x -->\n",
+            "{\"generator\": \"pfcam 0.1.0\"}\n",
+            "{\n  \"job\": \"x\",\n  \"generator\": \"pfcam 0.1.0\"\n}\n",
+            "",
+        ] {
+            assert!(!is_pfcam_file(foreign.as_bytes()), "{foreign}");
+        }
+        let img = crate::preview::colormap::Rgb8 {
+            width: 1,
+            height: 1,
+            data: vec![0, 0, 0],
+        };
+        let png = crate::preview::colormap::encode_png(&img, "x").unwrap();
+        assert!(is_pfcam_file(&png));
+        let mut other = png.clone();
+        let at = other.windows(8).position(|w| w == b"Software").unwrap();
+        other[at..at + 8].copy_from_slice(b"Comment_");
+        assert!(!is_pfcam_file(&other));
     }
 
     #[test]

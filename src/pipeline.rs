@@ -58,6 +58,10 @@ pub struct RunOutput {
     pub fallbacks: usize,
     /// Boss and cavity: one entry per level (z, s, its solve, the cavity's coverage).
     pub levels: Vec<LevelInfo>,
+    /// The shape in mm (for the preview and the report's per-level gouge check).
+    pub shape: Shape,
+    /// The solved field (for the preview's equipotential curves and colour map).
+    pub field: field::Field,
 }
 
 /// Progress events for a front end's progress bar.
@@ -309,7 +313,13 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
     // Gouge check, level by level, against that level's Γ(s_k) as polygons.
     let mut min_clearance = f64::INFINITY;
-    for (section, cut) in toolpath.sections.iter().zip(&planned.cuts) {
+    let mut planned = planned;
+    for ((section, cut), info) in toolpath
+        .sections
+        .iter()
+        .zip(&planned.cuts)
+        .zip(planned.info.iter_mut())
+    {
         let part = DistanceIndex::new(&cut.part);
         let one = Toolpath {
             start: toolpath.start,
@@ -324,6 +334,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
             });
         }
         min_clearance = min_clearance.min(rep.min_clearance);
+        info.min_clearance = rep.min_clearance;
     }
     let mut solves = vec![SolveReport {
         label: shape
@@ -354,6 +365,8 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         glyphs: shape.regions.iter().map(|r| r.name.clone()).collect(),
         fallbacks: 0,
         levels: planned.info,
+        shape,
+        field: solved.solution.field.clone(),
     })
 }
 
@@ -381,5 +394,7 @@ fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutpu
         glyphs: plan.shape.regions.iter().map(|r| r.name.clone()).collect(),
         fallbacks: plan.loops.iter().map(|l| l.fallbacks).sum(),
         levels: Vec::new(),
+        shape: plan.shape,
+        field: plan.field,
     })
 }

@@ -196,10 +196,23 @@ fn own_output_file_is_not_refused() {
     let err = text(&o.stderr);
     assert!(!err.contains("refusing"), "{err}");
     assert_ne!(o.status.code(), Some(3), "{err}");
-    // Replaced by a new pfcam file if the run succeeded, untouched otherwise.
+    // Replaced by a new pfcam file if the run succeeded (with its preview and
+    // report beside it), untouched otherwise.
     let now = fs::read_to_string(&own).expect("read");
     assert!(now.starts_with("(pfcam "), "{now}");
-    assert_eq!(files_in(&dir.join("out")), [own]);
+    let files = files_in(&dir.join("out"));
+    if o.status.success() {
+        assert_eq!(
+            files,
+            [
+                own.with_extension("json"),
+                own.clone(),
+                own.with_extension("svg")
+            ]
+        );
+    } else {
+        assert_eq!(files, [own]);
+    }
 }
 
 #[test]
@@ -293,7 +306,15 @@ fn run_writes_gcode_and_a_rerun_replaces_it_identically() {
     assert!(o.status.success(), "{}", text(&o.stderr));
     assert!(o.stdout.is_empty(), "--quiet printed {}", text(&o.stdout));
     assert_eq!(fs::read_to_string(&nc).expect("read"), first);
-    assert_eq!(files_in(&dir.join("out")), [nc]);
+    // The preview and the report are written beside the G-code.
+    assert_eq!(
+        files_in(&dir.join("out")),
+        [
+            nc.with_extension("json"),
+            nc.clone(),
+            nc.with_extension("svg")
+        ]
+    );
 }
 
 #[test]

@@ -37,6 +37,9 @@ pub struct LevelInfo {
     pub max_error: f64,
     /// Cavity: the uncut share of the reachable area (measured on a grid).
     pub uncut: Option<f64>,
+    /// Smallest clearance of the level's moves from the gouge check against
+    /// Γ(s_k), mm (filled in by the pipeline after linking).
+    pub min_clearance: f64,
 }
 
 /// Inputs of the level planner.
@@ -329,6 +332,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                 m: solved.m,
                 max_error: solved.solution.max_error,
                 uncut,
+                min_clearance: f64::NAN,
             };
             Ok((
                 LevelCut {

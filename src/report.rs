@@ -1,0 +1,393 @@
+//! The run report: per z-level and total figures of a run, as JSON
+//! (`DIR/<job name>.json`) and as a short human table.
+//!
+//! A *level* is one cutting depth z: every feed move that ends at that z (the
+//! plunge into it, the horizontal pass, any ramp down to it). For the profile
+//! operation every level follows the same field, the part's own (s = 1 on the
+//! part's boundary, Γ(1) offset by the tool radius), so every level reports that
+//! solve's N and max boundary error; with z-levels of their own (s_k < 1) the
+//! level's own solve goes there.
+
+use crate::geometry::DistanceIndex;
+use crate::job::Job;
+use crate::pipeline::{RunOutput, SolveReport, FLATTEN_FRACTION};
+use crate::toolpath::{arc_length, gouge, Move, Section, Toolpath, Vec3};
+use serde::Serialize;
+
+/// What the first key of every pfcam JSON file says: `"generator": "pfcam <version>"`.
+pub fn generator() -> String {
+    format!("pfcam {}", env!("CARGO_PKG_VERSION"))
+}
+
+/// Two depths closer than this (mm) are the same level.
+pub const Z_EPS: f64 = 1e-6;
+
+/// The feed moves of one level, each with the point it starts from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LevelMoves {
+    /// The depth, mm.
+    pub z: f64,
+    /// (start point, move), in cutting order.
+    pub moves: Vec<(Vec3, Move)>,
+}
+
+/// Split a tool path's feed moves by the z they end at, shallowest level first.
+/// Rapids belong to no level.
+pub fn split_levels(tp: &Toolpath) -> Vec<LevelMoves> {
+    let mut levels: Vec<LevelMoves> = Vec::new();
+    let mut at = tp.start;
+    for m in tp.moves() {
+        let to = m.to();
+        if !matches!(m, Move::Rapid { .. }) {
+            match levels.iter_mut().find(|l| (l.z - to.z).abs() <= Z_EPS) {
+                Some(l) => l.moves.push((at, *m)),
+                None => levels.push(LevelMoves {
+                    z: to.z,
+                    moves: vec![(at, *m)],
+                }),
+            }
+        }
+        at = to;
+    }
+    levels.sort_by(|a, b| b.z.total_cmp(&a.z));
+    levels
+}
+
+/// Length (mm) and time (s) of a feed move from `from`.
+pub fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
+    match *m {
+        Move::Rapid { .. } => (0.0, 0.0),
+        Move::Linear { to, feed } => {
+            let l = from.dist(to);
+            (l, l / feed * 60.0)
+        }
+        Move::Arc {
+            to,
+            cx,
+            cy,
+            ccw,
+            feed,
+        } => {
+            let l = arc_length(from, to, cx, cy, ccw);
+            (l, l / feed * 60.0)
+        }
+    }
+}
+
+/// One level of the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LevelReport {
+    /// Depth, mm.
+    pub z: f64,
+    /// The equipotential value the level's path offsets (1 for a profile: the
+    /// part's boundary).
+    pub s: f64,
+    /// Singularities N of the level's field.
+    pub n: usize,
+    /// Max boundary error of the level's field.
+    pub max_boundary_error: f64,
+    /// Feed length at this level (plunge and pass), mm.
+    pub path_length_mm: f64,
+    /// Smallest clearance (distance to the part − tool radius) of this level's
+    /// moves from the independent gouge check, mm; null if none is below the
+    /// stock top.
+    pub min_clearance_mm: Option<f64>,
+    /// Feed time at this level, seconds (acceleration ignored).
+    pub time_s: f64,
+    /// Cavity levels: the uncut share of the reachable area, measured on a grid
+    /// of a tenth of the tool radius (null for other operations).
+    pub uncut_share: Option<f64>,
+}
+
+/// Totals of the run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Totals {
+    /// Number of levels.
+    pub levels: usize,
+    /// Feed length, mm.
+    pub cut_length_mm: f64,
+    /// Rapid length, mm.
+    pub rapid_length_mm: f64,
+    /// Estimated time, seconds, rapids at the machine's rapid rate, acceleration
+    /// ignored (as in the G-code header).
+    pub time_s: f64,
+    /// Smallest clearance over the whole path, mm (null if nothing is cut).
+    pub min_clearance_mm: Option<f64>,
+    /// Largest max boundary error over every solve.
+    pub max_boundary_error: f64,
+    /// Tracing steps that fell back to the geometric normal.
+    pub fallbacks: usize,
+}
+
+/// One MFS solve in the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SolveEntry {
+    /// What was solved.
+    pub label: String,
+    /// Singularities N.
+    pub n: usize,
+    /// Collocation points M.
+    pub m: usize,
+    /// Pseudo-boundary distance, mm.
+    pub pseudo_boundary_mm: f64,
+    /// Max boundary error.
+    pub max_boundary_error: f64,
+}
+
+impl From<&SolveReport> for SolveEntry {
+    fn from(r: &SolveReport) -> Self {
+        SolveEntry {
+            label: r.label.clone(),
+            n: r.n,
+            m: r.m,
+            pseudo_boundary_mm: r.distance,
+            max_boundary_error: r.max_error,
+        }
+    }
+}
+
+/// The whole report; `generator` is its first key, which is how pfcam recognises
+/// its own JSON files (see `output`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunReport {
+    /// `pfcam <version>`.
+    pub generator: String,
+    /// The job's name.
+    pub job: String,
+    /// Operation, e.g. `profile outside`.
+    pub operation: String,
+    /// Tool diameter, mm.
+    pub tool_diameter_mm: f64,
+    /// Chord / gouge tolerance, mm.
+    pub tolerance_mm: f64,
+    /// Glyphs (regions) of the shape.
+    pub glyphs: Vec<String>,
+    /// Every MFS solve.
+    pub solves: Vec<SolveEntry>,
+    /// Per level, shallowest first.
+    pub levels: Vec<LevelReport>,
+    /// Totals.
+    pub totals: Totals,
+    /// Warnings of the run.
+    pub warnings: Vec<String>,
+}
+
+/// The field a level at depth `z` follows: (s, N, max boundary error). For the
+/// profile every pass follows the shape's own field, s = 1 on the part, so this
+/// is the first solve for every z. Operations with a solve per level (boss,
+/// cavity) look their level up here by z.
+pub fn level_field(out: &RunOutput, z: f64) -> (f64, usize, f64) {
+    let _ = z;
+    out.solves
+        .first()
+        .map_or((1.0, 0, f64::NAN), |r| (1.0, r.n, r.max_error))
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl RunReport {
+    /// The report of a finished run.
+    pub fn new(job: &Job, out: &RunOutput) -> RunReport {
+        let radius = job.tool.diameter / 2.0;
+        let top = job.stock.top;
+        let polys: Vec<Vec<_>> = out
+            .shape
+            .contours()
+            .map(|c| c.flatten(job.operation.tolerance * FLATTEN_FRACTION))
+            .collect();
+        let part = DistanceIndex::new(&polys);
+        // A boss or cavity: one section per level, with its own field, and the
+        // gouge check already run against that level's Γ(s_k) by the pipeline.
+        let level_reports: Vec<LevelReport> = out
+            .toolpath
+            .sections
+            .iter()
+            .zip(&out.levels)
+            .map(|(sec, li)| {
+                let one = Toolpath {
+                    start: out.toolpath.start,
+                    sections: vec![sec.clone()],
+                };
+                let st = one.stats(job.machine.rapid_rate);
+                let feed_time = {
+                    let mut t = 0.0;
+                    let mut at = one.start;
+                    for m in &sec.moves {
+                        t += feed_length_time(at, m).1;
+                        at = m.to();
+                    }
+                    t
+                };
+                LevelReport {
+                    z: li.z,
+                    s: li.s,
+                    n: li.n,
+                    max_boundary_error: li.max_error,
+                    path_length_mm: st.cut_length,
+                    min_clearance_mm: finite(li.min_clearance),
+                    time_s: feed_time,
+                    uncut_share: li.uncut,
+                }
+            })
+            .collect();
+        let levels = if !out.levels.is_empty() {
+            level_reports
+        } else {
+            split_levels(&out.toolpath)
+                .into_iter()
+                .map(|lv| {
+                    let (mut len, mut time) = (0.0, 0.0);
+                    let mut moves = Vec::with_capacity(2 * lv.moves.len());
+                    for (from, m) in &lv.moves {
+                        let (l, t) = feed_length_time(*from, m);
+                        len += l;
+                        time += t;
+                        // A rapid to the start point makes each move checkable alone
+                        // (the gouge check skips rapids).
+                        moves.push(Move::Rapid { to: *from });
+                        moves.push(*m);
+                    }
+                    let sub = Toolpath {
+                        start: lv.moves.first().map(|(f, _)| *f).unwrap_or_default(),
+                        sections: vec![Section {
+                            label: String::new(),
+                            z: lv.z,
+                            moves,
+                        }],
+                    };
+                    let g = gouge::check(&sub, &part, radius, top);
+                    let (s, n, max_err) = level_field(out, lv.z);
+                    LevelReport {
+                        z: lv.z,
+                        s,
+                        n,
+                        max_boundary_error: max_err,
+                        path_length_mm: len,
+                        min_clearance_mm: (g.moves_checked > 0)
+                            .then_some(g.min_clearance)
+                            .and_then(finite),
+                        time_s: time,
+                        uncut_share: None,
+                    }
+                })
+                .collect::<Vec<_>>()
+        };
+        let st = out.toolpath.stats(job.machine.rapid_rate);
+        let totals = Totals {
+            levels: levels.len(),
+            cut_length_mm: st.cut_length,
+            rapid_length_mm: st.rapid_length,
+            time_s: st.time_s,
+            min_clearance_mm: finite(out.min_clearance),
+            max_boundary_error: out
+                .solves
+                .iter()
+                .map(|r| r.max_error)
+                .fold(f64::NAN, f64::max),
+            fallbacks: out.fallbacks,
+        };
+        RunReport {
+            generator: generator(),
+            job: job.name.clone(),
+            operation: format!("{:?} {:?}", job.operation.kind, job.operation.side).to_lowercase(),
+            tool_diameter_mm: job.tool.diameter,
+            tolerance_mm: job.operation.tolerance,
+            glyphs: out.glyphs.clone(),
+            solves: out.solves.iter().map(SolveEntry::from).collect(),
+            levels,
+            totals,
+            warnings: out.warnings.clone(),
+        }
+    }
+
+    /// Pretty JSON, ending with a newline; `"generator"` is on the second line.
+    pub fn to_json(&self) -> String {
+        // Serialising plain numbers, strings and options cannot fail; NaN and
+        // infinities become null.
+        let mut s = serde_json::to_string_pretty(self).unwrap_or_else(|_| "{}".into());
+        s.push('\n');
+        s
+    }
+
+    /// A short human table: one row per level, then the totals.
+    pub fn table(&self) -> String {
+        let mut s = format!(
+            "{:>9} {:>6} {:>5} {:>10} {:>11} {:>13} {:>9}\n",
+            "z (mm)", "s", "N", "max error", "length (mm)", "clearance (mm)", "time"
+        );
+        let clear = |c: Option<f64>| c.map_or("-".to_string(), |c| format!("{c:.4}"));
+        for l in &self.levels {
+            s += &format!(
+                "{:>9.3} {:>6.3} {:>5} {:>10.2e} {:>11.1} {:>14} {:>9}\n",
+                l.z,
+                l.s,
+                l.n,
+                l.max_boundary_error,
+                l.path_length_mm,
+                clear(l.min_clearance_mm),
+                crate::gcode::format_duration(l.time_s)
+            );
+        }
+        let t = &self.totals;
+        s += &format!(
+            "{:>9} {:>6} {:>5} {:>10.2e} {:>11.1} {:>14} {:>9}",
+            "total",
+            t.levels,
+            "",
+            t.max_boundary_error,
+            t.cut_length_mm,
+            clear(t.min_clearance_mm),
+            crate::gcode::format_duration(t.time_s)
+        );
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lin(x: f64, y: f64, z: f64) -> Move {
+        Move::Linear {
+            to: Vec3::new(x, y, z),
+            feed: 600.0,
+        }
+    }
+
+    #[test]
+    fn levels_split_by_end_z_shallowest_first() {
+        let tp = Toolpath {
+            start: Vec3::new(0.0, 0.0, 5.0),
+            sections: vec![Section {
+                label: "a".into(),
+                z: -2.0,
+                moves: vec![
+                    Move::Rapid {
+                        to: Vec3::new(0.0, 0.0, 1.0),
+                    },
+                    lin(0.0, 0.0, -1.0),
+                    lin(10.0, 0.0, -1.0),
+                    lin(10.0, 0.0, -2.0),
+                    lin(0.0, 0.0, -2.0),
+                    Move::Rapid {
+                        to: Vec3::new(0.0, 0.0, 5.0),
+                    },
+                ],
+            }],
+        };
+        let lv = split_levels(&tp);
+        assert_eq!(lv.len(), 2);
+        assert_eq!((lv[0].z, lv[0].moves.len()), (-1.0, 2));
+        assert_eq!((lv[1].z, lv[1].moves.len()), (-2.0, 2));
+        let len: f64 = lv[0]
+            .moves
+            .iter()
+            .map(|(f, m)| feed_length_time(*f, m).0)
+            .sum();
+        assert!((len - 12.0).abs() < 1e-12);
+        let (_, t) = feed_length_time(Vec3::new(0.0, 0.0, -1.0), &lv[0].moves[1].1);
+        assert!((t - 1.0).abs() < 1e-12, "10 mm at 600 mm/min is one second");
+    }
+}
