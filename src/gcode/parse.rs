@@ -339,6 +339,7 @@ impl ModalState {
                     let group = g_group(code10).ok_or_else(|| {
                         let what = match code10 {
                             410 | 420 | 411 | 421 => " (cutter compensation is not in GRBL)",
+                            430 => " (GRBL has only G43.1, the dynamic tool length offset)",
                             810..=890 => " (canned cycles are not in GRBL)",
                             591..=599 => " (G59.x is not in GRBL)",
                             _ => "",
@@ -556,11 +557,21 @@ impl ModalState {
                     return Err(BlockError::new(31, "axis words with no motion mode (G80)"))
                 }
                 Motion::Linear | Motion::ArcCw | Motion::ArcCcw | Motion::Probe(_) => {
-                    if self.feed.is_none() && self.feed_mode == FeedMode::UnitsPerMinute {
-                        return Err(BlockError::new(22, "feed move before any F word"));
+                    if self.feed_mode == FeedMode::UnitsPerMinute {
+                        match self.feed {
+                            None => return Err(BlockError::new(22, "feed move before any F word")),
+                            // GRBL treats F0 as no feed rate at all.
+                            Some(f) if f <= 0.0 => {
+                                return Err(BlockError::new(22, "feed move at feed rate F0"))
+                            }
+                            Some(_) => {}
+                        }
                     }
-                    if self.feed_mode == FeedMode::InverseTime && v('F').is_none() {
-                        return Err(BlockError::new(22, "inverse-time feed move without F"));
+                    if self.feed_mode == FeedMode::InverseTime && !v('F').is_some_and(|f| f > 0.0) {
+                        return Err(BlockError::new(
+                            22,
+                            "inverse-time feed move without a positive F",
+                        ));
                     }
                 }
                 Motion::Rapid => {}
@@ -582,18 +593,52 @@ impl ModalState {
                         "arc without R or an offset word (I/J/K) in its plane",
                     ));
                 }
+                let target = self.target(&axes, scale);
+                let start = self.position;
+                let [a0, a1] = self.plane.axes();
+                if let (Some(s0), Some(s1), Some(t0), Some(t1)) =
+                    (start[a0], start[a1], target[a0], target[a1])
+                {
+                    let (x, y) = (t0 - s0, t1 - s1);
+                    if let Some(r) = v('R') {
+                        if start == target {
+                            return Err(BlockError::new(
+                                33,
+                                "R arc ending where it starts (a full circle needs I/J/K)",
+                            ));
+                        }
+                        let r = r * scale;
+                        if 4.0 * r * r - x * x - y * y < 0.0 {
+                            return Err(BlockError::new(
+                                34,
+                                format!(
+                                    "arc radius R{} is less than half the distance {:.4} mm \
+                                     between start and end",
+                                    r / scale,
+                                    x.hypot(y) / 2.0
+                                ),
+                            ));
+                        }
+                    } else {
+                        let i = v(offsets[0]).unwrap_or(0.0) * scale;
+                        let j = v(offsets[1]).unwrap_or(0.0) * scale;
+                        let r = i.hypot(j);
+                        let delta = ((x - i).hypot(y - j) - r).abs();
+                        if arc_radius_mismatch(r, delta) {
+                            return Err(BlockError::new(
+                                33,
+                                format!(
+                                    "arc end is {delta:.4} mm off the circle of radius {r:.4} \
+                                     mm (GRBL allows 0.005 mm, or 0.1 % of the radius)"
+                                ),
+                            ));
+                        }
+                    }
+                }
             } else if ['I', 'J', 'K', 'R'].iter().any(|&c| v(c).is_some()) {
                 return Err(BlockError::new(36, "I/J/K/R words without an arc"));
             }
-            for (axis, value) in axes.iter().enumerate() {
-                if let Some(value) = value {
-                    let value = value * scale;
-                    self.position[axis] = match self.distance {
-                        Distance::Absolute => Some(value),
-                        Distance::Incremental => self.position[axis].map(|p| p + value),
-                    };
-                }
-            }
+            self.position = self.target(&axes, scale);
         } else if v('R').is_some() || v('I').is_some() || v('J').is_some() || v('K').is_some() {
             return Err(BlockError::new(36, "arc words without axis words"));
         }
@@ -612,10 +657,45 @@ impl ModalState {
         Ok(())
     }
 
+    /// Where a move with these axis words (in program units, `scale` mm per
+    /// unit) ends, in mm: an axis without a word stays; `None` where unknown.
+    fn target(&self, axes: &[Option<f64>; 3], scale: f64) -> [Option<f64>; 3] {
+        let mut t = self.position;
+        for (k, value) in axes.iter().enumerate() {
+            if let Some(value) = value {
+                t[k] = match self.distance {
+                    Distance::Absolute => Some(value * scale),
+                    Distance::Incremental => self.position[k].map(|p| p + value * scale),
+                };
+            }
+        }
+        t
+    }
+
     /// The feed rate in mm/min, if set.
     pub fn feed_mm_per_min(&self) -> Option<f64> {
         self.feed
     }
+}
+
+impl Plane {
+    /// Indices (0 = X, 1 = Y, 2 = Z) of the plane's first and second axes, in
+    /// GRBL's order: XY for G17, ZX for G18, YZ for G19. The offset words follow
+    /// the axes: I/J, K/I, J/K.
+    pub fn axes(self) -> [usize; 2] {
+        match self {
+            Plane::XY => [0, 1],
+            Plane::ZX => [2, 0],
+            Plane::YZ => [1, 2],
+        }
+    }
+}
+
+/// GRBL's test for an I/J/K arc whose end is off the circle through its start
+/// (error 33, `gc_execute_line`): the radii at start (`r`) and end differ by
+/// `delta` > 0.005 mm **and** by more than 0.5 mm or 0.1 % of `r`. Both in mm.
+pub fn arc_radius_mismatch(r: f64, delta: f64) -> bool {
+    delta > 0.005 && (delta > 0.5 || delta > 0.001 * r)
 }
 
 fn frac(code10: u32) -> String {
@@ -762,6 +842,33 @@ mod tests {
         assert!(run(&["F100", "G18 G2 X1 Z1 K1"]).is_ok());
         assert!(run(&["G4 P0.5", "N10 G1 X1 F5", "G1"]).is_ok());
         assert!(run(&["M7 M8"]).is_ok());
+        assert_eq!(run(&["F0", "G1 X1"]).unwrap_err().code, 22);
+        assert_eq!(run(&["G43 Z1"]).unwrap_err().code, 20);
+    }
+
+    #[test]
+    fn arc_geometry_as_grbl_checks_it() {
+        let base = ["G0 X0 Y0 Z0", "F100"];
+        let with = |b: &str| run(&[base[0], base[1], b]);
+        assert!(with("G2 X10 Y0 I5 J0").is_ok());
+        // 0.004 mm off: under 0.005 mm, accepted.
+        assert!(with("G2 X10.004 Y0 I5 J0").is_ok());
+        // 0.006 mm off a 5 mm radius: over 0.005 and over 0.1 % (0.005 mm).
+        assert_eq!(with("G2 X10.006 Y0 I5 J0").unwrap_err().code, 33);
+        // 0.04 mm off a 100 mm radius: over 0.005 but under 0.1 % (0.1 mm).
+        assert!(with("G2 X200.04 Y0 I100 J0").is_ok());
+        assert_eq!(with("G2 X200.6 Y0 I100 J0").unwrap_err().code, 33);
+        assert!(with("G2 X10 R5").is_ok());
+        assert_eq!(with("G2 X10 R4.9").unwrap_err().code, 34);
+        assert_eq!(with("G2 X0 Y0 R5").unwrap_err().code, 33);
+        assert!(with("G3 X0 Y0 I5").is_ok(), "full circle with I/J");
+        // Inches: I0.5 is 12.7 mm; the end X1 is 25.4 mm.
+        assert!(run(&["G20 G0 X0 Y0", "G2 X1 Y0 I0.5 F10"]).is_ok());
+        // G18 (ZX): K/I offsets.
+        assert!(with("G18 G2 X10 Z0 I5 K0").is_ok());
+        assert_eq!(with("G18 G2 X10 Z1 I5 K0").unwrap_err().code, 33);
+        // Unknown start: nothing to check.
+        assert!(run(&["F100", "G2 X10.3 Y0 I5 J0"]).is_ok());
     }
 
     #[test]
