@@ -1,0 +1,6 @@
+(two motion commands in one block)
+G21 G90
+G0 Z5
+G0 X0 Y0
+G0 G1 X10 F300
+M2
