@@ -328,6 +328,9 @@ impl ModalState {
         let mut gcodes: Vec<u32> = Vec::new();
         let mut mcodes: Vec<u32> = Vec::new();
         let mut values: [Option<f64>; 26] = [None; 26];
+        // G10/G28/G30/G92, G0–G3/G38.x and G43.1/G49 each claim the axis words; GRBL
+        // allows one of them per block (error 24).
+        let mut axis_command = false;
         for w in words {
             match w.letter {
                 'G' => {
@@ -336,6 +339,24 @@ impl ModalState {
                         return Err(BlockError::new(20, format!("G{} is not a G-code", w.value)));
                     }
                     let code10 = code10 as u32;
+                    // A decimal on a G-code that has none in GRBL is error 23; on one
+                    // that has (G28.x, G38.x, G43.x, G61.x, G90.x, G92.x) it is 20.
+                    if code10 % 10 != 0
+                        && matches!(
+                            code10 / 10,
+                            0..=4 | 10 | 17..=21 | 40 | 53..=58 | 80 | 93 | 94
+                        )
+                    {
+                        return Err(BlockError::new(
+                            23,
+                            format!(
+                                "G{}{}: GRBL has no such variant of G{}",
+                                code10 / 10,
+                                frac(code10),
+                                code10 / 10
+                            ),
+                        ));
+                    }
                     let group = g_group(code10).ok_or_else(|| {
                         let what = match code10 {
                             410 | 420 | 411 | 421 => " (cutter compensation is not in GRBL)",
@@ -357,7 +378,24 @@ impl ModalState {
                             ),
                         )
                     })?;
-                    if groups.contains(&group) && group != Group::NonModal {
+                    if matches!(
+                        code10,
+                        0 | 10 | 20 | 30 | 100 | 280 | 300 | 382..=385 | 431 | 490 | 920
+                    ) {
+                        if axis_command {
+                            return Err(BlockError::new(
+                                24,
+                                format!(
+                                    "G{}{} and another command in the block both use the axis words",
+                                    code10 / 10,
+                                    frac(code10)
+                                ),
+                            ));
+                        }
+                        axis_command = true;
+                    }
+                    // Non-modal commands (G4, G10, G28, G30, G53, G92) are one group too.
+                    if groups.contains(&group) {
                         return Err(BlockError::new(
                             21,
                             format!(
@@ -371,17 +409,24 @@ impl ModalState {
                     gcodes.push(code10);
                 }
                 'M' => {
-                    if w.value < 0.0 || w.value.fract() != 0.0 {
+                    if w.value < 0.0 {
                         return Err(BlockError::new(
                             20,
                             format!("M{} is not an M-code", w.value),
+                        ));
+                    }
+                    if w.value.fract() != 0.0 {
+                        return Err(BlockError::new(
+                            23,
+                            format!("M{}: M-codes take integers", w.value),
                         ));
                     }
                     let code = w.value as u32;
                     let group = m_group(code).ok_or_else(|| {
                         BlockError::new(20, format!("M{code} is not supported by GRBL"))
                     })?;
-                    if groups.contains(&group) && group != Group::Coolant {
+                    // M7 and M8 are one group: GRBL takes them on separate lines.
+                    if groups.contains(&group) {
                         return Err(BlockError::new(
                             21,
                             format!("two M-codes of one modal group (M{code})"),
@@ -825,7 +870,9 @@ mod tests {
         assert_eq!(run(&["G41 X1"]).unwrap_err().code, 20);
         assert_eq!(run(&["G81 X1 Y1 Z-1 R1 F100"]).unwrap_err().code, 20);
         assert_eq!(run(&["G1 E5"]).unwrap_err().code, 20);
-        assert_eq!(run(&["G0 G1 X1"]).unwrap_err().code, 21);
+        // GRBL sees G1 claim the axis words G0 already has before the group clash.
+        assert_eq!(run(&["G0 G1 X1"]).unwrap_err().code, 24);
+        assert_eq!(run(&["G90 G91 X1"]).unwrap_err().code, 21);
         assert_eq!(run(&["G1 X1"]).unwrap_err().code, 22);
         assert_eq!(run(&["G0 X1 X2"]).unwrap_err().code, 25);
         assert_eq!(run(&["G59.1"]).unwrap_err().code, 29);
@@ -841,7 +888,14 @@ mod tests {
         assert_eq!(run(&["N1.5 G0 X1"]).unwrap_err().code, 27);
         assert!(run(&["F100", "G18 G2 X1 Z1 K1"]).is_ok());
         assert!(run(&["G4 P0.5", "N10 G1 X1 F5", "G1"]).is_ok());
-        assert!(run(&["M7 M8"]).is_ok());
+        assert_eq!(run(&["M7 M8"]).unwrap_err().code, 21);
+        assert!(run(&["M7", "M8"]).is_ok());
+        assert_eq!(run(&["G4 P1 G53 G0 X0"]).unwrap_err().code, 21);
+        assert_eq!(run(&["G28 G0 X0"]).unwrap_err().code, 24);
+        assert_eq!(run(&["G1 G92 X0 F10"]).unwrap_err().code, 24);
+        assert!(run(&["G53 G0 X0"]).is_ok());
+        assert_eq!(run(&["G1.5 X1 F10"]).unwrap_err().code, 23);
+        assert_eq!(run(&["M3.5"]).unwrap_err().code, 23);
         assert_eq!(run(&["F0", "G1 X1"]).unwrap_err().code, 22);
         assert_eq!(run(&["G43 Z1"]).unwrap_err().code, 20);
     }
