@@ -74,6 +74,8 @@ fn unsupported_words_are_error_20() {
 #[test]
 fn modal_group_conflict_is_error_21() {
     assert_error("modal-conflict", 5, Some(21));
+    // Two motion commands: GRBL reports the axis-word clash (24) first.
+    assert_error("axis-conflict", 5, Some(24));
 }
 
 #[test]

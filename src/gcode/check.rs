@@ -366,6 +366,20 @@ impl Checker {
         let axis_command = gcodes
             .iter()
             .any(|g| matches!(g, 100 | 280 | 281 | 300 | 301 | 530 | 920 | 921));
+        for (m, build) in [
+            (7.0, "ENABLE_M7"),
+            (56.0, "ENABLE_PARKING_OVERRIDE_CONTROL"),
+        ] {
+            if words.iter().any(|w| w.letter == 'M' && w.value == m) {
+                self.warn(
+                    n,
+                    format!(
+                        "M{m} works only in GRBL built with {build}; a stock GRBL 1.1 answers \
+                         error 20"
+                    ),
+                );
+            }
+        }
         if gcodes.contains(&40) {
             let p = value('P').unwrap_or(0.0);
             self.report.totals.dwell_s += p;
@@ -737,6 +751,12 @@ mod tests {
         let r = check_gcode(text, &placed);
         assert_eq!(codes(&r), vec![(3, None, Severity::Error)]);
         assert!(r.findings[0].message.contains("1 more"), "{:?}", r.findings);
+    }
+
+    #[test]
+    fn optional_m_codes_are_warnings() {
+        let r = check("M7\nM9\nM2\n");
+        assert_eq!(codes(&r), vec![(1, None, Severity::Warning)]);
     }
 
     #[test]

@@ -1,6 +1,6 @@
-(two motion commands in one block)
+(inch and mm in one block: two words of the units group)
 G21 G90
 G0 Z5
 G0 X0 Y0
-G0 G1 X10 F300
+G20 G21 G0 X10
 M2
