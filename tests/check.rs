@@ -207,15 +207,15 @@ fn totals_of_a_small_file_by_hand() {
     assert!(out.contains("length: cut 218.0 mm, rapid 7.6 mm"), "{out}");
 }
 
-/// The numbers of a header comment such as `(length: cut 199.3 mm, rapid 17 mm)`.
-fn header_numbers(gcode: &str, prefix: &str) -> Vec<f64> {
-    let line = gcode
-        .lines()
-        .find(|l| l.starts_with(prefix))
-        .unwrap_or_else(|| panic!("no {prefix} line"));
-    line.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
-        .filter_map(|w| w.parse().ok())
-        .collect()
+/// The numbers of a header comment such as `(length: cut 199.3 mm, rapid 17 mm)`,
+/// if the file has that comment.
+fn header_numbers(gcode: &str, prefix: &str) -> Option<Vec<f64>> {
+    let line = gcode.lines().find(|l| l.starts_with(prefix))?;
+    Some(
+        line.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+            .filter_map(|w| w.parse().ok())
+            .collect(),
+    )
 }
 
 /// `pfcam check` passes `file`, and its totals agree with the header pfcam wrote
@@ -228,26 +228,32 @@ fn assert_passes(file: &Path) {
     assert_eq!(v["warnings"], 0, "{shown}: {v}");
     let gcode = fs::read_to_string(file).expect("read G-code");
     let t = &v["totals"];
-    let len = header_numbers(&gcode, "(length:");
-    assert!(
-        (num(&t["cut_length"]) - len[0]).abs() <= 0.051,
-        "{shown}: {t}"
-    );
-    assert!(
-        (num(&t["rapid_length"]) - len[1]).abs() <= 0.051,
-        "{shown}: {t}"
-    );
-    let lo = header_numbers(&gcode, "(cut min:");
-    let hi = header_numbers(&gcode, "(cut max:");
-    for k in 0..3 {
+    // The writer's header is the writer's business; compare with it where it
+    // still says these things.
+    if let Some(len) = header_numbers(&gcode, "(length:") {
         assert!(
-            (num(&t["cut_bounds"]["min"][k]) - lo[k]).abs() < 1e-6,
+            (num(&t["cut_length"]) - len[0]).abs() <= 0.051,
             "{shown}: {t}"
         );
         assert!(
-            (num(&t["cut_bounds"]["max"][k]) - hi[k]).abs() < 1e-6,
+            (num(&t["rapid_length"]) - len[1]).abs() <= 0.051,
             "{shown}: {t}"
         );
+    }
+    if let (Some(lo), Some(hi)) = (
+        header_numbers(&gcode, "(cut min:"),
+        header_numbers(&gcode, "(cut max:"),
+    ) {
+        for k in 0..3 {
+            assert!(
+                (num(&t["cut_bounds"]["min"][k]) - lo[k]).abs() < 1e-6,
+                "{shown}: {t}"
+            );
+            assert!(
+                (num(&t["cut_bounds"]["max"][k]) - hi[k]).abs() < 1e-6,
+                "{shown}: {t}"
+            );
+        }
     }
 }
 

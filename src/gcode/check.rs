@@ -759,6 +759,63 @@ mod tests {
         assert_eq!(codes(&r), vec![(1, None, Severity::Warning)]);
     }
 
+    /// Garbage and mangled G-code give findings, never a panic (a fixed-seed
+    /// generator, so a failure is reproducible).
+    #[test]
+    fn never_panics_on_garbage() {
+        let mut seed: u64 = 0x5eed;
+        let mut next = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) as usize
+        };
+        let alphabet: Vec<char> = "GMXYZIJKRFPSTNL0123456789.-+ ()%;$#E\té\r"
+            .chars()
+            .collect();
+        let mut lines = vec![
+            "G0 X0 Y0 Z0".to_string(),
+            "G20".into(),
+            "G91".into(),
+            "G93".into(),
+            "G18".into(),
+            "G19".into(),
+            format!("X{}", "9".repeat(400)),
+            "G2 X0 Y0 R0 F1".into(),
+            "G2 X1 Y0 I0 J0 F1".into(),
+            "G3 X0 Y0 I0 J0 F1".into(),
+            "G28".into(),
+            "G53 G0 X1".into(),
+        ];
+        for _ in 0..3000 {
+            let len = next() % 30;
+            lines.push(
+                (0..len)
+                    .map(|_| alphabet[next() % alphabet.len()])
+                    .collect(),
+            );
+        }
+        for _ in 0..50 {
+            let mut text = String::new();
+            for _ in 0..200 {
+                text += &lines[next() % lines.len()];
+                text.push('\n');
+            }
+            let limits = Some(Limits {
+                travel: [100.0, 100.0, 50.0],
+                work_offset: (next() % 2 == 0).then_some([-50.0, -50.0, -10.0]),
+            });
+            let r = check_gcode(
+                &text,
+                &CheckOptions {
+                    limits,
+                    ..CheckOptions::default()
+                },
+            );
+            assert!(r.findings.windows(2).all(|w| w[0].line <= w[1].line));
+        }
+    }
+
     #[test]
     fn full_circle_and_helix() {
         let r = check("G0 X0 Y0 Z0\nG3 X0 Y0 Z-2 I5 J0 F100\nM2\n");
