@@ -20,7 +20,9 @@
 //! yet known (the first `G0 Z` of a program, or anything after `G28`/`G30`/`G53`)
 //! cannot be measured and is counted in [`Totals::unmeasured_moves`].
 
-use super::parse::{clean_line, tokenize, FeedMode, ModalState, Motion, Units, Word};
+use super::parse::{
+    clean_line, has_block_delete, tokenize, FeedMode, ModalState, Motion, Units, Word,
+};
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt;
@@ -332,6 +334,12 @@ impl Checker {
         }
         if block.is_empty() {
             return;
+        }
+        if has_block_delete(raw) {
+            self.warn(
+                n,
+                "GRBL ignores the block-delete `/`: this block runs every time",
+            );
         }
         self.report.totals.blocks += 1;
         if block.starts_with('$') {
@@ -757,6 +765,8 @@ mod tests {
     fn optional_m_codes_are_warnings() {
         let r = check("M7\nM9\nM2\n");
         assert_eq!(codes(&r), vec![(1, None, Severity::Warning)]);
+        let r = check("G0 X0\n/G0 X1\nM2\n");
+        assert_eq!(codes(&r), vec![(2, None, Severity::Warning)]);
     }
 
     /// Garbage and mangled G-code give findings, never a panic (a fixed-seed

@@ -58,7 +58,9 @@ pub struct LineError {
 /// Strips comments and whitespace and upper-cases, as a sender does before sending.
 ///
 /// `(...)` comments and everything after `;` are removed; an unclosed `(` comments
-/// out the rest of the line. A line holding only `%` becomes empty.
+/// out the rest of the line. A line holding only `%` becomes empty. Like GRBL's
+/// serial reader, control characters and the block-delete `/` are dropped too
+/// (GRBL ignores `/`: the block runs; see [`has_block_delete`]).
 pub fn clean_line(raw: &str) -> String {
     let mut out = String::with_capacity(raw.len());
     let mut in_paren = false;
@@ -72,7 +74,8 @@ pub fn clean_line(raw: &str) -> String {
         match c {
             '(' => in_paren = true,
             ';' => break,
-            c if c.is_whitespace() => {}
+            '/' => {}
+            c if c.is_whitespace() || c.is_control() => {}
             c => out.push(c.to_ascii_uppercase()),
         }
     }
@@ -80,6 +83,23 @@ pub fn clean_line(raw: &str) -> String {
         out.clear();
     }
     out
+}
+
+/// Whether `raw` has a `/` outside comments: a block-delete mark, which GRBL
+/// ignores (the block runs anyway).
+pub fn has_block_delete(raw: &str) -> bool {
+    let mut in_paren = false;
+    for c in raw.chars() {
+        match c {
+            ')' if in_paren => in_paren = false,
+            _ if in_paren => {}
+            '(' => in_paren = true,
+            ';' => return false,
+            '/' => return true,
+            _ => {}
+        }
+    }
+    false
 }
 
 /// Splits a cleaned block (see [`clean_line`]) into words.
@@ -846,6 +866,9 @@ mod tests {
         assert_eq!(clean_line("(only a comment)"), "");
         assert_eq!(clean_line(" % "), "");
         assert_eq!(clean_line("G0 X1 (unclosed"), "G0X1");
+        assert_eq!(clean_line("/G0 X1\u{1}"), "G0X1");
+        assert!(has_block_delete("/G0 X1"));
+        assert!(!has_block_delete("G0 X1 (a/b) ; c/d"));
     }
 
     #[test]
