@@ -369,11 +369,12 @@ impl Checker {
             .map(|w| (w.value * 10.0).round() as u32)
             .collect();
         let has_axes = AXES.iter().any(|&c| value(c).is_some());
-        // G10, G28, G30, G53, G92 (and G28.1, G30.1, G92.1) use the axis words
-        // themselves or move to stored positions: no programmed move to measure.
+        // G10, G28, G30, G53, G92 (and G28.1, G30.1, G92.1), G43.1 and G49 use the
+        // axis words themselves or move to stored positions: no programmed move to
+        // measure.
         let axis_command = gcodes
             .iter()
-            .any(|g| matches!(g, 100 | 280 | 281 | 300 | 301 | 530 | 920 | 921));
+            .any(|g| matches!(g, 100 | 280 | 281 | 300 | 301 | 431 | 490 | 530 | 920 | 921));
         for (m, build) in [
             (7.0, "ENABLE_M7"),
             (56.0, "ENABLE_PARKING_OVERRIDE_CONTROL"),

@@ -616,7 +616,20 @@ impl ModalState {
             _ => {}
         }
 
-        if has_axes {
+        // G43.1 Z<offset> sets a tool length offset and G49 clears it: the Z word
+        // is the offset, not a move, and the work Z position is no longer known.
+        let tool_length = gcodes.iter().any(|g| matches!(g, 431 | 490));
+        if tool_length {
+            if gcodes.contains(&431) && (v('Z').is_none() || v('X').is_some() || v('Y').is_some()) {
+                return Err(BlockError::new(
+                    37,
+                    "G43.1 takes exactly one axis word, Z (GRBL's tool length axis)",
+                ));
+            }
+            self.position[2] = None;
+        }
+
+        if has_axes && !tool_length {
             match self.motion {
                 Motion::None => {
                     return Err(BlockError::new(31, "axis words with no motion mode (G80)"))
@@ -919,6 +932,10 @@ mod tests {
         assert!(run(&["G53 G0 X0"]).is_ok());
         assert_eq!(run(&["G1.5 X1 F10"]).unwrap_err().code, 23);
         assert_eq!(run(&["M3.5"]).unwrap_err().code, 23);
+        assert_eq!(run(&["G43.1 X1"]).unwrap_err().code, 37);
+        assert_eq!(run(&["G43.1"]).unwrap_err().code, 37);
+        let s = run(&["G0 X1 Y2 Z3", "G43.1 Z-0.5"]).unwrap();
+        assert_eq!(s.position, [Some(1.0), Some(2.0), None]);
         assert_eq!(run(&["F0", "G1 X1"]).unwrap_err().code, 22);
         assert_eq!(run(&["G43 Z1"]).unwrap_err().code, 20);
     }
