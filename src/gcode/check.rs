@@ -407,6 +407,11 @@ impl Checker {
                 ),
             );
         }
+        // G28/G30 go home (through the axis words, if any); G53 moves in machine
+        // coordinates: real moves, to places only the machine knows.
+        if gcodes.iter().any(|g| matches!(g, 280 | 300)) || (gcodes.contains(&530) && has_axes) {
+            self.report.totals.unmeasured_moves += 1;
+        }
         if axis_command || !has_axes {
             return;
         }
@@ -760,6 +765,15 @@ mod tests {
         let r = check_gcode(text, &placed);
         assert_eq!(codes(&r), vec![(3, None, Severity::Error)]);
         assert!(r.findings[0].message.contains("1 more"), "{:?}", r.findings);
+    }
+
+    #[test]
+    fn home_and_machine_moves_are_unmeasured() {
+        let r = check("G0 X0 Y0 Z0\nG28\nG0 X1 Y1 Z1\nG53 G0 Z-1\nG0 X2\nM2\n");
+        assert!(r.findings.is_empty(), "{:?}", r.findings);
+        // The first move, G28, the move after it, G53, and the move after that.
+        assert_eq!(r.totals.unmeasured_moves, 5);
+        assert_eq!(r.totals.rapid_length, 0.0);
     }
 
     #[test]
