@@ -125,6 +125,20 @@ pub enum Command {
     /// (character counting, status, feed hold on Ctrl-C, resume with --from-line).
     /// Exit codes: docs/grbl.md.
     Stream(pfcam::grbl::StreamArgs),
+    /// Check a G-code file against GRBL 1.1's rules (line numbers and GRBL's
+    /// error numbers), then print its bounds, lengths and estimated time.
+    /// Exit 0: no errors (warnings allowed); 1: errors; 2: usage or unreadable file.
+    Check {
+        /// The G-code file.
+        file: PathBuf,
+        /// A job file or a machine file (only a `[machine]` table): rapid rate for
+        /// the time, and `travel` / `work_offset` for the limit checks.
+        #[arg(long, value_name = "JOB_OR_MACHINE_TOML")]
+        machine: Option<PathBuf>,
+        /// Print the findings and totals as JSON.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 /// Run a parsed command line.
@@ -157,6 +171,11 @@ pub fn run(args: Args) -> Result<()> {
         Command::Validate { job } => cmd_validate(&job),
         Command::Glyphs => cmd_glyphs(),
         Command::Convergence { glyph, n, json } => cmd_convergence(glyph, &n, json),
+        Command::Check {
+            file,
+            machine,
+            json,
+        } => cmd_check(&file, machine.as_deref(), json),
         // Dispatched in main.rs: the streamer has its own exit codes.
         Command::Stream(_) => Ok(()),
     }
@@ -175,6 +194,8 @@ pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
 pub fn exit_code(e: &anyhow::Error) -> u8 {
     if e.chain().any(|c| c.is::<OutputError>()) {
         EXIT_OUTPUT
+    } else if e.chain().any(|c| c.is::<UsageError>()) {
+        EXIT_USAGE
     } else {
         EXIT_FAILED
     }
@@ -422,6 +443,68 @@ impl Reporter {
             b.finish_and_clear();
         }
     }
+}
+
+/// A command given something it cannot use (an unreadable file): exit 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+struct UsageError(String);
+
+fn cmd_check(file: &Path, machine: Option<&Path>, json: bool) -> Result<()> {
+    use pfcam::gcode::check::{check_gcode, CheckOptions, Limits};
+    use pfcam::job::{load_machine, MachineSource};
+
+    let mut opts = CheckOptions::default();
+    if let Some(path) = machine {
+        let (m, source) = load_machine(path).map_err(|e| UsageError(format!("--machine: {e}")))?;
+        opts.rapid_rate = m.rapid_rate;
+        opts.limits = m.travel.map(|travel| Limits {
+            travel,
+            work_offset: m.work_offset,
+        });
+        if m.travel.is_none() {
+            let what = match source {
+                MachineSource::Job => "job file",
+                MachineSource::MachineFile => "machine file",
+            };
+            eprintln!(
+                "note: {what} {} has no machine.travel: travel limits not checked",
+                path.display()
+            );
+        }
+    }
+    let bytes = std::fs::read(file)
+        .map_err(|e| UsageError(format!("cannot read {}: {e}", file.display())))?;
+    // GRBL reads bytes; a stray non-UTF-8 byte becomes U+FFFD and then error 1.
+    let text = String::from_utf8_lossy(&bytes);
+    let report = check_gcode(&text, &opts);
+    let name = file.display().to_string();
+    if json {
+        let v = serde_json::json!({
+            "file": name,
+            "errors": report.errors(),
+            "warnings": report.warnings(),
+            "findings": report.findings,
+            "totals": report.totals,
+        });
+        stdout_line(&serde_json::to_string_pretty(&v)?)?;
+    } else {
+        let mut s = String::new();
+        for f in &report.findings {
+            s += &format!("{name}:{}: {f}\n", f.line);
+        }
+        s += &report.totals.to_string();
+        s += &format!(
+            "\n{name}: {} error(s), {} warning(s)",
+            report.errors(),
+            report.warnings()
+        );
+        stdout_line(&s)?;
+    }
+    if report.errors() > 0 {
+        bail!("{name}: {} error(s)", report.errors());
+    }
+    Ok(())
 }
 
 fn cmd_glyphs() -> Result<()> {

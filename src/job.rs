@@ -128,6 +128,13 @@ pub struct Machine {
     pub spindle_dwell: f64,
     /// Flood coolant: `M8` after the spindle starts, `M9` before it stops.
     pub coolant: bool,
+    /// Travel of X, Y, Z in mm (GRBL's `$130`–`$132`): after homing, machine
+    /// coordinates run from 0 down to −travel. Read only by `pfcam check`.
+    pub travel: Option<[f64; 3]>,
+    /// Machine position of the work origin (G54's offset as `$#` shows it,
+    /// MPos − WPos), mm. With `travel`, `pfcam check` tests every move against the
+    /// machine's limits; without it, only the program's size against the travel.
+    pub work_offset: Option<[f64; 3]>,
 }
 
 impl Default for Machine {
@@ -135,6 +142,8 @@ impl Default for Machine {
         Machine {
             rapid_rate: defaults::RAPID_RATE,
             spindle_dwell: defaults::SPINDLE_DWELL,
+            travel: None,
+            work_offset: None,
             coolant: defaults::COOLANT,
         }
     }
@@ -414,6 +423,10 @@ pub struct RawMachine {
     pub spindle_dwell: Option<f64>,
     /// `coolant`
     pub coolant: Option<bool>,
+    /// `travel`, mm: [x, y, z]
+    pub travel: Option<[f64; 3]>,
+    /// `work_offset`, mm: [x, y, z]
+    pub work_offset: Option<[f64; 3]>,
 }
 
 /// `[output]`
@@ -424,6 +437,113 @@ pub struct RawOutput {
     pub arcs: Option<bool>,
     /// `max_arc_radius`, mm
     pub max_arc_radius: Option<f64>,
+}
+
+impl RawMachine {
+    /// Checks `[machine]` and applies its defaults.
+    pub fn resolve(self) -> Result<Machine, JobError> {
+        let m = self;
+        let travel = match m.travel {
+            None => None,
+            Some(t) => {
+                for (k, axis) in t.iter().zip(["x", "y", "z"]) {
+                    positive(&format!("machine.travel ({axis})"), *k, "mm")?;
+                }
+                Some(t)
+            }
+        };
+        let work_offset = match m.work_offset {
+            None => None,
+            Some(o) => {
+                if travel.is_none() {
+                    return Err(invalid(
+                        "machine.work_offset",
+                        "needs machine.travel (the offset places the work origin inside it)",
+                    ));
+                }
+                for v in o {
+                    finite("machine.work_offset", v)?;
+                }
+                Some(o)
+            }
+        };
+        Ok(Machine {
+            rapid_rate: positive(
+                "machine.rapid_rate",
+                m.rapid_rate.unwrap_or(defaults::RAPID_RATE),
+                "mm/min",
+            )?,
+            spindle_dwell: {
+                let d = finite(
+                    "machine.spindle_dwell",
+                    m.spindle_dwell.unwrap_or(defaults::SPINDLE_DWELL),
+                )?;
+                if d < 0.0 {
+                    return Err(invalid(
+                        "machine.spindle_dwell",
+                        format!("must be >= 0 s, got {}", show(d)),
+                    ));
+                }
+                d
+            },
+            coolant: m.coolant.unwrap_or(defaults::COOLANT),
+            travel,
+            work_offset,
+        })
+    }
+}
+
+/// A file with only a `[machine]` table (see [`load_machine`]).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMachineFile {
+    machine: Option<RawMachine>,
+}
+
+/// Where [`load_machine`] found the machine settings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MachineSource {
+    /// A whole job file: its `[machine]` table.
+    Job,
+    /// A machine file: a TOML file with only a `[machine]` table.
+    MachineFile,
+}
+
+/// Reads `[machine]` from either a job file or a machine file (a TOML file whose
+/// only table is `[machine]`), with the same keys and checks as in a job.
+pub fn load_machine(path: &Path) -> Result<(Machine, MachineSource), JobError> {
+    let text = std::fs::read_to_string(path).map_err(|source| JobError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let is_machine_file = match text.parse::<toml::Table>() {
+        Ok(t) => t.keys().all(|k| k == "machine"),
+        // Let the job reader report where the TOML is wrong.
+        Err(_) => false,
+    };
+    if !is_machine_file {
+        return Ok((load_job(path)?.machine, MachineSource::Job));
+    }
+    let raw: RawMachineFile = toml::from_str(&text).map_err(|e| match parse_error(&text, &e) {
+        JobError::Parse {
+            line,
+            column,
+            key,
+            message,
+            ..
+        } => JobError::Parse {
+            origin: path.display().to_string(),
+            line,
+            column,
+            key,
+            message,
+        },
+        e => e,
+    })?;
+    Ok((
+        raw.machine.unwrap_or_default().resolve()?,
+        MachineSource::MachineFile,
+    ))
 }
 
 /// A number, or a word (only `"auto"` is accepted; any other word is reported
@@ -841,28 +961,7 @@ impl RawJob {
             pseudo_boundary,
         };
 
-        let m = self.machine.unwrap_or_default();
-        let machine = Machine {
-            rapid_rate: positive(
-                "machine.rapid_rate",
-                m.rapid_rate.unwrap_or(defaults::RAPID_RATE),
-                "mm/min",
-            )?,
-            spindle_dwell: {
-                let d = finite(
-                    "machine.spindle_dwell",
-                    m.spindle_dwell.unwrap_or(defaults::SPINDLE_DWELL),
-                )?;
-                if d < 0.0 {
-                    return Err(invalid(
-                        "machine.spindle_dwell",
-                        format!("must be >= 0 s, got {}", show(d)),
-                    ));
-                }
-                d
-            },
-            coolant: m.coolant.unwrap_or(defaults::COOLANT),
-        };
+        let machine = self.machine.unwrap_or_default().resolve()?;
 
         let o = self.output.unwrap_or_default();
         let output = Output {
@@ -1327,6 +1426,21 @@ depth = 3.0
         assert_eq!(
             err_key(&with("machine", "spindle_dwell = -1")).0,
             "machine.spindle_dwell"
+        );
+        let j = parse(&with(
+            "machine",
+            "travel = [300, 200, 60]\nwork_offset = [-250.0, -150, -40]",
+        ))
+        .unwrap();
+        assert_eq!(j.machine.travel, Some([300.0, 200.0, 60.0]));
+        assert_eq!(j.machine.work_offset, Some([-250.0, -150.0, -40.0]));
+        assert_eq!(
+            err_key(&with("machine", "travel = [300, 0, 60]")).0,
+            "machine.travel (y)"
+        );
+        assert_eq!(
+            err_key(&with("machine", "work_offset = [0, 0, 0]")).0,
+            "machine.work_offset"
         );
     }
 

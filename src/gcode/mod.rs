@@ -1,10 +1,12 @@
 //! G-code for GRBL 1.1: the writer, a tokenizer with GRBL's modal state (shared by
-//! the streamer's resume), and a token-wise comparator for golden files.
+//! the streamer's resume), the checker behind `pfcam check`, and a token-wise
+//! comparator for golden files.
 //!
 //! Every file pfcam writes starts with the line `(pfcam <version> job <name>)`
 //! ([`header_line`]); [`is_pfcam_output`] recognises it, so that a re-run may
 //! replace pfcam's own files but never anyone else's.
 
+pub mod check;
 pub mod compare;
 pub mod parse;
 pub mod writer;

@@ -58,7 +58,9 @@ pub struct LineError {
 /// Strips comments and whitespace and upper-cases, as a sender does before sending.
 ///
 /// `(...)` comments and everything after `;` are removed; an unclosed `(` comments
-/// out the rest of the line. A line holding only `%` becomes empty.
+/// out the rest of the line. A line holding only `%` becomes empty. Like GRBL's
+/// serial reader, control characters and the block-delete `/` are dropped too
+/// (GRBL ignores `/`: the block runs; see [`has_block_delete`]).
 pub fn clean_line(raw: &str) -> String {
     let mut out = String::with_capacity(raw.len());
     let mut in_paren = false;
@@ -72,7 +74,8 @@ pub fn clean_line(raw: &str) -> String {
         match c {
             '(' => in_paren = true,
             ';' => break,
-            c if c.is_whitespace() => {}
+            '/' => {}
+            c if c.is_whitespace() || c.is_control() => {}
             c => out.push(c.to_ascii_uppercase()),
         }
     }
@@ -80,6 +83,23 @@ pub fn clean_line(raw: &str) -> String {
         out.clear();
     }
     out
+}
+
+/// Whether `raw` has a `/` outside comments: a block-delete mark, which GRBL
+/// ignores (the block runs anyway).
+pub fn has_block_delete(raw: &str) -> bool {
+    let mut in_paren = false;
+    for c in raw.chars() {
+        match c {
+            ')' if in_paren => in_paren = false,
+            _ if in_paren => {}
+            '(' => in_paren = true,
+            ';' => return false,
+            '/' => return true,
+            _ => {}
+        }
+    }
+    false
 }
 
 /// Splits a cleaned block (see [`clean_line`]) into words.
@@ -328,6 +348,9 @@ impl ModalState {
         let mut gcodes: Vec<u32> = Vec::new();
         let mut mcodes: Vec<u32> = Vec::new();
         let mut values: [Option<f64>; 26] = [None; 26];
+        // G10/G28/G30/G92, G0–G3/G38.x and G43.1/G49 each claim the axis words; GRBL
+        // allows one of them per block (error 24).
+        let mut axis_command = false;
         for w in words {
             match w.letter {
                 'G' => {
@@ -336,9 +359,28 @@ impl ModalState {
                         return Err(BlockError::new(20, format!("G{} is not a G-code", w.value)));
                     }
                     let code10 = code10 as u32;
+                    // A decimal on a G-code that has none in GRBL is error 23; on one
+                    // that has (G28.x, G38.x, G43.x, G61.x, G90.x, G92.x) it is 20.
+                    if code10 % 10 != 0
+                        && matches!(
+                            code10 / 10,
+                            0..=4 | 10 | 17..=21 | 40 | 53..=58 | 80 | 93 | 94
+                        )
+                    {
+                        return Err(BlockError::new(
+                            23,
+                            format!(
+                                "G{}{}: GRBL has no such variant of G{}",
+                                code10 / 10,
+                                frac(code10),
+                                code10 / 10
+                            ),
+                        ));
+                    }
                     let group = g_group(code10).ok_or_else(|| {
                         let what = match code10 {
                             410 | 420 | 411 | 421 => " (cutter compensation is not in GRBL)",
+                            430 => " (GRBL has only G43.1, the dynamic tool length offset)",
                             810..=890 => " (canned cycles are not in GRBL)",
                             591..=599 => " (G59.x is not in GRBL)",
                             _ => "",
@@ -356,7 +398,24 @@ impl ModalState {
                             ),
                         )
                     })?;
-                    if groups.contains(&group) && group != Group::NonModal {
+                    if matches!(
+                        code10,
+                        0 | 10 | 20 | 30 | 100 | 280 | 300 | 382..=385 | 431 | 490 | 920
+                    ) {
+                        if axis_command {
+                            return Err(BlockError::new(
+                                24,
+                                format!(
+                                    "G{}{} and another command in the block both use the axis words",
+                                    code10 / 10,
+                                    frac(code10)
+                                ),
+                            ));
+                        }
+                        axis_command = true;
+                    }
+                    // Non-modal commands (G4, G10, G28, G30, G53, G92) are one group too.
+                    if groups.contains(&group) {
                         return Err(BlockError::new(
                             21,
                             format!(
@@ -370,17 +429,24 @@ impl ModalState {
                     gcodes.push(code10);
                 }
                 'M' => {
-                    if w.value < 0.0 || w.value.fract() != 0.0 {
+                    if w.value < 0.0 {
                         return Err(BlockError::new(
                             20,
                             format!("M{} is not an M-code", w.value),
+                        ));
+                    }
+                    if w.value.fract() != 0.0 {
+                        return Err(BlockError::new(
+                            23,
+                            format!("M{}: M-codes take integers", w.value),
                         ));
                     }
                     let code = w.value as u32;
                     let group = m_group(code).ok_or_else(|| {
                         BlockError::new(20, format!("M{code} is not supported by GRBL"))
                     })?;
-                    if groups.contains(&group) && group != Group::Coolant {
+                    // M7 and M8 are one group: GRBL takes them on separate lines.
+                    if groups.contains(&group) {
                         return Err(BlockError::new(
                             21,
                             format!("two M-codes of one modal group (M{code})"),
@@ -550,17 +616,40 @@ impl ModalState {
             _ => {}
         }
 
-        if has_axes {
+        // G43.1 Z<offset> sets a tool length offset and G49 clears it: the Z word
+        // is the offset, not a move, and the work Z position is no longer known.
+        let tool_length = gcodes.iter().any(|g| matches!(g, 431 | 490));
+        if tool_length {
+            if gcodes.contains(&431) && (v('Z').is_none() || v('X').is_some() || v('Y').is_some()) {
+                return Err(BlockError::new(
+                    37,
+                    "G43.1 takes exactly one axis word, Z (GRBL's tool length axis)",
+                ));
+            }
+            self.position[2] = None;
+        }
+
+        if has_axes && !tool_length {
             match self.motion {
                 Motion::None => {
                     return Err(BlockError::new(31, "axis words with no motion mode (G80)"))
                 }
                 Motion::Linear | Motion::ArcCw | Motion::ArcCcw | Motion::Probe(_) => {
-                    if self.feed.is_none() && self.feed_mode == FeedMode::UnitsPerMinute {
-                        return Err(BlockError::new(22, "feed move before any F word"));
+                    if self.feed_mode == FeedMode::UnitsPerMinute {
+                        match self.feed {
+                            None => return Err(BlockError::new(22, "feed move before any F word")),
+                            // GRBL treats F0 as no feed rate at all.
+                            Some(f) if f <= 0.0 => {
+                                return Err(BlockError::new(22, "feed move at feed rate F0"))
+                            }
+                            Some(_) => {}
+                        }
                     }
-                    if self.feed_mode == FeedMode::InverseTime && v('F').is_none() {
-                        return Err(BlockError::new(22, "inverse-time feed move without F"));
+                    if self.feed_mode == FeedMode::InverseTime && !v('F').is_some_and(|f| f > 0.0) {
+                        return Err(BlockError::new(
+                            22,
+                            "inverse-time feed move without a positive F",
+                        ));
                     }
                 }
                 Motion::Rapid => {}
@@ -582,18 +671,52 @@ impl ModalState {
                         "arc without R or an offset word (I/J/K) in its plane",
                     ));
                 }
+                let target = self.target(&axes, scale);
+                let start = self.position;
+                let [a0, a1] = self.plane.axes();
+                if let (Some(s0), Some(s1), Some(t0), Some(t1)) =
+                    (start[a0], start[a1], target[a0], target[a1])
+                {
+                    let (x, y) = (t0 - s0, t1 - s1);
+                    if let Some(r) = v('R') {
+                        if start == target {
+                            return Err(BlockError::new(
+                                33,
+                                "R arc ending where it starts (a full circle needs I/J/K)",
+                            ));
+                        }
+                        let r = r * scale;
+                        if 4.0 * r * r - x * x - y * y < 0.0 {
+                            return Err(BlockError::new(
+                                34,
+                                format!(
+                                    "arc radius R{} is less than half the distance {:.4} mm \
+                                     between start and end",
+                                    r / scale,
+                                    x.hypot(y) / 2.0
+                                ),
+                            ));
+                        }
+                    } else {
+                        let i = v(offsets[0]).unwrap_or(0.0) * scale;
+                        let j = v(offsets[1]).unwrap_or(0.0) * scale;
+                        let r = i.hypot(j);
+                        let delta = ((x - i).hypot(y - j) - r).abs();
+                        if arc_radius_mismatch(r, delta) {
+                            return Err(BlockError::new(
+                                33,
+                                format!(
+                                    "arc end is {delta:.4} mm off the circle of radius {r:.4} \
+                                     mm (GRBL allows 0.005 mm, or 0.1 % of the radius)"
+                                ),
+                            ));
+                        }
+                    }
+                }
             } else if ['I', 'J', 'K', 'R'].iter().any(|&c| v(c).is_some()) {
                 return Err(BlockError::new(36, "I/J/K/R words without an arc"));
             }
-            for (axis, value) in axes.iter().enumerate() {
-                if let Some(value) = value {
-                    let value = value * scale;
-                    self.position[axis] = match self.distance {
-                        Distance::Absolute => Some(value),
-                        Distance::Incremental => self.position[axis].map(|p| p + value),
-                    };
-                }
-            }
+            self.position = self.target(&axes, scale);
         } else if v('R').is_some() || v('I').is_some() || v('J').is_some() || v('K').is_some() {
             return Err(BlockError::new(36, "arc words without axis words"));
         }
@@ -612,10 +735,45 @@ impl ModalState {
         Ok(())
     }
 
+    /// Where a move with these axis words (in program units, `scale` mm per
+    /// unit) ends, in mm: an axis without a word stays; `None` where unknown.
+    fn target(&self, axes: &[Option<f64>; 3], scale: f64) -> [Option<f64>; 3] {
+        let mut t = self.position;
+        for (k, value) in axes.iter().enumerate() {
+            if let Some(value) = value {
+                t[k] = match self.distance {
+                    Distance::Absolute => Some(value * scale),
+                    Distance::Incremental => self.position[k].map(|p| p + value * scale),
+                };
+            }
+        }
+        t
+    }
+
     /// The feed rate in mm/min, if set.
     pub fn feed_mm_per_min(&self) -> Option<f64> {
         self.feed
     }
+}
+
+impl Plane {
+    /// Indices (0 = X, 1 = Y, 2 = Z) of the plane's first and second axes, in
+    /// GRBL's order: XY for G17, ZX for G18, YZ for G19. The offset words follow
+    /// the axes: I/J, K/I, J/K.
+    pub fn axes(self) -> [usize; 2] {
+        match self {
+            Plane::XY => [0, 1],
+            Plane::ZX => [2, 0],
+            Plane::YZ => [1, 2],
+        }
+    }
+}
+
+/// GRBL's test for an I/J/K arc whose end is off the circle through its start
+/// (error 33, `gc_execute_line`): the radii at start (`r`) and end differ by
+/// `delta` > 0.005 mm **and** by more than 0.5 mm or 0.1 % of `r`. Both in mm.
+pub fn arc_radius_mismatch(r: f64, delta: f64) -> bool {
+    delta > 0.005 && (delta > 0.5 || delta > 0.001 * r)
 }
 
 fn frac(code10: u32) -> String {
@@ -721,6 +879,9 @@ mod tests {
         assert_eq!(clean_line("(only a comment)"), "");
         assert_eq!(clean_line(" % "), "");
         assert_eq!(clean_line("G0 X1 (unclosed"), "G0X1");
+        assert_eq!(clean_line("/G0 X1\u{1}"), "G0X1");
+        assert!(has_block_delete("/G0 X1"));
+        assert!(!has_block_delete("G0 X1 (a/b) ; c/d"));
     }
 
     #[test]
@@ -745,7 +906,9 @@ mod tests {
         assert_eq!(run(&["G41 X1"]).unwrap_err().code, 20);
         assert_eq!(run(&["G81 X1 Y1 Z-1 R1 F100"]).unwrap_err().code, 20);
         assert_eq!(run(&["G1 E5"]).unwrap_err().code, 20);
-        assert_eq!(run(&["G0 G1 X1"]).unwrap_err().code, 21);
+        // GRBL sees G1 claim the axis words G0 already has before the group clash.
+        assert_eq!(run(&["G0 G1 X1"]).unwrap_err().code, 24);
+        assert_eq!(run(&["G90 G91 X1"]).unwrap_err().code, 21);
         assert_eq!(run(&["G1 X1"]).unwrap_err().code, 22);
         assert_eq!(run(&["G0 X1 X2"]).unwrap_err().code, 25);
         assert_eq!(run(&["G59.1"]).unwrap_err().code, 29);
@@ -761,7 +924,45 @@ mod tests {
         assert_eq!(run(&["N1.5 G0 X1"]).unwrap_err().code, 27);
         assert!(run(&["F100", "G18 G2 X1 Z1 K1"]).is_ok());
         assert!(run(&["G4 P0.5", "N10 G1 X1 F5", "G1"]).is_ok());
-        assert!(run(&["M7 M8"]).is_ok());
+        assert_eq!(run(&["M7 M8"]).unwrap_err().code, 21);
+        assert!(run(&["M7", "M8"]).is_ok());
+        assert_eq!(run(&["G4 P1 G53 G0 X0"]).unwrap_err().code, 21);
+        assert_eq!(run(&["G28 G0 X0"]).unwrap_err().code, 24);
+        assert_eq!(run(&["G1 G92 X0 F10"]).unwrap_err().code, 24);
+        assert!(run(&["G53 G0 X0"]).is_ok());
+        assert_eq!(run(&["G1.5 X1 F10"]).unwrap_err().code, 23);
+        assert_eq!(run(&["M3.5"]).unwrap_err().code, 23);
+        assert_eq!(run(&["G43.1 X1"]).unwrap_err().code, 37);
+        assert_eq!(run(&["G43.1"]).unwrap_err().code, 37);
+        let s = run(&["G0 X1 Y2 Z3", "G43.1 Z-0.5"]).unwrap();
+        assert_eq!(s.position, [Some(1.0), Some(2.0), None]);
+        assert_eq!(run(&["F0", "G1 X1"]).unwrap_err().code, 22);
+        assert_eq!(run(&["G43 Z1"]).unwrap_err().code, 20);
+    }
+
+    #[test]
+    fn arc_geometry_as_grbl_checks_it() {
+        let base = ["G0 X0 Y0 Z0", "F100"];
+        let with = |b: &str| run(&[base[0], base[1], b]);
+        assert!(with("G2 X10 Y0 I5 J0").is_ok());
+        // 0.004 mm off: under 0.005 mm, accepted.
+        assert!(with("G2 X10.004 Y0 I5 J0").is_ok());
+        // 0.006 mm off a 5 mm radius: over 0.005 and over 0.1 % (0.005 mm).
+        assert_eq!(with("G2 X10.006 Y0 I5 J0").unwrap_err().code, 33);
+        // 0.04 mm off a 100 mm radius: over 0.005 but under 0.1 % (0.1 mm).
+        assert!(with("G2 X200.04 Y0 I100 J0").is_ok());
+        assert_eq!(with("G2 X200.6 Y0 I100 J0").unwrap_err().code, 33);
+        assert!(with("G2 X10 R5").is_ok());
+        assert_eq!(with("G2 X10 R4.9").unwrap_err().code, 34);
+        assert_eq!(with("G2 X0 Y0 R5").unwrap_err().code, 33);
+        assert!(with("G3 X0 Y0 I5").is_ok(), "full circle with I/J");
+        // Inches: I0.5 is 12.7 mm; the end X1 is 25.4 mm.
+        assert!(run(&["G20 G0 X0 Y0", "G2 X1 Y0 I0.5 F10"]).is_ok());
+        // G18 (ZX): K/I offsets.
+        assert!(with("G18 G2 X10 Z0 I5 K0").is_ok());
+        assert_eq!(with("G18 G2 X10 Z1 I5 K0").unwrap_err().code, 33);
+        // Unknown start: nothing to check.
+        assert!(run(&["F100", "G2 X10.3 Y0 I5 J0"]).is_ok());
     }
 
     #[test]

@@ -1,0 +1,7 @@
+(G2 with neither I/J nor R)
+G21 G90 G17
+G0 Z5
+G0 X0 Y0
+G1 Z-1 F300
+G2 X10 Y0
+M2
