@@ -93,5 +93,28 @@ fn profiles(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, letter_i_solve, field_eval, profiles);
+fn levels(c: &mut Criterion) {
+    let mut g = c.benchmark_group("levels");
+    g.sample_size(10);
+    let sign = job("jobs/mfs-sign.toml");
+    g.bench_function(
+        "mfs-sign boss, 40 levels, end to end (solves, levels, tracing, clearing, arcs, check)",
+        |b| b.iter(|| pfcam::pipeline::run(black_box(&sign), &mut |_| {}).unwrap()),
+    );
+    // The full mfs-mould takes about 40 s a run (see docs/method.md); the bench
+    // measures the same code on the letter I's mould.
+    let mould = pfcam::job::parse_job(
+        "[shape]\ntext = \"I\"\nheight = 50.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n\
+         [operation]\nkind = \"cavity\"\ndepth = 2.0\nmax_scallop = 2.0\n[profile]\nkind = \"linear\"\ns_bottom = 0.97\n",
+        "i-mould",
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    g.bench_function("letter I mould (cavity), end to end", |b| {
+        b.iter(|| pfcam::pipeline::run(black_box(&mould), &mut |_| {}).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, letter_i_solve, field_eval, profiles, levels);
 criterion_main!(benches);

@@ -1506,6 +1506,17 @@ mod doc_tests {
             "coolant",
             "arcs",
             "max_arc_radius",
+            "travel",
+            "work_offset",
+            "stepover",
+            "ramp_angle",
+            "margin",
+            "max_scallop",
+            "s_bottom",
+            "s1",
+            "s2",
+            "steepness",
+            "points",
         ];
         for k in keys {
             assert!(
@@ -1522,6 +1533,7 @@ mod doc_tests {
             "field",
             "machine",
             "output",
+            "profile",
         ] {
             assert!(
                 DOC.contains(&format!("## `[{t}]`")),

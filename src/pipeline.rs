@@ -58,6 +58,11 @@ pub struct RunOutput {
     pub fallbacks: usize,
     /// Boss and cavity: one entry per level (z, s, its solve, the cavity's coverage).
     pub levels: Vec<LevelInfo>,
+    /// Boss and cavity: seconds spent sampling the field, extracting contours and
+    /// choosing the z schedule (wall clock, for benchmarks; 0 for a profile).
+    pub t_schedule: f64,
+    /// Boss and cavity: the stock rectangle (lower-left, upper-right), mm.
+    pub stock: Option<(crate::geometry::Vec2, crate::geometry::Vec2)>,
     /// The shape in mm (for the preview and the report's per-level gouge check).
     pub shape: Shape,
     /// The solved field (for the preview's equipotential curves and colour map).
@@ -364,6 +369,8 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         warnings: planned.warnings,
         glyphs: shape.regions.iter().map(|r| r.name.clone()).collect(),
         fallbacks: 0,
+        stock: Some((planned.params.stock_lo, planned.params.stock_hi)),
+        t_schedule: planned.t_schedule,
         levels: planned.info,
         shape,
         field: solved.solution.field.clone(),
@@ -394,6 +401,8 @@ fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutpu
         glyphs: plan.shape.regions.iter().map(|r| r.name.clone()).collect(),
         fallbacks: plan.loops.iter().map(|l| l.fallbacks).sum(),
         levels: Vec::new(),
+        stock: None,
+        t_schedule: 0.0,
         shape: plan.shape,
         field: plan.field,
     })

@@ -231,12 +231,16 @@ fn assert_passes(file: &Path) {
     // The writer's header is the writer's business; compare with it where it
     // still says these things.
     if let Some(len) = header_numbers(&gcode, "(length:") {
+        // The header rounds to 0.1 mm; the checker measures arcs about the
+        // printed centres, which differ from the exact ones by up to 0.0036 mm,
+        // a relative error that adds up over a long file.
+        let tol = |x: f64| 0.051 + 1e-5 * x;
         assert!(
-            (num(&t["cut_length"]) - len[0]).abs() <= 0.051,
+            (num(&t["cut_length"]) - len[0]).abs() <= tol(len[0]),
             "{shown}: {t}"
         );
         assert!(
-            (num(&t["rapid_length"]) - len[1]).abs() <= 0.051,
+            (num(&t["rapid_length"]) - len[1]).abs() <= tol(len[1]),
             "{shown}: {t}"
         );
     }
@@ -245,12 +249,15 @@ fn assert_passes(file: &Path) {
         header_numbers(&gcode, "(cut max:"),
     ) {
         for k in 0..3 {
+            // The header's bounds use the arcs' exact centres; the checker's the
+            // centres as printed, which the writer moves onto the 0.001 mm grid
+            // by at most 0.0036 mm (docs/gcode.md): an arc's extreme moves as much.
             assert!(
-                (num(&t["cut_bounds"]["min"][k]) - lo[k]).abs() < 1e-6,
+                (num(&t["cut_bounds"]["min"][k]) - lo[k]).abs() <= 0.0036 + 0.0005,
                 "{shown}: {t}"
             );
             assert!(
-                (num(&t["cut_bounds"]["max"][k]) - hi[k]).abs() < 1e-6,
+                (num(&t["cut_bounds"]["max"][k]) - hi[k]).abs() <= 0.0036 + 0.0005,
                 "{shown}: {t}"
             );
         }

@@ -133,7 +133,7 @@ fn rendered_preview_shows_the_part_the_path_and_the_start() {
         px.len()
     );
 
-    // Path pixels where the path is: every 7th vertex of the deepest pass, away
+    // Path pixels where the path is: every move end of the deepest pass, away
     // from the start marker, shows one of the levels' colours (the passes
     // overlap as bands, the deepest narrowest on top).
     let levels = split_levels(&out.toolpath);
@@ -149,10 +149,10 @@ fn rendered_preview_shows_the_part_the_path_and_the_start() {
     let (from, _) = deepest.moves[0];
     let start = Vec2::new(from.x, from.y);
     let (mut hit, mut tried) = (0, 0);
-    for (k, (_, m)) in deepest.moves.iter().enumerate() {
+    for (_, m) in deepest.moves.iter() {
         let to = m.to();
         let p = Vec2::new(to.x, to.y);
-        if k % 7 != 0 || p.dist(start) < 4.0 || !matches!(m, Move::Linear { .. }) {
+        if p.dist(start) < 4.0 || matches!(m, Move::Rapid { .. }) {
             continue;
         }
         tried += 1;

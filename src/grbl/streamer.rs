@@ -990,7 +990,12 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
         (false, false) => out.push("M9".into()),
         (true, false) => out.push("M7".into()),
         (false, true) => out.push("M8".into()),
-        (true, true) => out.push("M7M8".into()),
+        // M7 and M8 share GRBL's coolant modal group: two words in one block are
+        // error 21, so they go out as two lines.
+        (true, true) => {
+            out.push("M7".into());
+            out.push("M8".into());
+        }
     }
     if state.spindle != Spindle::Off && resume.spindle_delay > 0.0 {
         out.push(format!("G4P{}", num(resume.spindle_delay)));

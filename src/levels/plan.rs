@@ -40,6 +40,10 @@ pub struct LevelInfo {
     /// Smallest clearance of the level's moves from the gouge check against
     /// Γ(s_k), mm (filled in by the pipeline after linking).
     pub min_clearance: f64,
+    /// Seconds spent on this level's MFS solve (wall clock, for benchmarks).
+    pub t_solve: f64,
+    /// Seconds spent tracing and clearing this level (wall clock).
+    pub t_paths: f64,
 }
 
 /// Inputs of the level planner.
@@ -140,6 +144,9 @@ pub struct Planned {
     pub warnings: Vec<String>,
     /// Path settings with the stock rectangle.
     pub params: LevelParams,
+    /// Seconds spent sampling the grid, extracting contours and choosing the
+    /// z schedule (wall clock).
+    pub t_schedule: f64,
 }
 
 /// Plan every level.
@@ -168,6 +175,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
         )));
     }
     let tol = job.params.tol;
+    let t_start = std::time::Instant::now();
     // Γ(s) at the level of z: s from the profile (mirrored for a cavity).
     let depth = job.profile.depth();
     let s_of = |zrel: f64| {
@@ -227,6 +235,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
     };
     let _ = (s_hi, &mut lo, &mut hi);
 
+    let t_schedule = t_start.elapsed().as_secs_f64();
     // The stock: the largest level (a boss's base, a cavity's rim) plus the margin.
     let base = contours_at(if job.cavity { s_of(0.0) } else { s_of(-depth) });
     let (blo, bhi) = bbox(&base);
@@ -283,7 +292,9 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                 corner_clusters: true,
                 corner_fraction: 0.2,
             };
+            let t0 = std::time::Instant::now();
             let solved = field::solve_quick(&prep, base)?;
+            let t_solve = t0.elapsed().as_secs_f64();
             let mut warnings = Vec::new();
             let label = format!("level {k} (z {:.3})", job.top + z);
             // A level added for the scallop bound clears only the band out to the
@@ -333,6 +344,8 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                 max_error: solved.solution.max_error,
                 uncut,
                 min_clearance: f64::NAN,
+                t_solve,
+                t_paths: t0.elapsed().as_secs_f64() - t_solve,
             };
             Ok((
                 LevelCut {
@@ -361,6 +374,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
         info,
         warnings,
         params,
+        t_schedule,
     })
 }
 
