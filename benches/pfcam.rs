@@ -80,9 +80,9 @@ fn profiles(c: &mut Criterion) {
         "letter I profile (solve + trace + gouge check), tol 0.01 mm",
         |b| b.iter(|| pfcam::pipeline::run(black_box(&i), &mut |_| {}).unwrap()),
     );
-    let mfs = job("jobs/mfs-sign.toml");
+    let mfs = job("jobs/mfs-profile.toml");
     g.bench_function(
-        "mfs-sign end to end (solve + trace + check + G-code)",
+        "mfs-profile end to end (solve + trace + arcs + check + G-code)",
         |b| {
             b.iter(|| {
                 let out = pfcam::pipeline::run(black_box(&mfs), &mut |_| {}).unwrap();

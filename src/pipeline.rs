@@ -358,7 +358,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
             label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),
             n: li.n,
             m: li.m,
-            distance: f64::NAN,
+            distance: li.distance,
             max_error: li.max_error,
         });
     }

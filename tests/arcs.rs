@@ -14,6 +14,10 @@ use std::f64::consts::TAU;
 use std::fs;
 use std::path::{Path, PathBuf};
 
+/// The profile jobs in `jobs/`. (Boss and cavity jobs are fitted too, but the
+/// traced path these tests compare with is the profile planner's; their arcs are
+/// checked by the gouge check of every level in tests/levels.rs and by
+/// `pfcam check` in tests/check.rs.)
 fn jobs() -> Vec<Job> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs");
     let mut paths: Vec<PathBuf> = fs::read_dir(dir)
@@ -24,10 +28,13 @@ fn jobs() -> Vec<Job> {
         .collect();
     paths.sort();
     assert!(!paths.is_empty());
-    paths
+    let jobs: Vec<Job> = paths
         .iter()
         .map(|p| load_job(p).unwrap_or_else(|e| panic!("{e}")))
-        .collect()
+        .filter(|j| j.operation.kind == pfcam::job::OperationKind::Profile)
+        .collect();
+    assert!(jobs.len() >= 4, "the profile jobs");
+    jobs
 }
 
 /// The linked (traced, lines only) tool path of a job, and the same fitted.

@@ -35,6 +35,8 @@ pub struct LevelInfo {
     pub m: usize,
     /// Max boundary error of the level's solve.
     pub max_error: f64,
+    /// Pseudo-boundary distance chosen for the level's solve, mm.
+    pub distance: f64,
     /// Cavity: the uncut share of the reachable area (measured on a grid).
     pub uncut: Option<f64>,
     /// Smallest clearance of the level's moves from the gouge check against
@@ -342,6 +344,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                 n: solved.layout.n_total,
                 m: solved.m,
                 max_error: solved.solution.max_error,
+                distance: solved.layout.distance,
                 uncut,
                 min_clearance: f64::NAN,
                 t_solve,
