@@ -31,25 +31,50 @@ pub struct LevelMoves {
     pub moves: Vec<(Vec3, Move)>,
 }
 
-/// Split a tool path's feed moves by the z they end at, shallowest level first.
-/// Rapids belong to no level.
+/// Split a tool path's feed moves by level, shallowest level first. The levels
+/// are the depths of the horizontal feed moves; a move that changes depth (a
+/// plunge, or a ramp of a boss or cavity) belongs to the level it descends into,
+/// the highest level at or below where it ends. Rapids belong to no level.
 pub fn split_levels(tp: &Toolpath) -> Vec<LevelMoves> {
-    let mut levels: Vec<LevelMoves> = Vec::new();
+    let mut zs: Vec<f64> = Vec::new();
+    let mut at = tp.start;
+    for m in tp.moves() {
+        let to = m.to();
+        if !matches!(m, Move::Rapid { .. })
+            && (to.z - at.z).abs() <= Z_EPS
+            && !zs.iter().any(|z| (z - to.z).abs() <= Z_EPS)
+        {
+            zs.push(to.z);
+        }
+        at = to;
+    }
+    zs.sort_by(|a, b| b.total_cmp(a));
+    let mut levels: Vec<LevelMoves> = zs
+        .iter()
+        .map(|&z| LevelMoves {
+            z,
+            moves: Vec::new(),
+        })
+        .collect();
     let mut at = tp.start;
     for m in tp.moves() {
         let to = m.to();
         if !matches!(m, Move::Rapid { .. }) {
-            match levels.iter_mut().find(|l| (l.z - to.z).abs() <= Z_EPS) {
-                Some(l) => l.moves.push((at, *m)),
-                None => levels.push(LevelMoves {
+            let k = zs
+                .iter()
+                .position(|&z| z <= to.z + Z_EPS)
+                .unwrap_or(zs.len().saturating_sub(1));
+            if let Some(l) = levels.get_mut(k) {
+                l.moves.push((at, *m));
+            } else {
+                levels.push(LevelMoves {
                     z: to.z,
                     moves: vec![(at, *m)],
-                }),
+                });
             }
         }
         at = to;
     }
-    levels.sort_by(|a, b| b.z.total_cmp(&a.z));
     levels
 }
 
@@ -347,6 +372,38 @@ impl RunReport {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn ramps_belong_to_the_level_they_enter() {
+        use crate::toolpath::{Move, Section, Toolpath, Vec3};
+        let lin = |x: f64, z: f64| Move::Linear {
+            to: Vec3::new(x, 0.0, z),
+            feed: 100.0,
+        };
+        let tp = Toolpath {
+            start: Vec3::new(0.0, 0.0, 5.0),
+            sections: vec![Section {
+                label: String::new(),
+                z: -2.0,
+                moves: vec![
+                    Move::Rapid {
+                        to: Vec3::new(0.0, 0.0, 1.0),
+                    },
+                    lin(0.0, -1.0), // plunge into level -1
+                    lin(10.0, -1.0),
+                    lin(20.0, -1.3), // a ramp down to level -2
+                    lin(30.0, -1.6),
+                    lin(40.0, -2.0),
+                    lin(50.0, -2.0),
+                ],
+            }],
+        };
+        let lv = split_levels(&tp);
+        assert_eq!(lv.len(), 2, "{lv:?}");
+        assert_eq!((lv[0].z, lv[0].moves.len()), (-1.0, 2));
+        assert_eq!((lv[1].z, lv[1].moves.len()), (-2.0, 4));
+    }
+
     use super::*;
 
     fn lin(x: f64, y: f64, z: f64) -> Move {
