@@ -144,9 +144,9 @@ impl Prepared {
             }
         }
         let mut sinks = Vec::new();
-        for (ci, c) in boundary.contours.iter().enumerate() {
+        for (ci, poly) in polys.iter().enumerate() {
             if boundary.is_counter[ci] {
-                sinks.push(sink_for(c, &polys[ci], &index)?);
+                sinks.push(sink_for(poly, &index)?);
             }
         }
         Ok(Prepared {
@@ -375,55 +375,14 @@ impl Prepared {
 }
 
 /// A sink for a counter: centred at the point of the counter farthest from its
-/// boundary (found on a grid, then refined), radius a quarter of that distance.
-fn sink_for(c: &Contour, poly: &[Vec2], index: &DistanceIndex) -> Result<Sink, FieldError> {
-    let (lo, hi) = c
-        .bbox()
-        .ok_or_else(|| FieldError::Invalid("empty counter".into()))?;
-    let mut best = (0.0, lo);
-    let g = 40;
-    for i in 0..=g {
-        for j in 0..=g {
-            let p = Vec2::new(
-                lo.x + (hi.x - lo.x) * i as f64 / g as f64,
-                lo.y + (hi.y - lo.y) * j as f64 / g as f64,
-            );
-            if polygon_winding_number(poly, p) != 0 {
-                let d = index.distance(p);
-                if d > best.0 {
-                    best = (d, p);
-                }
-            }
-        }
-    }
-    if best.0 <= 0.0 {
+/// boundary (`geometry::deepest_point`), radius a quarter of that distance.
+fn sink_for(poly: &[Vec2], index: &DistanceIndex) -> Result<Sink, FieldError> {
+    let (centre, room) = crate::geometry::deepest_point(poly, index);
+    if room <= 0.0 {
         return Err(FieldError::Invalid("a counter has no interior".into()));
     }
-    // Refine by pattern search.
-    let mut step = (hi - lo).norm() / g as f64;
-    while step > best.0 * 1e-4 {
-        let mut moved = false;
-        for dir in [
-            Vec2::new(1.0, 0.0),
-            Vec2::new(-1.0, 0.0),
-            Vec2::new(0.0, 1.0),
-            Vec2::new(0.0, -1.0),
-        ] {
-            let p = best.1 + dir * step;
-            if polygon_winding_number(poly, p) != 0 {
-                let d = index.distance(p);
-                if d > best.0 {
-                    best = (d, p);
-                    moved = true;
-                }
-            }
-        }
-        if !moved {
-            step *= 0.5;
-        }
-    }
     Ok(Sink {
-        centre: best.1,
-        radius: 0.25 * best.0,
+        centre,
+        radius: 0.25 * room,
     })
 }

@@ -253,6 +253,60 @@ pub fn seg_seg_dist(a: Vec2, b: Vec2, p: Vec2, q: Vec2) -> f64 {
         .sqrt()
 }
 
+/// The point inside a closed polygon farthest from `part` (a 48×48 grid search,
+/// then pattern search down to 1e-6), with that distance: where a counter's sink
+/// goes, and where the tool starts inside a hole. A distance below 0 means the
+/// polygon has no interior on the grid.
+pub fn deepest_point(poly: &[Vec2], part: &DistanceIndex) -> (Vec2, f64) {
+    let (mut lo, mut hi) = (poly[0], poly[0]);
+    for p in poly {
+        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let mut best = (lo, -1.0);
+    let g = 48;
+    for i in 0..=g {
+        for j in 0..=g {
+            let p = Vec2::new(
+                lo.x + (hi.x - lo.x) * i as f64 / g as f64,
+                lo.y + (hi.y - lo.y) * j as f64 / g as f64,
+            );
+            if super::polygon_winding_number(poly, p) != 0 {
+                let d = part.distance(p);
+                if d > best.1 {
+                    best = (p, d);
+                }
+            }
+        }
+    }
+    if best.1 < 0.0 {
+        return best;
+    }
+    let mut step = (hi - lo).norm() / g as f64;
+    while step > 1e-6 {
+        let mut moved = false;
+        for dir in [
+            Vec2::new(1.0, 0.0),
+            Vec2::new(-1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(0.0, -1.0),
+        ] {
+            let p = best.0 + dir * step;
+            if super::polygon_winding_number(poly, p) != 0 {
+                let d = part.distance(p);
+                if d > best.1 {
+                    best = (p, d);
+                    moved = true;
+                }
+            }
+        }
+        if !moved {
+            step *= 0.5;
+        }
+    }
+    best
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

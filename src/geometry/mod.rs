@@ -12,7 +12,7 @@ pub mod text;
 mod vec2;
 
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};
-pub use distance::{seg_seg_dist, DistanceIndex};
+pub use distance::{deepest_point, seg_seg_dist, DistanceIndex};
 pub use nesting::regions_from_contours;
 pub use segment::Segment;
 pub use text::build_shape;

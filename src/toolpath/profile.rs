@@ -4,7 +4,8 @@
 
 use super::trace::{trace, Navigator, TraceError, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
-use crate::geometry::{polygon_winding_number, DistanceIndex, Shape, Vec2};
+pub use crate::geometry::deepest_point;
+use crate::geometry::{DistanceIndex, Shape, Vec2};
 
 /// Settings of a profile, mm and mm/min.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,58 +61,6 @@ pub enum ProfileError {
 pub fn pass_depths(top: f64, depth: f64, stepdown: f64) -> Vec<f64> {
     let n = ((depth / stepdown) - 1e-9).ceil().max(1.0) as usize;
     (1..=n).map(|k| top - depth * k as f64 / n as f64).collect()
-}
-
-/// The point inside a closed polygon farthest from `part` (grid search then
-/// pattern refinement), with that distance.
-pub fn deepest_point(poly: &[Vec2], part: &DistanceIndex) -> (Vec2, f64) {
-    let (mut lo, mut hi) = (poly[0], poly[0]);
-    for p in poly {
-        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
-    }
-    let mut best = (lo, -1.0);
-    let g = 48;
-    for i in 0..=g {
-        for j in 0..=g {
-            let p = Vec2::new(
-                lo.x + (hi.x - lo.x) * i as f64 / g as f64,
-                lo.y + (hi.y - lo.y) * j as f64 / g as f64,
-            );
-            if polygon_winding_number(poly, p) != 0 {
-                let d = part.distance(p);
-                if d > best.1 {
-                    best = (p, d);
-                }
-            }
-        }
-    }
-    if best.1 < 0.0 {
-        return best;
-    }
-    let mut step = (hi - lo).norm() / g as f64;
-    while step > 1e-6 {
-        let mut moved = false;
-        for dir in [
-            Vec2::new(1.0, 0.0),
-            Vec2::new(-1.0, 0.0),
-            Vec2::new(0.0, 1.0),
-            Vec2::new(0.0, -1.0),
-        ] {
-            let p = best.0 + dir * step;
-            if polygon_winding_number(poly, p) != 0 {
-                let d = part.distance(p);
-                if d > best.1 {
-                    best = (p, d);
-                    moved = true;
-                }
-            }
-        }
-        if !moved {
-            step *= 0.5;
-        }
-    }
-    best
 }
 
 /// Trace every loop of the shape: for each region, its counters (inside first, so
