@@ -101,8 +101,12 @@ fn levels(c: &mut Criterion) {
         "mfs-sign boss, 40 levels, end to end (solves, levels, tracing, clearing, arcs, check)",
         |b| b.iter(|| pfcam::pipeline::run(black_box(&sign), &mut |_| {}).unwrap()),
     );
-    // The full mfs-mould takes about 40 s a run (see docs/method.md); the bench
-    // measures the same code on the letter I's mould.
+    // The full mould: about 40 s a run, so this group alone takes about 8 minutes.
+    let full_mould = job("jobs/mfs-mould.toml");
+    g.bench_function("mfs-mould cavity, 26 levels, end to end", |b| {
+        b.iter(|| pfcam::pipeline::run(black_box(&full_mould), &mut |_| {}).unwrap())
+    });
+    // The same code on the letter I's mould, quick enough to run often.
     let mould = pfcam::job::parse_job(
         "[shape]\ntext = \"I\"\nheight = 50.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n\
          [operation]\nkind = \"cavity\"\ndepth = 2.0\nmax_scallop = 2.0\n[profile]\nkind = \"linear\"\ns_bottom = 0.97\n",
