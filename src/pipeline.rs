@@ -141,6 +141,51 @@ pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineEr
     })
 }
 
+/// The shape's field: problem (2.5) with u = 1 on every contour, N from
+/// `field.singularities` or `AUTO_N_PER_REGION` per region plus the outer ring
+/// and the counters' sinks, the distance given or chosen. Returns the solve, its
+/// report and the outer radius.
+fn solve_shape(
+    shape: &Shape,
+    job: &Job,
+    flat_tol: f64,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<(field::Solved, SolveReport, f64), PipelineError> {
+    let boundary = boundary_for(shape, flat_tol)?;
+    let outer_radius = boundary.radius;
+    progress(Progress::Stage {
+        name: "solving the potential field".into(),
+        total: 1,
+    });
+    let prep = Prepared::new(boundary)?;
+    let n_total = job.field.singularities.unwrap_or(
+        AUTO_N_PER_REGION * shape.regions.len()
+            + field::setup::OUTER_CHARGES
+            + prep.sinks.len() * field::setup::SINK_CHARGES,
+    );
+    let base = Layout {
+        n_total,
+        distance: 1.0,
+        corner_clusters: true,
+        corner_fraction: field::DEFAULT_CORNER_FRACTION,
+    };
+    let solved = field::solve_with(&prep, base, job.field.pseudo_boundary)?;
+    progress(Progress::Step);
+    let report = SolveReport {
+        label: shape
+            .regions
+            .iter()
+            .map(|r| r.name.clone())
+            .collect::<Vec<_>>()
+            .join(" "),
+        n: solved.layout.n_total,
+        m: solved.m,
+        distance: solved.layout.distance,
+        max_error: solved.solution.max_error,
+    };
+    Ok((solved, report, outer_radius))
+}
+
 /// Everything computed before linking: the shape, its field, the traced loops.
 #[derive(Clone, Debug)]
 pub struct Plan {
@@ -173,41 +218,8 @@ pub fn plan_shape(
 ) -> Result<Plan, PipelineError> {
     let tol = job.operation.tolerance;
     let flat_tol = tol * FLATTEN_FRACTION;
-    let boundary = boundary_for(&shape, flat_tol)?;
-    let n_total = job
-        .field
-        .singularities
-        .unwrap_or(AUTO_N_PER_REGION * shape.regions.len() + field::setup::OUTER_CHARGES);
-    progress(Progress::Stage {
-        name: "solving the potential field".into(),
-        total: 1,
-    });
-    let prep = Prepared::new(boundary)?;
-    let n_total = if job.field.singularities.is_some() {
-        n_total
-    } else {
-        n_total + prep.sinks.len() * field::setup::SINK_CHARGES
-    };
-    let base = Layout {
-        n_total,
-        distance: 1.0,
-        corner_clusters: true,
-        corner_fraction: field::DEFAULT_CORNER_FRACTION,
-    };
-    let solved = field::solve_with(&prep, base, job.field.pseudo_boundary)?;
-    progress(Progress::Step);
-    let solves = vec![SolveReport {
-        label: shape
-            .regions
-            .iter()
-            .map(|r| r.name.clone())
-            .collect::<Vec<_>>()
-            .join(" "),
-        n: solved.layout.n_total,
-        m: solved.m,
-        distance: solved.layout.distance,
-        max_error: solved.solution.max_error,
-    }];
+    let (solved, report, _) = solve_shape(&shape, job, flat_tol, progress)?;
+    let solves = vec![report];
     let polys: Vec<Vec<_>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
     let part = DistanceIndex::new(&polys);
     let params = ProfileParams {
@@ -256,29 +268,11 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let shape = build_shape(&job.shape)?;
     let tol = job.operation.tolerance;
     let flat_tol = tol * FLATTEN_FRACTION;
-    let boundary = boundary_for(&shape, flat_tol)?;
-    let outer_radius = boundary.radius;
     let profile = job
         .profile
         .as_ref()
         .ok_or_else(|| PipelineError::Other("a boss or cavity needs a [profile]".into()))?;
-    progress(Progress::Stage {
-        name: "solving the potential field".into(),
-        total: 1,
-    });
-    let prep = Prepared::new(boundary)?;
-    let n_total = job.field.singularities.unwrap_or(
-        AUTO_N_PER_REGION * shape.regions.len()
-            + field::setup::OUTER_CHARGES
-            + prep.sinks.len() * field::setup::SINK_CHARGES,
-    );
-    let base = Layout {
-        n_total,
-        distance: 1.0,
-        corner_clusters: true,
-        corner_fraction: field::DEFAULT_CORNER_FRACTION,
-    };
-    let solved = field::solve_with(&prep, base, job.field.pseudo_boundary)?;
+    let (solved, shape_report, outer_radius) = solve_shape(&shape, job, flat_tol, progress)?;
     progress(Progress::Step);
     let glyphs: Vec<Vec<crate::geometry::Vec2>> =
         shape.contours().map(|c| c.flatten(flat_tol)).collect();
@@ -341,18 +335,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         min_clearance = min_clearance.min(rep.min_clearance);
         info.min_clearance = rep.min_clearance;
     }
-    let mut solves = vec![SolveReport {
-        label: shape
-            .regions
-            .iter()
-            .map(|r| r.name.clone())
-            .collect::<Vec<_>>()
-            .join(" "),
-        n: solved.layout.n_total,
-        m: solved.m,
-        distance: solved.layout.distance,
-        max_error: solved.solution.max_error,
-    }];
+    let mut solves = vec![shape_report];
     for (k, li) in planned.info.iter().enumerate() {
         solves.push(SolveReport {
             label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),

@@ -11,7 +11,7 @@
 use crate::geometry::DistanceIndex;
 use crate::job::Job;
 use crate::pipeline::{RunOutput, SolveReport, FLATTEN_FRACTION};
-use crate::toolpath::{arc_length, gouge, Move, Section, Toolpath, Vec3};
+use crate::toolpath::{gouge, Move, Section, Toolpath, Vec3};
 use serde::Serialize;
 
 /// What the first key of every pfcam JSON file says: `"generator": "pfcam <version>"`.
@@ -78,26 +78,7 @@ pub fn split_levels(tp: &Toolpath) -> Vec<LevelMoves> {
     levels
 }
 
-/// Length (mm) and time (s) of a feed move from `from`.
-pub fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
-    match *m {
-        Move::Rapid { .. } => (0.0, 0.0),
-        Move::Linear { to, feed } => {
-            let l = from.dist(to);
-            (l, l / feed * 60.0)
-        }
-        Move::Arc {
-            to,
-            cx,
-            cy,
-            ccw,
-            feed,
-        } => {
-            let l = arc_length(from, to, cx, cy, ccw);
-            (l, l / feed * 60.0)
-        }
-    }
-}
+pub use crate::toolpath::feed_length_time;
 
 /// One level of the report.
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -311,8 +311,6 @@ fn edge_root(
 /// As `isolines`, with every vertex placed by linear interpolation of the grid
 /// values (no field evaluations): for searches over many levels.
 pub fn isolines_linear(grid: &Grid, s: f64) -> Vec<Vec<Vec2>> {
-    let f = Field::new(vec![], vec![]);
-    let _ = &f;
     trace_loops(grid, s)
         .into_iter()
         .map(|lp| {

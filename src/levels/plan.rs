@@ -154,9 +154,9 @@ pub struct Planned {
 /// Plan every level.
 pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
     let f = job.field;
-    let (s_lo, s_hi) = job.profile.s_range();
+    let (s_lo, _) = job.profile.s_range();
     // One grid for the whole job, grown until Γ(s_lo) closes inside it.
-    let (mut lo, mut hi) = bbox(job.glyphs);
+    let (lo, hi) = bbox(job.glyphs);
     let diag = (hi - lo).norm();
     let mut pad = 0.1 * diag;
     let h = GRID_SPACING.max(diag / 2000.0);
@@ -235,7 +235,6 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                 .fold(None, |m: Option<f64>, zr| Some(m.map_or(zr, |m| m.max(zr))))
         }
     };
-    let _ = (s_hi, &mut lo, &mut hi);
 
     let t_schedule = t_start.elapsed().as_secs_f64();
     // The stock: the largest level (a boss's base, a cavity's rim) plus the margin.

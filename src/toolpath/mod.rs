@@ -112,32 +112,39 @@ impl Toolpath {
         let mut st = PathStats::default();
         let mut at = self.start;
         for m in self.moves() {
-            match *m {
-                Move::Rapid { to } => {
-                    let l = at.dist(to);
-                    st.rapid_length += l;
-                    st.time_s += l / rapid_rate * 60.0;
-                }
-                Move::Linear { to, feed } => {
-                    let l = at.dist(to);
-                    st.cut_length += l;
-                    st.time_s += l / feed * 60.0;
-                }
-                Move::Arc {
-                    to,
-                    cx,
-                    cy,
-                    ccw,
-                    feed,
-                } => {
-                    let l = arc_length(at, to, cx, cy, ccw);
-                    st.cut_length += l;
-                    st.time_s += l / feed * 60.0;
-                }
+            if let Move::Rapid { to } = *m {
+                let l = at.dist(to);
+                st.rapid_length += l;
+                st.time_s += l / rapid_rate * 60.0;
+            } else {
+                let (l, t) = feed_length_time(at, m);
+                st.cut_length += l;
+                st.time_s += t;
             }
             at = m.to();
         }
         st
+    }
+}
+
+/// Length (mm) and time (s) of a feed move from `from`; (0, 0) for a rapid.
+pub fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
+    match *m {
+        Move::Rapid { .. } => (0.0, 0.0),
+        Move::Linear { to, feed } => {
+            let l = from.dist(to);
+            (l, l / feed * 60.0)
+        }
+        Move::Arc {
+            to,
+            cx,
+            cy,
+            ccw,
+            feed,
+        } => {
+            let l = arc_length(from, to, cx, cy, ccw);
+            (l, l / feed * 60.0)
+        }
     }
 }
 
