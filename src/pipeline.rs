@@ -145,7 +145,7 @@ pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineEr
 /// `field.singularities` or `AUTO_N_PER_REGION` per region plus the outer ring
 /// and the counters' sinks, the distance given or chosen. Returns the solve, its
 /// report and the outer radius.
-fn solve_shape(
+pub fn solve_shape(
     shape: &Shape,
     job: &Job,
     flat_tol: f64,
@@ -205,9 +205,23 @@ pub struct Plan {
     pub warnings: Vec<String>,
 }
 
+/// The job's shape in mm, with the reports of any MFS solves spent building it
+/// (a composition of parts solves a field per part, see `field::boolean`).
+pub fn job_shape(
+    job: &Job,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<(Shape, Vec<SolveReport>), PipelineError> {
+    let _ = progress;
+    Ok((build_shape(&job.shape)?, Vec::new()))
+}
+
 /// Shape, field and traced loops for a job.
 pub fn plan(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<Plan, PipelineError> {
-    plan_shape(build_shape(&job.shape)?, job, progress)
+    let (shape, mut solves) = job_shape(job, progress)?;
+    let mut plan = plan_shape(shape, job, progress)?;
+    solves.append(&mut plan.solves);
+    plan.solves = solves;
+    Ok(plan)
 }
 
 /// As `plan`, for a shape already built (the job's shape source is not read).
@@ -265,7 +279,7 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
 /// A boss or cavity: the shape's field, the levels (each with its own MFS solve on
 /// Γ(s_k)), linking, and the gouge check of every level against its Γ(s_k).
 fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
-    let shape = build_shape(&job.shape)?;
+    let (shape, mut solves) = job_shape(job, progress)?;
     let tol = job.operation.tolerance;
     let flat_tol = tol * FLATTEN_FRACTION;
     let profile = job
@@ -335,7 +349,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         min_clearance = min_clearance.min(rep.min_clearance);
         info.min_clearance = rep.min_clearance;
     }
-    let mut solves = vec![shape_report];
+    solves.push(shape_report);
     for (k, li) in planned.info.iter().enumerate() {
         solves.push(SolveReport {
             label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),

@@ -173,6 +173,78 @@ pub enum ShapeSource {
         /// Where the bottom-left of the bounding box goes, mm.
         origin: Vec2,
     },
+    /// Parts combined by the paper's Boolean operations on fields (Section 4);
+    /// built by `field::boolean`, since every step needs a potential field.
+    Composite(Composition),
+}
+
+/// A shape built from named parts in design units (the paper's Section 5): each
+/// part is a primitive, an equipotential of an earlier part, or a Boolean
+/// operation on earlier parts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Composition {
+    /// The parts, in order: a part refers only to parts before it.
+    pub parts: Vec<Part>,
+    /// Name of the part that is the shape.
+    pub result: String,
+    /// Height of the result in mm; `None` keeps 1 design unit = 1 mm.
+    pub height: Option<f64>,
+    /// Where the bottom-left of the result's bounding box goes, mm.
+    pub origin: Vec2,
+}
+
+/// One part of a composition.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Part {
+    /// Its name (unique), for references and messages.
+    pub name: String,
+    /// What it is made of.
+    pub source: PartSource,
+    /// When set, the part is the equipotential Γ(level) of that source's field
+    /// (0 < level < 1), a new generating boundary (the paper's model set 1).
+    pub level: Option<f64>,
+    /// Singularities N for this part's own field; `None` chooses.
+    pub singularities: Option<usize>,
+}
+
+/// What a part is made of.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PartSource {
+    /// A closed polygon, design units (either orientation).
+    Polygon(Vec<Vec2>),
+    /// SVG path data, design units, y up as written (no flip, no move).
+    Svg(String),
+    /// Glyphs, cap height `size` design units, baseline-left at the origin.
+    Text {
+        /// The characters.
+        text: String,
+        /// The font.
+        font: FontSource,
+        /// Cap height, design units.
+        size: f64,
+    },
+    /// An earlier part as it is (with `level`, its equipotential).
+    Ref(String),
+    /// A Boolean operation on earlier parts.
+    Op {
+        /// Which.
+        op: BoolOp,
+        /// Operands, in order (`subtract`: the first minus all the others).
+        of: Vec<String>,
+    },
+}
+
+/// The paper's Boolean operations on MFS problems (Section 4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoolOp {
+    /// Ω₁ ∪ Ω₂ ∪ …
+    Union,
+    /// Ω₁ ∩ Ω₂ ∩ …
+    Intersect,
+    /// Ω₁ − Ω₂ − …
+    Subtract,
+    /// R² − Ω (one operand); unbounded, so only useful inside other operations.
+    Invert,
 }
 
 /// A font.

@@ -79,6 +79,9 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
             check_point("origin", *origin)?;
             svgpath::svg_shape(d, *height, *origin)
         }
+        ShapeSource::Composite(_) => Err(GeometryError::Invalid(
+            "a composition of parts is built with its fields (pipeline::job_shape)".into(),
+        )),
     }
 }
 
