@@ -4,6 +4,7 @@
 //! G-code / preview. Each stage is a module; the library never prints, never exits
 //! and never panics on user input.
 
+pub mod compose;
 pub mod field;
 pub mod gcode;
 pub mod geometry;

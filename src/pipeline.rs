@@ -1,7 +1,7 @@
 //! The whole run: job → shape → field → tool path, with the gouge check.
 
 use crate::field::{self, Boundary, FieldError, Layout, Prepared};
-use crate::geometry::{build_shape, DistanceIndex, Shape};
+use crate::geometry::{build_shape, DistanceIndex, Shape, ShapeSource};
 use crate::job::{Direction, Job, OperationKind};
 use crate::levels::plan::{plan_levels, LevelInfo, LevelJob};
 use crate::toolpath::arcfit::{self, ArcFitParams};
@@ -211,8 +211,27 @@ pub fn job_shape(
     job: &Job,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<(Shape, Vec<SolveReport>), PipelineError> {
-    let _ = progress;
-    Ok((build_shape(&job.shape)?, Vec::new()))
+    let ShapeSource::Composite(comp) = &job.shape else {
+        return Ok((build_shape(&job.shape)?, Vec::new()));
+    };
+    progress(Progress::Stage {
+        name: "modelling the shape from its parts".into(),
+        total: comp.parts.len() as u64,
+    });
+    let built = crate::compose::build(comp, &mut |_, _| progress(Progress::Step))
+        .map_err(|e| PipelineError::Other(format!("shape: {e}")))?;
+    let reports = built
+        .reports
+        .iter()
+        .map(|r| SolveReport {
+            label: r.label.clone(),
+            n: r.n,
+            m: r.m,
+            distance: r.distance * built.scale,
+            max_error: r.max_error,
+        })
+        .collect();
+    Ok((built.shape, reports))
 }
 
 /// Shape, field and traced loops for a job.

@@ -92,6 +92,39 @@ impl Grid {
         }
     }
 
+    /// As `sample`, with the material given by a membership test.
+    pub fn sample_in(
+        field: &Field,
+        lo: Vec2,
+        hi: Vec2,
+        h: f64,
+        inside: &(dyn Fn(Vec2) -> bool + Sync),
+    ) -> Grid {
+        let nx = (((hi.x - lo.x) / h).ceil() as usize + 1).max(2);
+        let ny = (((hi.y - lo.y) / h).ceil() as usize + 1).max(2);
+        let mut values = vec![0.0; nx * ny];
+        let mut mask = vec![false; nx * ny];
+        values
+            .par_chunks_mut(nx)
+            .zip(mask.par_chunks_mut(nx))
+            .enumerate()
+            .for_each(|(j, (row, mrow))| {
+                for (i, (v, m)) in row.iter_mut().zip(mrow.iter_mut()).enumerate() {
+                    let p = Vec2::new(lo.x + h * i as f64, lo.y + h * j as f64);
+                    *m = inside(p);
+                    *v = if *m { 1.0 } else { field.value(p) };
+                }
+            });
+        Grid {
+            origin: lo,
+            h,
+            nx,
+            ny,
+            values,
+            inside: mask,
+        }
+    }
+
     fn point(&self, i: usize, j: usize) -> Vec2 {
         Vec2::new(
             self.origin.x + self.h * i as f64,
@@ -226,6 +259,24 @@ enum Edge {
 /// placed on grid edges by regula falsi on u (taken as 1 inside the material on
 /// edges that touch it).
 pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> Vec<Vec<Vec2>> {
+    let inside = |p: Vec2| {
+        material
+            .iter()
+            .map(|m| crate::geometry::polygon_winding_number(m, p))
+            .sum::<i32>()
+            != 0
+    };
+    isolines_in(grid, s, field, &inside)
+}
+
+/// As `isolines`, with the material given by a membership test (which must agree
+/// with `grid.inside` at the grid points).
+pub fn isolines_in(
+    grid: &Grid,
+    s: f64,
+    field: &Field,
+    inside: &(dyn Fn(Vec2) -> bool + Sync),
+) -> Vec<Vec<Vec2>> {
     let nx = grid.nx;
     let loops_edges = trace_loops(grid, s);
     // Place every vertex on its edge.
@@ -242,17 +293,7 @@ pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> V
                     let (ia, ib) = (a.1 * nx + a.0, b.1 * nx + b.0);
                     let (fa, fb) = (grid.values[ia] - s, grid.values[ib] - s);
                     if grid.inside[ia] || grid.inside[ib] {
-                        let u = |p: Vec2| {
-                            let w: i32 = material
-                                .iter()
-                                .map(|m| crate::geometry::polygon_winding_number(m, p))
-                                .sum();
-                            if w != 0 {
-                                1.0
-                            } else {
-                                field.value(p)
-                            }
-                        };
+                        let u = |p: Vec2| if inside(p) { 1.0 } else { field.value(p) };
                         edge_root(pa, pb, fa, fb, s, &u)
                     } else {
                         edge_root(pa, pb, fa, fb, s, &|p| field.value(p))

@@ -86,10 +86,42 @@ pub struct Prepared {
     lengths: Vec<f64>,
     /// Convex corners of the material, (contour, arc length, point, bisector into material, max depth).
     corners: Vec<(usize, f64, Vec2, Vec2, f64)>,
-    /// All corners (for check points): (contour, arc length).
-    all_corners: Vec<(usize, f64)>,
+    /// All corners (for check points and charges at corners): (contour, arc
+    /// length, tangent in, tangent out).
+    all_corners: Vec<(usize, f64, Vec2, Vec2)>,
     /// Sinks, one per counter.
     pub sinks: Vec<Sink>,
+    /// Whether the outer circle (u = 0, the paper's ∂Ω_E) is part of the problem:
+    /// true for the direct problem, false for the inverse problem of Section 4,
+    /// whose only zero boundaries are the sinks inside the shape.
+    pub outer: bool,
+}
+
+/// A problem's points by role (the paper's sets of Section 4): the material's
+/// singularities with the collocation and check points of u = 1 on its boundary
+/// (Q_I and P_I, or R_I and P_I for an inverse problem), the outer circle
+/// (Q_E, P_E) and each sink (R_O, P_O), all with u = 0.
+#[derive(Clone, Debug, Default)]
+pub struct Groups {
+    /// Singularities in the material, collocation and check points on its boundary.
+    pub material: Problem,
+    /// The outer circle, when the problem has one.
+    pub outer: Option<Problem>,
+    /// The sinks, each with its points.
+    pub sinks: Vec<(Sink, Problem)>,
+}
+
+impl Groups {
+    /// All points in one problem: material, outer circle, sinks (this order).
+    pub fn concat(&self) -> Problem {
+        let mut pr = self.material.clone();
+        for g in self.outer.iter().chain(self.sinks.iter().map(|(_, p)| p)) {
+            pr.charges.extend_from_slice(&g.charges);
+            pr.colloc.extend_from_slice(&g.colloc);
+            pr.checks.extend_from_slice(&g.checks);
+        }
+        pr
+    }
 }
 
 /// Distance from `p` along unit direction `dir` to the first crossing of any polygon
@@ -134,12 +166,30 @@ impl Prepared {
         let mut all_corners = Vec::new();
         for (ci, c) in boundary.contours.iter().enumerate() {
             for k in c.corners(CORNER_TURN) {
-                all_corners.push((ci, k.s));
+                all_corners.push((ci, k.s, k.t_in, k.t_out));
                 if k.turn > SINGULAR_TURN {
                     let b = (k.t_out - k.t_in).normalized();
                     let b = if b.norm2() > 0.5 { b } else { k.t_in.perp() };
                     let depth = ray_cast(&polys, k.p, b, 1e-9 * boundary.radius);
                     corners.push((ci, k.s, k.p, b, 0.5 * depth.min(lengths[ci] / 4.0)));
+                }
+            }
+        }
+        // Two clusters whose bisectors cross within both their depths (the two
+        // ends of a thin bar: a rectangle's corners meet on its mid-line) would
+        // share a charge and make the system singular: stop both short of it.
+        for i in 0..corners.len() {
+            for j in 0..i {
+                let (pi, bi, pj, bj) = (corners[i].2, corners[i].3, corners[j].2, corners[j].3);
+                let den = bi.cross(bj);
+                if den.abs() < 1e-12 {
+                    continue;
+                }
+                let ti = (pj - pi).cross(bj) / den;
+                let tj = (pj - pi).cross(bi) / den;
+                if ti > 0.0 && tj > 0.0 && ti <= corners[i].4 && tj <= corners[j].4 {
+                    corners[i].4 = corners[i].4.min(0.8 * ti);
+                    corners[j].4 = corners[j].4.min(0.8 * tj);
                 }
             }
         }
@@ -157,6 +207,7 @@ impl Prepared {
             corners,
             all_corners,
             sinks,
+            outer: true,
         })
     }
 
@@ -215,9 +266,17 @@ impl Prepared {
 
     /// Build the discrete problem for a layout: M = 2N collocation points.
     pub fn problem(&self, layout: &Layout) -> Result<Problem, FieldError> {
+        let pr = self.groups(layout)?.concat();
+        debug_assert_eq!(pr.charges.len(), layout.n_total);
+        debug_assert_eq!(pr.colloc.len(), 2 * layout.n_total);
+        Ok(pr)
+    }
+
+    /// The problem for a layout, its points kept apart by role.
+    pub fn groups(&self, layout: &Layout) -> Result<Groups, FieldError> {
         let b = &self.boundary;
         let n_sinks = self.sinks.len() * SINK_CHARGES;
-        let n_outer = OUTER_CHARGES;
+        let n_outer = if self.outer { OUTER_CHARGES } else { 0 };
         let fixed = n_outer + n_sinks;
         if layout.n_total < fixed + 4 * b.contours.len() {
             return Err(FieldError::Invalid(format!(
@@ -265,7 +324,20 @@ impl Prepared {
         for (ci, c) in b.contours.iter().enumerate() {
             let nc = shares[ci];
             let h = self.lengths[ci] / nc as f64;
-            for s in c.sample_uniform(nc, 0.0) {
+            let l = self.lengths[ci];
+            for mut s in c.sample_uniform(nc, 0.0) {
+                // A sample on a corner: the one-sided normal runs along the other
+                // edge and would put the charge on the boundary; take the bisector.
+                let at_corner = self.all_corners.iter().find(|k| {
+                    let gap = (k.1 - s.s).abs();
+                    k.0 == ci && gap.min(l - gap) < 1e-9 * l
+                });
+                if let Some(&(_, _, t_in, t_out)) = at_corner {
+                    let n = (t_in.perp() + t_out.perp()).normalized();
+                    if n.norm2() > 0.5 {
+                        s.t = Vec2::new(n.y, -n.x);
+                    }
+                }
                 pr.charges.push(self.inward_charge(&s, layout.distance));
             }
             let cum = c.cumulative_lengths();
@@ -322,7 +394,7 @@ impl Prepared {
                 }
             }
         }
-        for &(ci, s) in &self.all_corners {
+        for &(ci, s, _, _) in &self.all_corners {
             let c = &b.contours[ci];
             let cum = c.cumulative_lengths();
             pr.checks.push(Condition {
@@ -331,7 +403,8 @@ impl Prepared {
             });
         }
         // Circles: outer (u = 0) and sinks (u = 0).
-        let circle = |centre: Vec2, radius: f64, charge_radius: f64, n: usize, pr: &mut Problem| {
+        let circle = |centre: Vec2, radius: f64, charge_radius: f64, n: usize| {
+            let mut pr = Problem::default();
             for j in 0..n {
                 let a = TAU * (j as f64 + 0.25) / n as f64;
                 pr.charges
@@ -351,26 +424,29 @@ impl Prepared {
                     });
                 }
             }
+            pr
         };
-        circle(
-            b.centre,
-            b.radius,
-            b.radius * OUTER_CHARGE_FACTOR,
-            n_outer,
-            &mut pr,
-        );
-        for sink in &self.sinks {
-            circle(
-                sink.centre,
-                sink.radius,
-                sink.radius * SINK_CHARGE_FACTOR,
-                SINK_CHARGES,
-                &mut pr,
-            );
-        }
-        debug_assert_eq!(pr.charges.len(), layout.n_total);
-        debug_assert_eq!(pr.colloc.len(), 2 * layout.n_total);
-        Ok(pr)
+        let outer = self
+            .outer
+            .then(|| circle(b.centre, b.radius, b.radius * OUTER_CHARGE_FACTOR, n_outer));
+        let sinks = self
+            .sinks
+            .iter()
+            .map(|sink| {
+                let g = circle(
+                    sink.centre,
+                    sink.radius,
+                    sink.radius * SINK_CHARGE_FACTOR,
+                    SINK_CHARGES,
+                );
+                (*sink, g)
+            })
+            .collect();
+        Ok(Groups {
+            material: pr,
+            outer,
+            sinks,
+        })
     }
 }
 

@@ -263,6 +263,16 @@ pub fn deepest_point(poly: &[Vec2], part: &DistanceIndex) -> (Vec2, f64) {
         lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
         hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
     }
+    deepest_point_in(lo, hi, &|p| super::polygon_winding_number(poly, p) != 0, part)
+}
+
+/// As `deepest_point`, for the region `inside` within the box [lo, hi].
+pub fn deepest_point_in(
+    lo: Vec2,
+    hi: Vec2,
+    inside: &dyn Fn(Vec2) -> bool,
+    part: &DistanceIndex,
+) -> (Vec2, f64) {
     let mut best = (lo, -1.0);
     let g = 48;
     for i in 0..=g {
@@ -271,7 +281,7 @@ pub fn deepest_point(poly: &[Vec2], part: &DistanceIndex) -> (Vec2, f64) {
                 lo.x + (hi.x - lo.x) * i as f64 / g as f64,
                 lo.y + (hi.y - lo.y) * j as f64 / g as f64,
             );
-            if super::polygon_winding_number(poly, p) != 0 {
+            if inside(p) {
                 let d = part.distance(p);
                 if d > best.1 {
                     best = (p, d);
@@ -292,7 +302,7 @@ pub fn deepest_point(poly: &[Vec2], part: &DistanceIndex) -> (Vec2, f64) {
             Vec2::new(0.0, -1.0),
         ] {
             let p = best.0 + dir * step;
-            if super::polygon_winding_number(poly, p) != 0 {
+            if inside(p) {
                 let d = part.distance(p);
                 if d > best.1 {
                     best = (p, d);

@@ -7,12 +7,12 @@ pub mod font;
 pub mod glyphs;
 mod nesting;
 mod segment;
-mod svgpath;
+pub mod svgpath;
 pub mod text;
 mod vec2;
 
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};
-pub use distance::{deepest_point, seg_seg_dist, DistanceIndex};
+pub use distance::{deepest_point, deepest_point_in, seg_seg_dist, DistanceIndex};
 pub use nesting::regions_from_contours;
 pub use segment::Segment;
 pub use text::build_shape;

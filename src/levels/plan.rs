@@ -92,7 +92,7 @@ fn project(field: &Field, p: Vec2, s: f64, limit: f64) -> Option<Vec2> {
 
 /// Insert vertices on Γ(s) where a chord strays more than `tol` from it (the
 /// chord's midpoint projected onto Γ(s) by Newton), up to four halvings.
-fn refine(poly: &[Vec2], field: &Field, s: f64, tol: f64) -> Vec<Vec2> {
+pub fn refine(poly: &[Vec2], field: &Field, s: f64, tol: f64) -> Vec<Vec2> {
     let n = poly.len();
     let mut out = Vec::with_capacity(n * 2);
     for i in 0..n {

@@ -1,0 +1,964 @@
+//! Modelling with potential fields: the paper's Boolean operations on MFS problems
+//! (Section 4) and its modelling sequence (Section 5), which builds the letter Q
+//! from a rectangle and a polygon.
+//!
+//! Every part is a *model*: its MFS point set by role (singularities in the
+//! material with the collocation points of u = 1 on its boundary, the outer circle
+//! ∂Ω_E and the sinks ∂Ω_O with u = 0), the solved field, an exact membership test
+//! (the primitives' polygons combined as a Boolean expression, Appendix I's index
+//! for each), and an explicit boundary:
+//! - a primitive (polygon, SVG path, text) solves the direct problem (2.1);
+//! - `level = s` takes Γ(s) of a part's field as a new primitive (model set 1);
+//! - `invert` solves the inverse problem: u = 1 on the same boundary, singularities
+//!   on the other side of it, u = 0 on a sink inside every piece of material;
+//! - `union` keeps every point of both operands (the paper: "equivalent to solving
+//!   (2.5) with ℓ = 2"), except sinks that fall in the other operand's material;
+//! - `intersect` keeps the points of each operand inside the other;
+//! - `subtract` A − B is the intersection of A with the inverse problem of B: the
+//!   points of A outside B, the points of B and its outside singularities R_I inside
+//!   A, and the sinks of B (the paper's P̂_I1 ∪ P̂_I2, Q̂_I1 ∪ R̂_I2, P_O2, R_O2).
+//!
+//! The combined problem is solved afresh, and the explicit boundary of the result
+//! is the equipotential Γ(1 − τ) of its own field just outside the material (τ
+//! twice the solve's boundary error): every vertex is checked to lie on that level
+//! of the raw field, so a composite whose field does not reach 1 on some piece of
+//! its boundary is an error, not a curve copied from the membership test.
+
+use crate::field::isolines::{isolines_in, polygon_area, Grid};
+use crate::field::setup::{Boundary, Layout, Prepared, Sink, OUTER_CHARGES, SINK_CHARGES};
+use crate::field::{self, mfs, Field, FieldError, Problem};
+use crate::geometry::{
+    build_shape, deepest_point_in, polygon_winding_number, regions_from_contours, svgpath,
+    BoolOp, Composition, Contour, DistanceIndex, GeometryError, Part, PartSource,
+    Segment, Shape, ShapeSource, Vec2,
+};
+use std::collections::HashMap;
+use std::time::Instant;
+
+/// Singularities per region of a primitive when a part does not set them.
+pub const AUTO_N_PER_REGION: usize = 120;
+
+/// The outer circle (shared by every part, the paper's Ω_E1 = Ω_E2) has this many
+/// times the diagonal of the primitives' bounding box as radius, about the box's
+/// centre (as `pipeline::OUTER_RADIUS_FACTOR` for a single shape).
+pub const OUTER_RADIUS_FACTOR: f64 = 14.0;
+
+/// Grid points across the longer side of the box in which a curve is extracted.
+pub const EXTRACT_GRID: f64 = 400.0;
+
+/// Chords of extracted curves are refined until they are within this fraction of
+/// the primitives' diagonal of the level (Newton onto Γ(s)).
+pub const CURVE_TOL: f64 = 2e-5;
+
+/// Smallest τ for the boundary Γ(1 − τ) of a composite.
+pub const MIN_TAU: f64 = 1e-5;
+
+/// What went wrong modelling a part.
+#[derive(Debug, thiserror::Error)]
+pub enum ComposeError {
+    /// A part's geometry is bad.
+    #[error("shape.part \"{part}\": {source}")]
+    Geometry {
+        /// the part
+        part: String,
+        /// why
+        source: GeometryError,
+    },
+    /// A part's field could not be solved or used.
+    #[error("shape.part \"{part}\": {msg}")]
+    Part {
+        /// the part
+        part: String,
+        /// why
+        msg: String,
+    },
+}
+
+fn part_err(part: &str, msg: impl Into<String>) -> ComposeError {
+    ComposeError::Part {
+        part: part.to_string(),
+        msg: msg.into(),
+    }
+}
+
+fn field_err(part: &str, e: FieldError) -> ComposeError {
+    part_err(part, format!("field: {e}"))
+}
+
+/// Exact membership: the primitives' polygons (non-zero winding, Appendix I)
+/// combined by the Boolean expression of the part.
+#[derive(Clone, Debug)]
+pub enum Csg {
+    /// Inside closed polygons (or outside them, for the material of an inverse problem).
+    Leaf {
+        /// polygons, material on the left
+        polys: Vec<Vec<Vec2>>,
+        /// the material is the outside of the polygons
+        complement: bool,
+    },
+    /// Complement.
+    Not(Box<Csg>),
+    /// Intersection.
+    And(Box<Csg>, Box<Csg>),
+    /// Union.
+    Or(Box<Csg>, Box<Csg>),
+}
+
+impl Csg {
+    /// True when `p` is in the material.
+    pub fn contains(&self, p: Vec2) -> bool {
+        match self {
+            Csg::Leaf { polys, complement } => {
+                let w: i32 = polys.iter().map(|q| polygon_winding_number(q, p)).sum();
+                (w != 0) != *complement
+            }
+            Csg::Not(a) => !a.contains(p),
+            Csg::And(a, b) => a.contains(p) && b.contains(p),
+            Csg::Or(a, b) => a.contains(p) || b.contains(p),
+        }
+    }
+}
+
+/// The MFS points of a model by role (the paper's sets of Section 4).
+#[derive(Clone, Debug, Default)]
+pub struct PointSet {
+    /// Singularities in the material (Q_I, or R_I of an inverse problem), with the
+    /// collocation and check points of u = 1 on the boundary (P_I).
+    pub material: Problem,
+    /// The outer circle ∂Ω_E with its singularities, when the material is bounded.
+    pub outer: Option<Problem>,
+    /// Sinks ∂Ω_O with their singularities, u = 0.
+    pub sinks: Vec<(Sink, Problem)>,
+}
+
+impl PointSet {
+    fn problem(&self) -> Problem {
+        let mut pr = self.material.clone();
+        for g in self.outer.iter().chain(self.sinks.iter().map(|(_, p)| p)) {
+            pr.charges.extend_from_slice(&g.charges);
+            pr.colloc.extend_from_slice(&g.colloc);
+            pr.checks.extend_from_slice(&g.checks);
+        }
+        pr
+    }
+}
+
+/// A modelled part.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The part's name.
+    pub name: String,
+    /// Its MFS points.
+    pub set: PointSet,
+    /// Its solved field.
+    pub field: Field,
+    /// Max boundary error |u − g| over its check points.
+    pub max_error: f64,
+    /// The explicit boundary, material on the left.
+    pub contours: Vec<Contour>,
+    /// For each contour, whether it bounds a hole of the material.
+    pub is_counter: Vec<bool>,
+    /// Exact membership.
+    pub csg: Csg,
+}
+
+impl Model {
+    /// True when the material is bounded (the outer circle is in the void).
+    pub fn bounded(&self) -> bool {
+        self.set.outer.is_some()
+    }
+
+    /// The boundary polygons (flattened contours).
+    pub fn polygons(&self, tol: f64) -> Vec<Vec<Vec2>> {
+        self.contours.iter().map(|c| c.flatten(tol)).collect()
+    }
+}
+
+/// One MFS solve spent modelling, as reported to the user.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartReport {
+    /// What was solved, e.g. `m2 = Γ(0.85) of m1` or `Q: subtract`.
+    pub label: String,
+    /// Singularities N.
+    pub n: usize,
+    /// Collocation points M.
+    pub m: usize,
+    /// Pseudo-boundary distance, design units (0 for a composite: its points are kept).
+    pub distance: f64,
+    /// Max boundary error over the check points.
+    pub max_error: f64,
+    /// Seconds spent (wall clock).
+    pub seconds: f64,
+}
+
+/// The frame shared by all parts: the outer circle and the flattening tolerance.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    /// Centre of the outer circle.
+    pub centre: Vec2,
+    /// Its radius.
+    pub radius: f64,
+    /// Diagonal of the primitives' bounding box (the length scale).
+    pub size: f64,
+}
+
+impl Frame {
+    /// The frame for primitives with this bounding box.
+    pub fn around(lo: Vec2, hi: Vec2) -> Frame {
+        let size = (hi - lo).norm();
+        Frame {
+            centre: (lo + hi) * 0.5,
+            radius: OUTER_RADIUS_FACTOR * size,
+            size,
+        }
+    }
+
+    fn flat_tol(&self) -> f64 {
+        1e-5 * self.size
+    }
+}
+
+fn to_contour(poly: &[Vec2]) -> Option<Contour> {
+    let n = poly.len();
+    let segs: Vec<Segment> = (0..n)
+        .map(|i| Segment::Line {
+            a: poly[i],
+            b: poly[(i + 1) % n],
+        })
+        .collect();
+    Contour::new(segs).ok()
+}
+
+fn bbox_of(polys: &[Vec<Vec2>]) -> Option<(Vec2, Vec2)> {
+    let mut it = polys.iter().flatten();
+    let first = *it.next()?;
+    Some(it.fold((first, first), |(lo, hi), p| {
+        (
+            Vec2::new(lo.x.min(p.x), lo.y.min(p.y)),
+            Vec2::new(hi.x.max(p.x), hi.y.max(p.y)),
+        )
+    }))
+}
+
+/// Solve the problem of a boundary: `outer` says whether the outer circle is in the
+/// void; a sink goes inside every contour flagged as a counter, at the point of
+/// the void inside it farthest from the boundary. The pseudo-boundary distance is
+/// chosen (`field::solve_with`).
+#[allow(clippy::too_many_arguments)]
+fn solve_boundary(
+    name: &str,
+    contours: Vec<Contour>,
+    is_counter: Vec<bool>,
+    outer: bool,
+    csg: Csg,
+    frame: &Frame,
+    n: Option<usize>,
+    label: String,
+) -> Result<(Model, PartReport), ComposeError> {
+    let t0 = Instant::now();
+    let flat_tol = frame.flat_tol();
+    let polys: Vec<Vec<Vec2>> = contours.iter().map(|c| c.flatten(flat_tol)).collect();
+    let index = DistanceIndex::new(&polys);
+    let mut sinks = Vec::new();
+    for (ci, poly) in polys.iter().enumerate() {
+        if !is_counter[ci] {
+            continue;
+        }
+        let Some((lo, hi)) = bbox_of(std::slice::from_ref(poly)) else {
+            continue;
+        };
+        let inside = |p: Vec2| polygon_winding_number(poly, p) != 0 && !csg.contains(p);
+        let (centre, room) = deepest_point_in(lo, hi, &inside, &index);
+        if room <= 0.0 {
+            return Err(part_err(
+                name,
+                "a hole of the material has no interior for its sink",
+            ));
+        }
+        sinks.push(Sink {
+            centre,
+            radius: 0.25 * room,
+        });
+    }
+    let boundary = Boundary {
+        contours: contours.clone(),
+        is_counter: is_counter.clone(),
+        centre: frame.centre,
+        radius: frame.radius,
+        flat_tol,
+    };
+    let mut prep = Prepared::with_sinks(boundary, sinks).map_err(|e| field_err(name, e))?;
+    prep.outer = outer;
+    let regions = is_counter.iter().filter(|c| !**c).count().max(1);
+    let n_total = n.unwrap_or(
+        AUTO_N_PER_REGION * regions
+            + if outer { OUTER_CHARGES } else { 0 }
+            + prep.sinks.len() * SINK_CHARGES,
+    );
+    let base = Layout {
+        n_total,
+        distance: 1.0,
+        corner_clusters: true,
+        corner_fraction: field::DEFAULT_CORNER_FRACTION,
+    };
+    let solved = field::solve_with(&prep, base, None).map_err(|e| field_err(name, e))?;
+    let groups = prep
+        .groups(&solved.layout)
+        .map_err(|e| field_err(name, e))?;
+    let report = PartReport {
+        label,
+        n: solved.layout.n_total,
+        m: solved.m,
+        distance: solved.layout.distance,
+        max_error: solved.solution.max_error,
+        seconds: t0.elapsed().as_secs_f64(),
+    };
+    Ok((
+        Model {
+            name: name.to_string(),
+            set: PointSet {
+                material: groups.material,
+                outer: groups.outer,
+                sinks: groups.sinks,
+            },
+            field: solved.solution.field,
+            max_error: solved.solution.max_error,
+            contours,
+            is_counter,
+            csg,
+        },
+        report,
+    ))
+}
+
+/// The direct problem (2.1) of a primitive: contours oriented and nested first.
+pub fn primitive(
+    name: &str,
+    contours: Vec<Contour>,
+    frame: &Frame,
+    n: Option<usize>,
+) -> Result<(Model, PartReport), ComposeError> {
+    let regions = regions_from_contours(name, contours);
+    if regions.is_empty() {
+        return Err(part_err(name, "the primitive encloses no area"));
+    }
+    let mut cs = Vec::new();
+    let mut flags = Vec::new();
+    for r in regions {
+        cs.push(r.outline);
+        flags.push(false);
+        for c in r.counters {
+            cs.push(c);
+            flags.push(true);
+        }
+    }
+    let polys: Vec<Vec<Vec2>> = cs.iter().map(|c| c.flatten(frame.flat_tol())).collect();
+    let csg = Csg::Leaf {
+        polys,
+        complement: false,
+    };
+    solve_boundary(
+        name,
+        cs,
+        flags,
+        true,
+        csg,
+        frame,
+        n,
+        format!("{name}: primitive"),
+    )
+}
+
+/// The inverse problem of a model: the same boundary, material and void swapped.
+/// Applied twice it gives back the direct problem.
+pub fn invert(
+    name: &str,
+    m: &Model,
+    frame: &Frame,
+    n: Option<usize>,
+) -> Result<(Model, PartReport), ComposeError> {
+    let contours: Vec<Contour> = m.contours.iter().map(Contour::reversed).collect();
+    let flags: Vec<bool> = m.is_counter.iter().map(|c| !c).collect();
+    let csg = match &m.csg {
+        Csg::Not(inner) => (**inner).clone(),
+        other => Csg::Not(Box::new(other.clone())),
+    };
+    solve_boundary(
+        name,
+        contours,
+        flags,
+        !m.bounded(),
+        csg,
+        frame,
+        n,
+        format!("{name}: inverse problem of {}", m.name),
+    )
+}
+
+/// Γ(s) of a model's field as closed polygons, material (u ≥ s) on the left.
+pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeError> {
+    if !(s > 0.0 && s < 1.0) {
+        return Err(part_err(
+            &m.name,
+            format!("level must be strictly between 0 and 1, got {s}"),
+        ));
+    }
+    let polys = m.polygons(frame.flat_tol());
+    let (lo0, hi0) = bbox_of(&polys).ok_or_else(|| part_err(&m.name, "empty"))?;
+    let inside = |p: Vec2| m.csg.contains(p);
+    let mut grow = 0.5;
+    for _ in 0..6 {
+        let pad = (hi0 - lo0) * grow + Vec2::new(1.0, 1.0) * (0.01 * frame.size);
+        let (lo, hi) = (lo0 - pad, hi0 + pad);
+        let h = (hi.x - lo.x).max(hi.y - lo.y) / EXTRACT_GRID;
+        let grid = Grid::sample_in(&m.field, lo, hi, h, &inside);
+        if m.bounded() && grid.border_max() >= s {
+            grow *= 2.0;
+            continue;
+        }
+        let loops = isolines_in(&grid, s, &m.field, &inside);
+        let tol = CURVE_TOL * frame.size;
+        let out: Vec<Vec<Vec2>> = loops
+            .into_iter()
+            .filter(|l| polygon_area(l).abs() > 4.0 * h * h)
+            .map(|l| crate::levels::plan::refine(&l, &m.field, s, tol))
+            .collect();
+        if out.is_empty() {
+            return Err(part_err(
+                &m.name,
+                format!("Γ({s}) of its field is empty near the part"),
+            ));
+        }
+        return Ok(out);
+    }
+    Err(part_err(
+        &m.name,
+        format!("Γ({s}) of its field does not close within 32 times the part's size; take a level closer to 1"),
+    ))
+}
+
+/// A new primitive from closed polygons with the material on their left: the
+/// loops around material (counter-clockwise) are outlines, the others counters.
+fn from_loops(
+    name: &str,
+    loops: Vec<Vec<Vec2>>,
+    bounded: bool,
+    frame: &Frame,
+    n: Option<usize>,
+    label: String,
+) -> Result<(Model, PartReport), ComposeError> {
+    let mut cs = Vec::new();
+    let mut flags = Vec::new();
+    for l in &loops {
+        let c = to_contour(l).ok_or_else(|| part_err(name, "a curve could not be closed"))?;
+        flags.push(polygon_area(l) < 0.0);
+        cs.push(c);
+    }
+    let csg = Csg::Leaf {
+        polys: loops,
+        complement: !bounded,
+    };
+    solve_boundary(name, cs, flags, bounded, csg, frame, n, label)
+}
+
+/// Union or intersection of two models by their point sets, solved afresh.
+pub fn combine(
+    name: &str,
+    a: &Model,
+    b: &Model,
+    op: BoolOp,
+    frame: &Frame,
+) -> Result<(Model, PartReport), ComposeError> {
+    let t0 = Instant::now();
+    let (csg, outer) = match op {
+        BoolOp::Union => (
+            Csg::Or(Box::new(a.csg.clone()), Box::new(b.csg.clone())),
+            if a.bounded() && b.bounded() {
+                a.set.outer.clone()
+            } else {
+                None
+            },
+        ),
+        BoolOp::Intersect => (
+            Csg::And(Box::new(a.csg.clone()), Box::new(b.csg.clone())),
+            a.set.outer.clone().or_else(|| b.set.outer.clone()),
+        ),
+        _ => return Err(part_err(name, "combine takes union or intersect")),
+    };
+    let mut material = Problem::default();
+    for (me, other) in [(a, b), (b, a)] {
+        let keep = |p: Vec2| match op {
+            BoolOp::Intersect => other.csg.contains(p),
+            _ => true,
+        };
+        // The other operand's points that are on the result's boundary.
+        let edge: Vec<Vec2> = other
+            .set
+            .material
+            .colloc
+            .iter()
+            .map(|c| c.p)
+            .filter(|&p| match op {
+                BoolOp::Intersect => me.csg.contains(p),
+                _ => !me.csg.contains(p),
+            })
+            .collect();
+        let own: Vec<Vec2> = me.set.material.colloc.iter().map(|c| c.p).collect();
+        let nearest = |q: Vec2, pts: &[Vec2]| pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min);
+        // A singularity kept in the result but nearer to the other operand's
+        // piece of the boundary than half its distance to its own would sit
+        // almost on the new boundary: it is dropped.
+        let m = &me.set.material;
+        material.charges.extend(
+            m.charges
+                .iter()
+                .copied()
+                .filter(|&q| keep(q) && nearest(q, &edge) >= 0.5 * nearest(q, &own)),
+        );
+        material
+            .colloc
+            .extend(m.colloc.iter().copied().filter(|c| keep(c.p)));
+        material
+            .checks
+            .extend(m.checks.iter().copied().filter(|c| keep(c.p)));
+    }
+    if material.colloc.is_empty() || material.charges.is_empty() {
+        return Err(part_err(
+            name,
+            format!(
+                "{} and {} do not overlap: the result has no boundary",
+                a.name, b.name
+            ),
+        ));
+    }
+    add_crossing_clusters(&mut material, a, b, &csg, frame);
+    let sinks: Vec<(Sink, Problem)> = a
+        .set
+        .sinks
+        .iter()
+        .chain(&b.set.sinks)
+        .filter(|(s, _)| !csg.contains(s.centre))
+        .cloned()
+        .collect();
+    let set = PointSet {
+        material,
+        outer,
+        sinks,
+    };
+    let problem = set.problem();
+    let sol = mfs::solve(&problem).map_err(|e| field_err(name, e))?;
+    if std::env::var("PFCAM_DEBUG_COMPOSE").is_ok() {
+        let mut w = (0.0, Vec2::ZERO, 0.0);
+        for c in &problem.checks {
+            let e = (sol.field.value(c.p) - c.value).abs();
+            if e > w.0 {
+                w = (e, c.p, c.value);
+            }
+        }
+        eprintln!("{name}: worst check {:.2e} at ({:.3}, {:.3}) value {}", w.0, w.1.x, w.1.y, w.2);
+    }
+    let mut model = Model {
+        name: name.to_string(),
+        set,
+        field: sol.field,
+        max_error: sol.max_error,
+        contours: Vec::new(),
+        is_counter: Vec::new(),
+        csg,
+    };
+    let loops = boundary_curve(&model, frame)?;
+    for l in &loops {
+        model
+            .contours
+            .push(to_contour(l).ok_or_else(|| part_err(name, "a curve could not be closed"))?);
+        model.is_counter.push(polygon_area(l) < 0.0);
+    }
+    let label = match op {
+        BoolOp::Union => format!("{name} = {} ∪ {}", a.name, b.name),
+        _ => format!("{name} = {} ∩ {}", a.name, b.name),
+    };
+    let report = PartReport {
+        label,
+        n: problem.charges.len(),
+        m: problem.colloc.len(),
+        distance: 0.0,
+        max_error: sol.max_error,
+        seconds: t0.elapsed().as_secs_f64(),
+    };
+    Ok((model, report))
+}
+
+/// Singularities clustered at each crossing of the operands' boundaries that is a
+/// convex corner of the result (β < π: an intersection's or a subtraction's
+/// corners), where u − 1 ~ r^(π/α), α = 2π − β > π, is singular in its gradient.
+/// The operands' own pseudo-boundaries leave a gap there: their singularities
+/// within about d of the corner fall outside the result and are dropped. As for a
+/// glyph's corners (`field::setup`), charges go along the bisector at
+/// δⱼ = δ_max exp(−σ(√n − √j)), each with two collocation points on the result's
+/// boundary at distance δⱼ from the corner, one on each side.
+fn add_crossing_clusters(pr: &mut Problem, a: &Model, b: &Model, csg: &Csg, frame: &Frame) {
+    use crate::field::setup::CLUSTER_SIGMA;
+    use crate::field::Condition;
+    let tol = frame.flat_tol();
+    let pa = a.polygons(tol);
+    let pb = b.polygons(tol);
+    let edges = |ps: &[Vec<Vec2>]| -> Vec<(Vec2, Vec2)> {
+        ps.iter()
+            .flat_map(|p| (0..p.len()).map(move |i| (p[i], p[(i + 1) % p.len()])))
+            .collect()
+    };
+    let (ea, eb) = (edges(&pa), edges(&pb));
+    let mut crossings: Vec<Vec2> = Vec::new();
+    for &(p, q) in &ea {
+        for &(r, t) in &eb {
+            let (d1, d2) = (q - p, t - r);
+            let den = d1.cross(d2);
+            if den.abs() < 1e-300 {
+                continue;
+            }
+            let u = (r - p).cross(d2) / den;
+            let v = (r - p).cross(d1) / den;
+            if (0.0..1.0).contains(&u) && (0.0..1.0).contains(&v) {
+                let x = p + d1 * u;
+                if crossings.iter().all(|c| c.dist(x) > 1e-6 * frame.size) {
+                    crossings.push(x);
+                }
+            }
+        }
+    }
+    let all: Vec<(Vec2, Vec2)> = ea.iter().chain(&eb).copied().collect();
+    let nearest_on_boundary = |p: Vec2| -> Vec2 {
+        let mut best = (f64::INFINITY, p);
+        for &(s, e) in &all {
+            let d = e - s;
+            let t = ((p - s).dot(d) / d.norm2().max(1e-300)).clamp(0.0, 1.0);
+            let q = s + d * t;
+            let dd = q.dist(p);
+            if dd < best.0 {
+                best = (dd, q);
+            }
+        }
+        best.1
+    };
+    const DIRS: usize = 144;
+    const N_EACH: usize = 12;
+    for &x in &crossings {
+        let r0 = 1e-4 * frame.size;
+        let dir = |k: f64| {
+            let t = std::f64::consts::TAU * k / DIRS as f64;
+            Vec2::new(t.cos(), t.sin())
+        };
+        let inside: Vec<bool> = (0..DIRS)
+            .map(|k| csg.contains(x + dir(k as f64) * r0))
+            .collect();
+        let n_in = inside.iter().filter(|b| **b).count();
+        if n_in == 0 || n_in == DIRS {
+            continue;
+        }
+        // One run of material around the crossing, narrower than a half-turn.
+        let starts: Vec<usize> = (0..DIRS)
+            .filter(|&k| inside[k] && !inside[(k + DIRS - 1) % DIRS])
+            .collect();
+        if starts.len() != 1 || 2 * n_in >= DIRS {
+            continue;
+        }
+        let k0 = starts[0] as f64;
+        let mid = dir(k0 + (n_in as f64 - 1.0) / 2.0);
+        let e1 = dir(k0 - 0.5);
+        let e2 = dir(k0 + n_in as f64 - 0.5);
+        // Room along the bisector: to the result's boundary, capped by the size.
+        let mut room = 0.0;
+        let step = 1e-3 * frame.size;
+        while room < 0.25 * frame.size && csg.contains(x + mid * (room + step)) {
+            room += step;
+        }
+        let dmax = 0.4 * room;
+        if dmax <= 0.0 {
+            continue;
+        }
+        if std::env::var("PFCAM_DEBUG_COMPOSE").is_ok() {
+            eprintln!("crossing ({:.2}, {:.2}) run {n_in} bisector ({:.2}, {:.2}) dmax {dmax:.2}", x.x, x.y, mid.x, mid.y);
+        }
+        let nn = N_EACH as f64;
+        for j in 1..=N_EACH {
+            let delta = dmax * (-CLUSTER_SIGMA * (nn.sqrt() - (j as f64).sqrt())).exp();
+            pr.charges.push(x + mid * delta);
+            for e in [e1, e2] {
+                let p = nearest_on_boundary(x + e * delta);
+                pr.colloc.push(Condition { p, value: 1.0 });
+                let c = nearest_on_boundary(x + e * (0.7 * delta));
+                pr.checks.push(Condition { p: c, value: 1.0 });
+            }
+        }
+        pr.checks.push(Condition { p: x, value: 1.0 });
+    }
+}
+
+/// The boundary of a composite, {u = 1} of its own field: Γ(1 − τ), τ 1.5 times
+/// the largest deficit 1 − u over its check points, just outside the material, with every vertex checked to lie on
+/// that level of the raw field (not on the edge of the membership mask), then
+/// each vertex carried onto u = 1 by Newton's method.
+fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeError> {
+    // u falls short of 1 on the boundary by at most the largest deficit over the
+    // check points; Γ(1 − τ) must stay outside the material, so τ exceeds it.
+    let deficit = m
+        .set
+        .material
+        .checks
+        .iter()
+        .map(|c| c.value - m.field.value(c.p))
+        .fold(0.0, f64::max);
+    let tau = (1.5 * deficit).max(MIN_TAU);
+    let s = 1.0 - tau;
+    let pts: Vec<Vec2> = m.set.material.colloc.iter().map(|c| c.p).collect();
+    let (lo0, hi0) = bbox_of(&[pts]).ok_or_else(|| part_err(&m.name, "no boundary points"))?;
+    let pad = (hi0 - lo0) * 0.05 + Vec2::new(1.0, 1.0) * (0.01 * frame.size);
+    let (lo, hi) = (lo0 - pad, hi0 + pad);
+    let h = (hi.x - lo.x).max(hi.y - lo.y) / EXTRACT_GRID;
+    let inside = |p: Vec2| m.csg.contains(p);
+    let grid = Grid::sample_in(&m.field, lo, hi, h, &inside);
+    let loops: Vec<Vec<Vec2>> = isolines_in(&grid, s, &m.field, &inside)
+        .into_iter()
+        .filter(|l| polygon_area(l).abs() > 4.0 * h * h)
+        .collect();
+    if loops.is_empty() {
+        return Err(part_err(
+            &m.name,
+            format!(
+                "its field has no curve u = {s:.6} near its boundary (max boundary error {:.2e})",
+                m.max_error
+            ),
+        ));
+    }
+    for l in &loops {
+        for &p in l {
+            let u = m.field.value(p);
+            if (u - s).abs() > 1e-6 {
+                return Err(part_err(
+                    &m.name,
+                    format!(
+                        "its field does not reach u = 1 on the boundary near ({:.3}, {:.3}): u = {u:.4} there (max boundary error {:.2e})",
+                        p.x, p.y, m.max_error
+                    ),
+                ));
+            }
+        }
+    }
+    // Onto u = 1 itself: Newton along ∇u from each vertex of Γ(1 − τ), steps at
+    // most one grid spacing, kept only if it lands within 20 spacings and where u
+    // is 1 to τ/2. Where the material has a re-entrant corner (a union's notch)
+    // u − 1 ~ r² and Γ(1 − τ) cuts the corner by about √τ of the size: there the
+    // vertices slide onto the walls and the chord refinement puts the corner back.
+    let onto_one = |p: Vec2| -> Vec2 {
+        let mut q = p;
+        for _ in 0..40 {
+            let (u, g) = m.field.value_grad(q);
+            let g2 = g.norm2();
+            if g2 == 0.0 || (1.0 - u).abs() < 1e-12 {
+                break;
+            }
+            let mut step = g * ((1.0 - u) / g2);
+            if step.norm() > h {
+                step = step * (h / step.norm());
+            }
+            q += step;
+        }
+        if q.dist(p) <= 20.0 * h && (m.field.value(q) - 1.0).abs() <= 0.5 * tau {
+            q
+        } else {
+            p
+        }
+    };
+    let tol = CURVE_TOL * frame.size;
+    Ok(loops
+        .into_iter()
+        .map(|l| {
+            let on: Vec<Vec2> = l.iter().map(|&p| onto_one(p)).collect();
+            crate::levels::plan::refine(&on, &m.field, 1.0, tol)
+        })
+        .collect())
+}
+
+/// The contours of a primitive part in design units.
+fn primitive_contours(part: &Part) -> Result<Option<Vec<Contour>>, ComposeError> {
+    let geo = |e: GeometryError| ComposeError::Geometry {
+        part: part.name.clone(),
+        source: e,
+    };
+    Ok(match &part.source {
+        PartSource::Polygon(pts) => {
+            let c = to_contour(pts).ok_or_else(|| part_err(&part.name, "the polygon is not closed"))?;
+            Some(vec![c])
+        }
+        PartSource::Svg(d) => Some(svgpath::parse_path(d).map_err(geo)?),
+        PartSource::Text { text, font, size } => {
+            let shape = build_shape(&ShapeSource::Text {
+                text: text.clone(),
+                font: font.clone(),
+                height: *size,
+                letter_spacing: 0.0,
+                origin: Vec2::ZERO,
+            })
+            .map_err(geo)?;
+            Some(shape.contours().cloned().collect())
+        }
+        PartSource::Ref(_) | PartSource::Op { .. } => None,
+    })
+}
+
+/// Everything a composition produced.
+#[derive(Clone, Debug)]
+pub struct Built {
+    /// The result in mm, placed and scaled.
+    pub shape: Shape,
+    /// The result's model in design units.
+    pub model: Model,
+    /// One report per MFS solve.
+    pub reports: Vec<PartReport>,
+    /// The frame.
+    pub frame: Frame,
+    /// Design units → mm: p ↦ origin + (p − lo)·scale.
+    pub scale: f64,
+}
+
+/// Build the models of a composition, in order, and place the result.
+pub fn build(
+    comp: &Composition,
+    on_part: &mut dyn FnMut(usize, usize),
+) -> Result<Built, ComposeError> {
+    // The frame from every primitive's box.
+    let mut prims: HashMap<&str, Vec<Contour>> = HashMap::new();
+    let mut all: Vec<Vec<Vec2>> = Vec::new();
+    for p in &comp.parts {
+        if let Some(cs) = primitive_contours(p)? {
+            if cs.is_empty() {
+                return Err(part_err(&p.name, "the primitive draws nothing"));
+            }
+            all.extend(cs.iter().map(|c| c.flatten(1e-3)));
+            prims.insert(&p.name, cs);
+        }
+    }
+    let (lo, hi) = bbox_of(&all).ok_or_else(|| {
+        part_err(
+            &comp.result,
+            "the composition has no primitive (polygon, svg or text)",
+        )
+    })?;
+    let frame = Frame::around(lo, hi);
+    let mut models: HashMap<String, Model> = HashMap::new();
+    let mut reports = Vec::new();
+    let get = |models: &HashMap<String, Model>, of: &str, who: &str| -> Result<Model, ComposeError> {
+        models
+            .get(of)
+            .cloned()
+            .ok_or_else(|| part_err(who, format!("refers to \"{of}\", which is not defined before it")))
+    };
+    let total = comp.parts.len();
+    for (k, part) in comp.parts.iter().enumerate() {
+        let name = part.name.as_str();
+        let mut base: Option<Model> = None;
+        if let Some(cs) = prims.remove(name) {
+            let (m, r) = primitive(name, cs, &frame, part.singularities)?;
+            reports.push(r);
+            base = Some(m);
+        }
+        let base = match (&part.source, base) {
+            (_, Some(m)) => m,
+            (PartSource::Ref(of), None) => {
+                let mut m = get(&models, of, name)?;
+                m.name = name.to_string();
+                m
+            }
+            (PartSource::Op { op, of }, None) => {
+                let first = of
+                    .first()
+                    .ok_or_else(|| part_err(name, "an operation needs operands"))?;
+                let mut acc = get(&models, first, name)?;
+                match op {
+                    BoolOp::Invert => {
+                        if of.len() != 1 {
+                            return Err(part_err(name, "invert takes exactly one part"));
+                        }
+                        let (m, r) = invert(name, &acc, &frame, part.singularities)?;
+                        reports.push(r);
+                        acc = m;
+                    }
+                    BoolOp::Union | BoolOp::Intersect | BoolOp::Subtract => {
+                        if of.len() < 2 {
+                            return Err(part_err(name, "this operation needs at least two parts"));
+                        }
+                        for other in &of[1..] {
+                            let b = get(&models, other, name)?;
+                            let (b, kind) = if *op == BoolOp::Subtract {
+                                let iname = format!("{name}: void of {other}");
+                                let (inv, r) = invert(&iname, &b, &frame, None)?;
+                                reports.push(r);
+                                (inv, BoolOp::Intersect)
+                            } else {
+                                (b, *op)
+                            };
+                            let (m, mut r) = combine(name, &acc, &b, kind, &frame)?;
+                            if *op == BoolOp::Subtract {
+                                r.label = format!("{name} = {} − {other}", acc.name);
+                            }
+                            reports.push(r);
+                            acc = m;
+                        }
+                    }
+                }
+                acc.name = name.to_string();
+                acc
+            }
+            _ => return Err(part_err(name, "is neither a primitive nor made of other parts")),
+        };
+        let model = match part.level {
+            Some(s) => {
+                let loops = level_curves(&base, s, &frame)?;
+                let (m, r) = from_loops(
+                    name,
+                    loops,
+                    base.bounded(),
+                    &frame,
+                    part.singularities,
+                    format!("{name} = Γ({s}) of {}", base.name),
+                )?;
+                reports.push(r);
+                m
+            }
+            None => base,
+        };
+        models.insert(name.to_string(), model);
+        on_part(k + 1, total);
+    }
+    let model = get(&models, &comp.result, &comp.result)?;
+    if !model.bounded() {
+        return Err(part_err(
+            &comp.result,
+            "the result is unbounded (the void of a part); use it inside subtract or intersect",
+        ));
+    }
+    // Place: the box's lower-left at `origin`, scaled to `height`.
+    let polys = model.polygons(frame.flat_tol());
+    let (lo, hi) = bbox_of(&polys).ok_or_else(|| part_err(&comp.result, "empty"))?;
+    let scale = match comp.height {
+        Some(h) => h / (hi.y - lo.y),
+        None => 1.0,
+    };
+    let origin = comp.origin;
+    let placed: Vec<Contour> = model
+        .contours
+        .iter()
+        .map(|c| c.map(|p| origin + (p - lo) * scale))
+        .collect();
+    let regions = regions_from_contours(&comp.result, placed);
+    if regions.is_empty() {
+        return Err(part_err(&comp.result, "the result encloses no area"));
+    }
+    Ok(Built {
+        shape: Shape { regions },
+        model,
+        reports,
+        frame,
+        scale,
+    })
+}
