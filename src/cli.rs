@@ -216,9 +216,10 @@ fn stdout_line(s: &str) -> Result<()> {
 
 fn cmd_validate(path: &Path) -> Result<()> {
     let job = load(path)?;
-    // A composition is built by solving fields, as `run` would.
+    // A composition is built by solving fields, as `run` would. The error as one
+    // line: `{:#}` would repeat its source after it.
     pipeline::job_shape(&job, &mut |_| {})
-        .map_err(|e| anyhow!(e))
+        .map_err(|e| anyhow!("{e}"))
         .with_context(|| path.display().to_string())?;
     stdout_line(&format!("ok: {}", job.name))
 }

@@ -2021,7 +2021,7 @@ depth = 3.0
     }
 
     /// The paper's letter Q (Section 5): (m2 ∪ m5) − m3.
-    const Q: &str = r#"
+    pub(super) const Q: &str = r#"
 [job]
 name = "letter-q"
 [tool]
@@ -2615,10 +2615,36 @@ mod doc_tests {
             "s2",
             "steepness",
             "points",
+            "shape.result",
+            "shape.part.name",
+            "shape.part.polygon",
+            "shape.part.svg",
+            "shape.part.text",
+            "shape.part.font",
+            "shape.part.size",
+            "shape.part.of",
+            "shape.part.op",
+            "shape.part.level",
+            "shape.part.singularities",
         ];
+        // The text of the section `## `heading``, up to the next `## `.
+        let section = |heading: &str| -> &str {
+            let h = format!("## `{heading}`");
+            let from = DOC
+                .find(&h)
+                .unwrap_or_else(|| panic!("{heading} is not documented"));
+            let rest = &DOC[from + h.len()..];
+            &rest[..rest.find("\n## ").unwrap_or(rest.len())]
+        };
         for k in keys {
+            // `shape.part.level` in `[[shape.part]]`, `shape.result` in `[shape]`.
+            let (text, key) = match k.rsplit_once('.') {
+                Some(("shape.part", key)) => (section("[[shape.part]]"), key),
+                Some((table, key)) => (section(&format!("[{table}]")), key),
+                None => (DOC, k),
+            };
             assert!(
-                DOC.contains(&format!("| `{k}` |")),
+                text.contains(&format!("| `{key}` |")),
                 "{k} is not in docs/job-format.md"
             );
         }
@@ -2632,6 +2658,7 @@ mod doc_tests {
             "machine",
             "output",
             "profile",
+            "[shape.part]",
         ] {
             assert!(
                 DOC.contains(&format!("## `[{t}]`")),
@@ -2640,16 +2667,45 @@ mod doc_tests {
         }
     }
 
+    /// The first TOML block after `after` in the doc.
+    fn toml_block(after: &str) -> &'static str {
+        let from = DOC
+            .find(after)
+            .unwrap_or_else(|| panic!("no {after:?} in docs/job-format.md"));
+        let start = DOC[from..].find("```toml\n").map(|i| from + i + 8);
+        let block = start.and_then(|s| DOC[s..].find("```").map(|e| &DOC[s..s + e]));
+        block.unwrap_or_else(|| panic!("no toml example after {after:?} in docs/job-format.md"))
+    }
+
     #[test]
     fn the_documented_example_is_valid() {
-        let start = DOC.find("```toml\n").map(|i| i + 8);
-        let block = start.and_then(|s| DOC[s..].find("```").map(|e| &DOC[s..s + e]));
-        let Some(block) = block else {
-            panic!("no toml example in docs/job-format.md")
-        };
-        match parse_job(block, "x", Path::new(".")) {
+        match parse_job(toml_block("\n## Example\n"), "x", Path::new(".")) {
             Ok(j) => assert_eq!(j.name, "mfs-sign"),
             Err(e) => panic!("docs example: {e}"),
         }
+    }
+
+    #[test]
+    fn the_documented_letter_q_is_the_papers() {
+        let doc = parse_job(
+            toml_block("### Example: the paper's letter Q"),
+            "x",
+            Path::new("."),
+        )
+        .unwrap_or_else(|e| panic!("docs example: {e}"));
+        assert_eq!(doc.name, "letter-q");
+        let ShapeSource::Composite(mut doc) = doc.shape else {
+            panic!("{:?}", doc.shape)
+        };
+        let ShapeSource::Composite(test) = parse_job(super::tests::Q, "x", Path::new("."))
+            .unwrap()
+            .shape
+        else {
+            panic!()
+        };
+        // The test's m5 sets its singularities; the doc's leaves them to pfcam.
+        assert_eq!(doc.parts[4].singularities, None);
+        doc.parts[4].singularities = test.parts[4].singularities;
+        assert_eq!(doc, test);
     }
 }
