@@ -6,7 +6,7 @@ use anyhow::{anyhow, bail, Context, Result};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use pfcam::gcode::{format_duration, write_gcode};
-use pfcam::geometry::{build_shape, glyphs::paper_chars};
+use pfcam::geometry::glyphs::paper_chars;
 use pfcam::job::{load_job, Job, JobError};
 use pfcam::output::{check_target, write_atomic, OutputError};
 use pfcam::pipeline::{self, Progress, RunOutput};
@@ -216,8 +216,10 @@ fn stdout_line(s: &str) -> Result<()> {
 
 fn cmd_validate(path: &Path) -> Result<()> {
     let job = load(path)?;
-    build_shape(&job.shape)
-        .map_err(|e| anyhow!("shape: {e}"))
+    // A composition is built by solving fields, as `run` would. The error as one
+    // line: `{:#}` would repeat its source after it.
+    pipeline::job_shape(&job, &mut |_| {})
+        .map_err(|e| anyhow!("{e}"))
         .with_context(|| path.display().to_string())?;
     stdout_line(&format!("ok: {}", job.name))
 }

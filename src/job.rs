@@ -7,7 +7,9 @@
 //! syntax error names the line and column. The keys, units and defaults are
 //! documented in `docs/job-format.md`.
 
-use crate::geometry::{glyphs, FontSource, ShapeSource, Vec2};
+use crate::geometry::{
+    glyphs, BoolOp, Composition, FontSource, Part, PartSource, ShapeSource, Vec2,
+};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -174,6 +176,8 @@ pub mod defaults {
     pub const FONT: &str = "paper";
     /// `shape.height` for text, mm of cap height.
     pub const TEXT_HEIGHT: f64 = 50.0;
+    /// `shape.part.size`: cap height of a text part, design units.
+    pub const PART_TEXT_SIZE: f64 = 100.0;
     /// `tool.feed`, mm/min: a moderate feed for a 3 mm cutter in wood or plastic.
     pub const FEED: f64 = 800.0;
     /// `tool.plunge_feed`, mm/min: a quarter of the feed.
@@ -259,8 +263,10 @@ pub enum JobError {
         message: String,
     },
     /// A font file that does not exist.
-    #[error("shape.font: no such file: {}", path.display())]
+    #[error("{key}: no such file: {}", path.display())]
     FontNotFound {
+        /// the key: `shape.font`, or a part's `shape.part[2].font`
+        key: String,
         /// the resolved path
         path: PathBuf,
     },
@@ -273,7 +279,7 @@ impl JobError {
             JobError::Read { .. } => None,
             JobError::Parse { key, .. } => key.as_deref(),
             JobError::Invalid { key, .. } => Some(key),
-            JobError::FontNotFound { .. } => Some("shape.font"),
+            JobError::FontNotFound { key, .. } => Some(key),
         }
     }
 }
@@ -351,6 +357,63 @@ pub struct RawShape {
     pub letter_spacing: Option<f64>,
     /// `origin`, mm
     pub origin: Option<[f64; 2]>,
+    /// `result`: the name of the part that is the shape (with `[[shape.part]]`)
+    pub result: Option<String>,
+    /// `[[shape.part]]`: the parts of a composition
+    pub part: Option<Vec<RawPart>>,
+}
+
+/// `[[shape.part]]`: one part of a composition, in design units.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPart {
+    /// `name`
+    pub name: Option<String>,
+    /// `polygon`: [[x, y], ...]
+    pub polygon: Option<Vec<[f64; 2]>>,
+    /// `svg`: path data
+    pub svg: Option<String>,
+    /// `text`
+    pub text: Option<String>,
+    /// `font` (with `text`)
+    pub font: Option<String>,
+    /// `size`: cap height, design units (with `text`)
+    pub size: Option<f64>,
+    /// `of`: names of earlier parts
+    pub of: Option<Names>,
+    /// `op`: union, intersect, subtract or invert
+    pub op: Option<String>,
+    /// `level`: the part is Γ(level) of its source's field
+    pub level: Option<f64>,
+    /// `singularities`: `"auto"` or a count
+    pub singularities: Option<AutoOr>,
+}
+
+/// One name or a list of names (`of = "m1"` is `of = ["m1"]`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Names(pub Vec<String>);
+
+impl<'de> Deserialize<'de> for Names {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = Names;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a part name or a list of part names")
+            }
+            fn visit_str<E>(self, v: &str) -> Result<Names, E> {
+                Ok(Names(vec![v.to_string()]))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut a: A) -> Result<Names, A::Error> {
+                let mut v = Vec::new();
+                while let Some(n) = a.next_element::<String>()? {
+                    v.push(n);
+                }
+                Ok(Names(v))
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 /// `[tool]`
@@ -625,12 +688,26 @@ pub fn parse_job(text: &str, name_hint: &str, base_dir: &Path) -> Result<Job, Jo
 fn parse_error(text: &str, e: &toml::de::Error) -> JobError {
     let pos = e.span().map_or(0, |s| s.start).min(text.len());
     let (line, column) = line_col(text, pos);
+    let key = e.span().and_then(|_| key_at(text, pos));
+    let mut message = e.message().trim().to_string();
+    // TOML puts every key after `[[shape.part]]` into that part.
+    let misplaced = key.as_deref().is_some_and(|k| {
+        k.starts_with("shape.part[")
+            && ["result", "height", "origin"]
+                .iter()
+                .any(|f| k.ends_with(&format!("].{f}")))
+    });
+    if misplaced && message.starts_with("unknown field") {
+        message.push_str(
+            " (shape.result, shape.height and shape.origin belong in [shape], above the first [[shape.part]])",
+        );
+    }
     JobError::Parse {
         origin: "job".into(),
         line,
         column,
-        key: e.span().and_then(|_| key_at(text, pos)),
-        message: e.message().trim().to_string(),
+        key,
+        message,
     }
 }
 
@@ -644,27 +721,77 @@ fn line_col(text: &str, pos: usize) -> (usize, usize) {
 }
 
 /// The dotted key at byte offset `pos`: the table header when `pos` is in one,
-/// otherwise `<last table>.<key before '='>` on that line.
+/// otherwise `<last table>.<key before '='>` on that line. A table of an array
+/// of tables gets its number, counted from 1: `shape.part[2].polygon`.
 fn key_at(text: &str, pos: usize) -> Option<String> {
     let before = text.get(..pos)?;
     let line_start = before.rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[pos..].find('\n').map_or(text.len(), |i| pos + i);
     let line = &text[line_start..line_end];
-    let header = |l: &str| -> Option<String> {
+    // `[name]` or `[[name]]`, nothing after it but a comment; not `[0, 1],` in a
+    // multi-line array.
+    let header = |l: &str| -> Option<(String, bool)> {
         let t = l.trim();
-        let t = t.strip_prefix('[')?;
+        let array = t.starts_with("[[");
+        let open = if array { 2 } else { 1 };
+        let t = t.strip_prefix(&"[["[..open])?;
         let end = t.find(']')?;
-        Some(t[..end].trim_matches(|c| c == '[' || c == ' ').to_string())
+        let rest = t[end..].strip_prefix(&"]]"[..open])?.trim_start();
+        let name = t[..end].trim();
+        let ok = !name.is_empty()
+            && (rest.is_empty() || rest.starts_with('#'))
+            && name
+                .chars()
+                .all(|c| c.is_alphanumeric() || matches!(c, '_' | '-' | '.' | '"' | '\'' | ' '));
+        ok.then(|| (name.to_string(), array))
     };
+    // The header's name, numbered if it is an array's: `lines` end with it.
+    let named = |lines: &[&str], h: (String, bool)| -> String {
+        if h.1 {
+            let n = lines
+                .iter()
+                .filter(|l| header(l).as_ref() == Some(&h))
+                .count();
+            format!("{}[{n}]", h.0)
+        } else {
+            h.0
+        }
+    };
+    let lines: Vec<&str> = text[..line_start].lines().collect();
     if let Some(h) = header(line) {
-        return Some(h);
+        let mut upto = lines.clone();
+        upto.push(line);
+        return Some(named(&upto, h));
     }
-    let eq = line.find('=')?;
-    let key = line[..eq].trim().trim_matches('"');
+    // The line with the key: this one, or, inside a multi-line array, the one
+    // that opened it (its `[`s not yet closed at `pos`).
+    let mut key_line = lines.len();
+    let key_text = if line.contains('=') {
+        line
+    } else {
+        let i = lines
+            .iter()
+            .rposition(|l| l.contains('=') || header(l).is_some())?;
+        let open = |s: &str| s.matches('[').count() as i64 - s.matches(']').count() as i64;
+        let from = &lines[i][lines[i].find('=')? + 1..];
+        let depth = open(from)
+            + lines[i + 1..].iter().map(|l| open(l)).sum::<i64>()
+            + open(&text[line_start..pos]);
+        if depth <= 0 {
+            return None;
+        }
+        key_line = i;
+        lines[i]
+    };
+    let eq = key_text.find('=')?;
+    let key = key_text[..eq].trim().trim_matches('"');
     if key.is_empty() {
         return None;
     }
-    let table = text[..line_start].lines().rev().find_map(header);
+    let table = lines[..key_line]
+        .iter()
+        .rposition(|l| header(l).is_some())
+        .and_then(|i| header(lines[i]).map(|h| named(&lines[..=i], h)));
     Some(match table {
         Some(t) => format!("{t}.{key}"),
         None => key.to_string(),
@@ -1091,6 +1218,44 @@ fn resolve_shape(
         .height
         .map(|h| positive("shape.height", h, "mm"))
         .transpose()?;
+    if let Some(parts) = s.part {
+        for (key, given) in [
+            ("shape.text", s.text.is_some()),
+            ("shape.svg_path", s.svg_path.is_some()),
+        ] {
+            if given {
+                return Err(invalid(
+                    "shape.part",
+                    format!(
+                        "cannot be combined with {key}: a job has one shape source (a part may itself be text or svg: shape.part[i].text, shape.part[i].svg)"
+                    ),
+                ));
+            }
+        }
+        for (key, given) in [
+            ("shape.font", s.font.is_some()),
+            ("shape.letter_spacing", s.letter_spacing.is_some()),
+        ] {
+            if given {
+                return Err(invalid(
+                    key,
+                    "only applies to shape.text, not to [[shape.part]] (a text part has its own font: shape.part[i].font)",
+                ));
+            }
+        }
+        let composition = resolve_composition(parts, s.result, base_dir)?;
+        return Ok(ShapeSource::Composite(Composition {
+            height,
+            origin,
+            ..composition
+        }));
+    }
+    if s.result.is_some() {
+        return Err(invalid(
+            "shape.result",
+            "only applies to a composition: it names one of the [[shape.part]] tables",
+        ));
+    }
     match (s.text, s.svg_path) {
         (Some(_), Some(_)) => Err(invalid(
             "shape.text",
@@ -1098,34 +1263,19 @@ fn resolve_shape(
         )),
         (None, None) => Err(invalid(
             "shape.text",
-            "or shape.svg_path is required (exactly one of them)",
+            "or shape.svg_path or [[shape.part]] is required (exactly one of them)",
         )),
         (Some(text), None) => {
             if text.trim().is_empty() {
                 return Err(invalid("shape.text", "must not be empty"));
             }
-            let font = match s.font.as_deref().unwrap_or(defaults::FONT) {
-                "paper" => {
-                    let have = glyphs::paper_chars();
-                    if let Some(ch) = text.chars().find(|c| *c != ' ' && !have.contains(c)) {
-                        let list: String = have.iter().collect();
-                        return Err(invalid(
-                            "shape.text",
-                            format!(
-                                "has {ch:?}, but the font `paper` has no glyph for it (it has {list})"
-                            ),
-                        ));
-                    }
-                    FontSource::Paper
-                }
-                path => {
-                    let p = base_dir.join(path);
-                    if !p.is_file() {
-                        return Err(JobError::FontNotFound { path: p });
-                    }
-                    FontSource::File(p)
-                }
-            };
+            let font = resolve_font(
+                "shape.font",
+                "shape.text",
+                s.font.as_deref(),
+                &text,
+                base_dir,
+            )?;
             let letter_spacing = finite(
                 "shape.letter_spacing",
                 s.letter_spacing.unwrap_or(tool_diameter),
@@ -1157,6 +1307,413 @@ fn resolve_shape(
             Ok(ShapeSource::SvgPath { d, height, origin })
         }
     }
+}
+
+/// The font of `text` (`font_key` is where `font` was written, `text_key` where
+/// the text was): `paper` must have every character; a file path is relative to
+/// the job's directory and must exist.
+fn resolve_font(
+    font_key: &str,
+    text_key: &str,
+    font: Option<&str>,
+    text: &str,
+    base_dir: &Path,
+) -> Result<FontSource, JobError> {
+    match font.unwrap_or(defaults::FONT) {
+        "paper" => {
+            let have = glyphs::paper_chars();
+            if let Some(ch) = text.chars().find(|c| *c != ' ' && !have.contains(c)) {
+                let list: String = have.iter().collect();
+                return Err(invalid(
+                    text_key,
+                    format!("has {ch:?}, but the font `paper` has no glyph for it (it has {list})"),
+                ));
+            }
+            Ok(FontSource::Paper)
+        }
+        path => {
+            let p = base_dir.join(path);
+            if !p.is_file() {
+                return Err(JobError::FontNotFound {
+                    key: font_key.into(),
+                    path: p,
+                });
+            }
+            Ok(FontSource::File(p))
+        }
+    }
+}
+
+/// The accepted values of `shape.part.op`.
+pub const PART_OPS: &[&str] = &["union", "intersect", "subtract", "invert"];
+
+/// `[[shape.part]]` and `shape.result` into a composition (its `height` and
+/// `origin` are left for the caller). Parts are numbered from 1 in messages, in
+/// the order of the file: `shape.part[2].level`.
+fn resolve_composition(
+    raw: Vec<RawPart>,
+    result: Option<String>,
+    base_dir: &Path,
+) -> Result<Composition, JobError> {
+    if raw.is_empty() {
+        return Err(invalid(
+            "shape.part",
+            "must have at least one part ([[shape.part]] tables)",
+        ));
+    }
+    // Every name first, so that a reference to a later part can say so.
+    let mut names: Vec<String> = Vec::with_capacity(raw.len());
+    for (i, p) in raw.iter().enumerate() {
+        let key = format!("shape.part[{}].name", i + 1);
+        let name = p.name.as_deref().ok_or_else(|| {
+            invalid(
+                &key,
+                "is required: parts refer to each other, and shape.result to a part, by name",
+            )
+        })?;
+        if name.trim().is_empty() {
+            return Err(invalid(&key, format!("must not be empty, got {name:?}")));
+        }
+        if let Some(j) = names.iter().position(|n| n == name) {
+            return Err(invalid(
+                &key,
+                format!("{name:?} is already the name of shape.part[{}]", j + 1),
+            ));
+        }
+        names.push(name.to_string());
+    }
+
+    let mut parts: Vec<Part> = Vec::with_capacity(raw.len());
+    for (i, p) in raw.into_iter().enumerate() {
+        let k = format!("shape.part[{}]", i + 1);
+        let key = |field: &str| format!("{k}.{field}");
+        let source = resolve_part_source(&k, &names[..i], &names[i..], &p, base_dir)?;
+        let level = match p.level {
+            None => None,
+            Some(l) if l.is_finite() && l > 0.0 && l < 1.0 => Some(l),
+            Some(l) => {
+                return Err(invalid(
+                    &key("level"),
+                    format!("must be strictly between 0 and 1, got {}", show(l)),
+                ))
+            }
+        };
+        let singularities =
+            match p.singularities {
+                None => None,
+                Some(AutoOr::Word(w)) => {
+                    auto_word(&key("singularities"), &w, "a whole number of singularities")?;
+                    None
+                }
+                Some(AutoOr::Float(x)) => {
+                    return Err(invalid(
+                        &key("singularities"),
+                        format!("must be \"auto\" or a whole number, got {}", show(x)),
+                    ))
+                }
+                Some(AutoOr::Int(n)) => {
+                    if n < 1 {
+                        return Err(invalid(
+                            &key("singularities"),
+                            format!("must be \"auto\" or a count >= 1, got {n}"),
+                        ));
+                    }
+                    Some(usize::try_from(n).map_err(|_| {
+                        invalid(&key("singularities"), format!("is too large: {n}"))
+                    })?)
+                }
+            };
+        parts.push(Part {
+            name: names[i].clone(),
+            source,
+            level,
+            singularities,
+        });
+    }
+
+    let explicit = result.is_some();
+    let result = match result {
+        None => names[names.len() - 1].clone(),
+        Some(r) => {
+            if !names.contains(&r) {
+                return Err(invalid(
+                    "shape.result",
+                    format!(
+                        "names an unknown part {r:?} (the parts: {})",
+                        names.join(", ")
+                    ),
+                ));
+            }
+            r
+        }
+    };
+    // Bounded or not, part by part: an inversion is the unbounded R² − Ω, and
+    // what is built from one may be too.
+    let mut bounded: Vec<bool> = Vec::with_capacity(parts.len());
+    for p in &parts {
+        let b = |n: &String| bounded[names.iter().position(|m| m == n).unwrap_or(0)];
+        let is_bounded = match &p.source {
+            PartSource::Polygon(_) | PartSource::Svg(_) | PartSource::Text { .. } => true,
+            PartSource::Ref(n) => b(n),
+            PartSource::Op { op, of } => match op {
+                BoolOp::Invert => false,
+                BoolOp::Union => of.iter().all(b),
+                BoolOp::Intersect => of.iter().any(b),
+                BoolOp::Subtract => of.first().is_some_and(b),
+            },
+        };
+        bounded.push(is_bounded);
+    }
+    let r = names.iter().position(|n| *n == result).unwrap_or(0);
+    if !bounded[r] {
+        let why = if matches!(
+            parts[r].source,
+            PartSource::Op {
+                op: BoolOp::Invert,
+                ..
+            }
+        ) {
+            "an invert".to_string()
+        } else {
+            "built from an invert so that it is unbounded too".to_string()
+        };
+        let which = if explicit {
+            format!("shape.part[{}]", r + 1)
+        } else {
+            format!(
+                "shape.part[{}]; without shape.result the last part is the result",
+                r + 1
+            )
+        };
+        return Err(invalid(
+            "shape.result",
+            format!(
+                "names {result:?}, which is {why} ({which}): the void R² − Ω of a part is unbounded and cannot be cut; use an invert only inside another operation, e.g. intersect"
+            ),
+        ));
+    }
+    Ok(Composition {
+        parts,
+        result,
+        height: None,
+        origin: Vec2::ZERO,
+    })
+}
+
+/// What part `k` is made of. `earlier` are the names of the parts before it,
+/// `this_and_later` its own name and those after it.
+fn resolve_part_source(
+    k: &str,
+    earlier: &[String],
+    this_and_later: &[String],
+    p: &RawPart,
+    base_dir: &Path,
+) -> Result<PartSource, JobError> {
+    let key = |field: &str| format!("{k}.{field}");
+    let primitives: Vec<&str> = [
+        ("polygon", p.polygon.is_some()),
+        ("svg", p.svg.is_some()),
+        ("text", p.text.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(name, given)| given.then_some(name))
+    .collect();
+    if primitives.len() > 1 {
+        return Err(invalid(
+            &key(primitives[0]),
+            format!(
+                "and {} are both given; a primitive part is exactly one of polygon, svg, text",
+                key(primitives[1])
+            ),
+        ));
+    }
+    if let Some(prim) = primitives.first() {
+        for (field, given) in [("of", p.of.is_some()), ("op", p.op.is_some())] {
+            if given {
+                return Err(invalid(
+                    &key(field),
+                    format!(
+                        "cannot be combined with {}: a part is either a primitive (polygon, svg or text) or derived from earlier parts (of, with op)",
+                        key(prim)
+                    ),
+                ));
+            }
+        }
+    }
+    if p.text.is_none() {
+        for (field, given) in [("font", p.font.is_some()), ("size", p.size.is_some())] {
+            if given {
+                return Err(invalid(
+                    &key(field),
+                    format!("only applies to a text part ({})", key("text")),
+                ));
+            }
+        }
+    }
+    if let Some(points) = &p.polygon {
+        return resolve_polygon(&key("polygon"), points).map(PartSource::Polygon);
+    }
+    if let Some(d) = &p.svg {
+        if d.trim().is_empty() {
+            return Err(invalid(&key("svg"), "must not be empty (SVG path data)"));
+        }
+        return Ok(PartSource::Svg(d.clone()));
+    }
+    if let Some(text) = &p.text {
+        if text.trim().is_empty() {
+            return Err(invalid(&key("text"), "must not be empty"));
+        }
+        let font = resolve_font(
+            &key("font"),
+            &key("text"),
+            p.font.as_deref(),
+            text,
+            base_dir,
+        )?;
+        let size = match p.size {
+            None => defaults::PART_TEXT_SIZE,
+            Some(s) => positive(&key("size"), s, "design units")?,
+        };
+        return Ok(PartSource::Text {
+            text: text.clone(),
+            font,
+            size,
+        });
+    }
+    let Some(of) = &p.of else {
+        if p.op.is_some() {
+            return Err(invalid(
+                &key("op"),
+                format!(
+                    "needs {}: the names of the earlier parts it combines",
+                    key("of")
+                ),
+            ));
+        }
+        return Err(invalid(
+            k,
+            "has no source: a part is a primitive (polygon, svg or text) or is derived from earlier parts (of, with op; or of one part with level)",
+        ));
+    };
+    let of = &of.0;
+    if of.is_empty() {
+        return Err(invalid(
+            &key("of"),
+            "must name at least one earlier part, got []",
+        ));
+    }
+    for (j, name) in of.iter().enumerate() {
+        if earlier.contains(name) {
+            if of[..j].contains(name) {
+                return Err(invalid(&key("of"), format!("names {name:?} twice")));
+            }
+            continue;
+        }
+        let before = if earlier.is_empty() {
+            "no part is defined before it".to_string()
+        } else {
+            format!("defined before it: {}", earlier.join(", "))
+        };
+        let message = match this_and_later.iter().position(|n| n == name) {
+            Some(0) => format!("names the part itself, {name:?} (a part may only use parts defined before it; {before})"),
+            Some(_) => format!("names {name:?}, which is defined after it (a part may only use parts defined before it; {before})"),
+            None => format!("names an unknown part {name:?} ({before})"),
+        };
+        return Err(invalid(&key("of"), message));
+    }
+    let Some(op) = &p.op else {
+        if of.len() > 1 {
+            return Err(invalid(
+                &key("op"),
+                format!(
+                    "is required when {} names several parts: one of union, intersect, subtract",
+                    key("of")
+                ),
+            ));
+        }
+        if p.level.is_none() {
+            return Err(invalid(
+                &key("level"),
+                format!(
+                    "is required when {} names a single part without op: without it the part is a plain copy of {:?}",
+                    key("of"),
+                    of[0]
+                ),
+            ));
+        }
+        return Ok(PartSource::Ref(of[0].clone()));
+    };
+    one_of(&key("op"), op, PART_OPS)?;
+    let (bool_op, count_ok, needs) = match op.as_str() {
+        "union" => (BoolOp::Union, of.len() >= 2, "at least 2 parts"),
+        "intersect" => (BoolOp::Intersect, of.len() >= 2, "at least 2 parts"),
+        "subtract" => (
+            BoolOp::Subtract,
+            of.len() >= 2,
+            "at least 2 parts (the first minus the others)",
+        ),
+        _ => (BoolOp::Invert, of.len() == 1, "exactly 1 part"),
+    };
+    if !count_ok {
+        return Err(invalid(
+            &key("of"),
+            format!(
+                "must name {needs} for op = {op:?}, got {} ({})",
+                of.len(),
+                of.iter()
+                    .map(|n| format!("{n:?}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ));
+    }
+    Ok(PartSource::Op {
+        op: bool_op,
+        of: of.clone(),
+    })
+}
+
+/// A polygon: at least 3 finite points, not all on one line.
+fn resolve_polygon(key: &str, points: &[[f64; 2]]) -> Result<Vec<Vec2>, JobError> {
+    if points.len() < 3 {
+        return Err(invalid(
+            key,
+            format!("must have at least 3 points [x, y], got {}", points.len()),
+        ));
+    }
+    let mut out = Vec::with_capacity(points.len());
+    for (j, [x, y]) in points.iter().enumerate() {
+        if !(x.is_finite() && y.is_finite()) {
+            return Err(invalid(
+                key,
+                format!(
+                    "point {} must be finite numbers, got [{}, {}]",
+                    j + 1,
+                    show(*x),
+                    show(*y)
+                ),
+            ));
+        }
+        out.push(Vec2::new(*x, *y));
+    }
+    // Not all on one line: some point is off the line from the first point to the
+    // one farthest from it.
+    let p0 = out[0];
+    let far = out
+        .iter()
+        .copied()
+        .max_by(|a, b| (*a - p0).dot(*a - p0).total_cmp(&(*b - p0).dot(*b - p0)))
+        .unwrap_or(p0);
+    let d = far - p0;
+    let len2 = d.dot(d);
+    let flat = len2 == 0.0 || out.iter().all(|&q| (d.cross(q - p0)).abs() <= 1e-12 * len2);
+    if flat {
+        return Err(invalid(
+            key,
+            "has all its points on one line: it encloses no area",
+        ));
+    }
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -1463,6 +2020,547 @@ depth = 3.0
         assert_eq!(err_key(&with("output", "helix = true")).0, "output.helix");
     }
 
+    /// The paper's letter Q (Section 5): (m2 ∪ m5) − m3.
+    pub(super) const Q: &str = r#"
+[job]
+name = "letter-q"
+[tool]
+diameter = 3.175
+[operation]
+depth = 3.0
+[shape]
+height = 60.0
+origin = [10.0, 10.0]
+result = "Q"
+
+[[shape.part]]
+name = "m1"
+polygon = [[0, 0], [100, 0], [100, 300], [0, 300]]
+
+[[shape.part]]
+name = "m2"
+of = "m1"
+level = 0.85
+
+[[shape.part]]
+name = "m3"
+of = ["m1"]
+level = 0.95
+
+[[shape.part]]
+name = "m4"
+polygon = [
+    [20, 70], [50, 120], [100, 120], [280, 20],
+    [300, 50], [270, 20], [100, 90], [50, 90],
+]
+
+[[shape.part]]
+name = "m5"
+of = "m4"
+level = 0.97
+singularities = 300
+
+[[shape.part]]
+name = "m6"
+op = "union"
+of = ["m2", "m5"]
+
+[[shape.part]]
+name = "Q"
+op = "subtract"
+of = ["m6", "m3"]
+"#;
+
+    fn pts(p: &[[f64; 2]]) -> PartSource {
+        PartSource::Polygon(p.iter().map(|&[x, y]| Vec2::new(x, y)).collect())
+    }
+
+    fn part(name: &str, source: PartSource, level: Option<f64>) -> Part {
+        Part {
+            name: name.into(),
+            source,
+            level,
+            singularities: None,
+        }
+    }
+
+    fn names(n: &[&str]) -> Vec<String> {
+        n.iter().map(|s| s.to_string()).collect()
+    }
+
+    /// `Q` with `from` replaced by `to` (which must occur).
+    fn q_with(from: &str, to: &str) -> String {
+        assert!(Q.contains(from), "{from}");
+        Q.replacen(from, to, 1)
+    }
+
+    /// The error of `text`: its key and message; the message must contain every
+    /// one of `needles`.
+    fn q_err(text: &str, key: &str, needles: &[&str]) {
+        let (k, msg) = err_key(text);
+        assert_eq!(k, key, "{msg}");
+        assert!(msg.starts_with(key), "{msg}");
+        for n in needles {
+            assert!(msg.contains(n), "{n:?} not in: {msg}");
+        }
+    }
+
+    #[test]
+    fn letter_q_parses_to_its_composition() {
+        let j = parse(Q).unwrap();
+        let mut m5 = part("m5", PartSource::Ref("m4".into()), Some(0.97));
+        m5.singularities = Some(300);
+        let expected = Composition {
+            parts: vec![
+                part(
+                    "m1",
+                    pts(&[[0.0, 0.0], [100.0, 0.0], [100.0, 300.0], [0.0, 300.0]]),
+                    None,
+                ),
+                part("m2", PartSource::Ref("m1".into()), Some(0.85)),
+                part("m3", PartSource::Ref("m1".into()), Some(0.95)),
+                part(
+                    "m4",
+                    pts(&[
+                        [20.0, 70.0],
+                        [50.0, 120.0],
+                        [100.0, 120.0],
+                        [280.0, 20.0],
+                        [300.0, 50.0],
+                        [270.0, 20.0],
+                        [100.0, 90.0],
+                        [50.0, 90.0],
+                    ]),
+                    None,
+                ),
+                m5,
+                part(
+                    "m6",
+                    PartSource::Op {
+                        op: BoolOp::Union,
+                        of: names(&["m2", "m5"]),
+                    },
+                    None,
+                ),
+                part(
+                    "Q",
+                    PartSource::Op {
+                        op: BoolOp::Subtract,
+                        of: names(&["m6", "m3"]),
+                    },
+                    None,
+                ),
+            ],
+            result: "Q".into(),
+            height: Some(60.0),
+            origin: Vec2::new(10.0, 10.0),
+        };
+        assert_eq!(j.shape, ShapeSource::Composite(expected));
+    }
+
+    #[test]
+    fn composition_defaults() {
+        // No result: the last part. No height: 1 design unit = 1 mm. Text parts.
+        let text = GOOD.replace(
+            "text = \"A\"\nheight = 50.0",
+            "[[shape.part]]\nname = \"t\"\ntext = \"AH\"\n\n[[shape.part]]\nname = \"big\"\ntext = \"I\"\nsize = 30\nfont = \"paper\"\n\n[[shape.part]]\nname = \"out\"\nop = \"invert\"\nof = \"t\"\n\n[[shape.part]]\nname = \"cut\"\nop = \"intersect\"\nof = [\"big\", \"out\"]\nlevel = 0.5",
+        );
+        let j = parse(&text).unwrap();
+        let ShapeSource::Composite(c) = j.shape else {
+            panic!("{:?}", j.shape)
+        };
+        assert_eq!(c.result, "cut");
+        assert_eq!(c.height, None);
+        assert_eq!(c.origin, Vec2::ZERO);
+        assert_eq!(
+            c.parts[0].source,
+            PartSource::Text {
+                text: "AH".into(),
+                font: FontSource::Paper,
+                size: defaults::PART_TEXT_SIZE,
+            }
+        );
+        assert!(matches!(c.parts[1].source, PartSource::Text { size, .. } if size == 30.0));
+        assert_eq!(
+            c.parts[2].source,
+            PartSource::Op {
+                op: BoolOp::Invert,
+                of: names(&["t"]),
+            }
+        );
+        assert_eq!(c.parts[3].level, Some(0.5));
+        // svg parts, and singularities = "auto".
+        let j = parse(&q_with(
+            "polygon = [[0, 0], [100, 0], [100, 300], [0, 300]]",
+            "svg = \"M0 0 H100 V300 H0 Z\"\nsingularities = \"auto\"",
+        ))
+        .unwrap();
+        let ShapeSource::Composite(c) = j.shape else {
+            panic!()
+        };
+        assert_eq!(
+            c.parts[0].source,
+            PartSource::Svg("M0 0 H100 V300 H0 Z".into())
+        );
+        assert_eq!(c.parts[0].singularities, None);
+    }
+
+    #[test]
+    fn part_names_and_references() {
+        q_err(
+            &q_with("of = [\"m6\", \"m3\"]", "of = [\"m6\", \"m7\"]"),
+            "shape.part[7].of",
+            &[
+                "unknown part \"m7\"",
+                "defined before it: m1, m2, m3, m4, m5, m6",
+            ],
+        );
+        q_err(
+            &q_with("of = \"m1\"\nlevel = 0.85", "of = \"m3\"\nlevel = 0.85"),
+            "shape.part[2].of",
+            &["\"m3\", which is defined after it", "defined before it: m1"],
+        );
+        q_err(
+            &q_with("of = \"m1\"\nlevel = 0.85", "of = \"m2\"\nlevel = 0.85"),
+            "shape.part[2].of",
+            &["the part itself, \"m2\""],
+        );
+        q_err(
+            &q_with("name = \"m3\"", "name = \"m2\""),
+            "shape.part[3].name",
+            &["\"m2\" is already the name of shape.part[2]"],
+        );
+        q_err(
+            &q_with("name = \"m4\"", "name = \" \""),
+            "shape.part[4].name",
+            &["must not be empty"],
+        );
+        q_err(
+            &q_with("name = \"m4\"\n", ""),
+            "shape.part[4].name",
+            &["is required"],
+        );
+        q_err(
+            &q_with("of = [\"m2\", \"m5\"]", "of = [\"m2\", \"m2\"]"),
+            "shape.part[6].of",
+            &["\"m2\" twice"],
+        );
+        q_err(
+            &q_with("of = [\"m2\", \"m5\"]", "of = []"),
+            "shape.part[6].of",
+            &["at least one", "[]"],
+        );
+        q_err(
+            &q_with("result = \"Q\"", "result = \"q\""),
+            "shape.result",
+            &["unknown part \"q\"", "m1, m2, m3, m4, m5, m6, Q"],
+        );
+    }
+
+    #[test]
+    fn part_ops_and_operand_counts() {
+        q_err(
+            &q_with("op = \"union\"", "op = \"merge\""),
+            "shape.part[6].op",
+            &[
+                "`merge`",
+                "`union`",
+                "`intersect`",
+                "`subtract`",
+                "`invert`",
+            ],
+        );
+        q_err(
+            &q_with(
+                "op = \"union\"\nof = [\"m2\", \"m5\"]",
+                "op = \"union\"\nof = \"m2\"",
+            ),
+            "shape.part[6].of",
+            &["at least 2 parts", "op = \"union\"", "got 1 (\"m2\")"],
+        );
+        q_err(
+            &q_with(
+                "op = \"subtract\"\nof = [\"m6\", \"m3\"]",
+                "op = \"subtract\"\nof = [\"m6\"]",
+            ),
+            "shape.part[7].of",
+            &[
+                "at least 2 parts (the first minus the others)",
+                "\"subtract\"",
+            ],
+        );
+        q_err(
+            &q_with("op = \"union\"", "op = \"intersect\"\nof = \"m2\"")
+                .replace("of = \"m2\"\nof = [\"m2\", \"m5\"]", "of = \"m2\""),
+            "shape.part[6].of",
+            &["at least 2 parts", "\"intersect\""],
+        );
+        q_err(
+            &q_with("op = \"union\"", "op = \"invert\""),
+            "shape.part[6].of",
+            &["exactly 1 part", "got 2 (\"m2\", \"m5\")"],
+        );
+        q_err(
+            &q_with("op = \"union\"\n", ""),
+            "shape.part[6].op",
+            &["is required when shape.part[6].of names several parts"],
+        );
+        q_err(
+            &q_with("of = \"m1\"\nlevel = 0.85", "of = \"m1\""),
+            "shape.part[2].level",
+            &["is required", "plain copy of \"m1\""],
+        );
+        q_err(
+            &q_with("op = \"union\"\nof = [\"m2\", \"m5\"]", "op = \"union\""),
+            "shape.part[6].op",
+            &["needs shape.part[6].of"],
+        );
+    }
+
+    #[test]
+    fn part_sources_exclude_each_other() {
+        q_err(
+            &q_with(
+                "name = \"m5\"\nof = \"m4\"",
+                "name = \"m5\"\nof = \"m4\"\npolygon = [[0, 0], [1, 0], [0, 1]]",
+            ),
+            "shape.part[5].of",
+            &["cannot be combined with shape.part[5].polygon"],
+        );
+        q_err(
+            &q_with(
+                "op = \"union\"\n",
+                "op = \"union\"\nsvg = \"M0 0 L1 0 L0 1 Z\"\n",
+            ),
+            "shape.part[6].of",
+            &["cannot be combined with shape.part[6].svg"],
+        );
+        q_err(
+            &q_with("name = \"m1\"\n", "name = \"m1\"\ntext = \"I\"\n"),
+            "shape.part[1].polygon",
+            &["and shape.part[1].text are both given"],
+        );
+        q_err(
+            &q_with(
+                "name = \"m6\"\nop = \"union\"\nof = [\"m2\", \"m5\"]\n",
+                "name = \"m6\"\n",
+            ),
+            "shape.part[6]",
+            &["has no source", "polygon, svg or text", "of"],
+        );
+        q_err(
+            &q_with("name = \"m1\"\n", "name = \"m1\"\nsize = 20\n"),
+            "shape.part[1].size",
+            &["only applies to a text part"],
+        );
+        q_err(
+            &q_with("name = \"m1\"\n", "name = \"m1\"\nfont = \"paper\"\n"),
+            "shape.part[1].font",
+            &["only applies to a text part"],
+        );
+    }
+
+    #[test]
+    fn part_values_are_checked() {
+        for (l, shown) in [
+            ("1.2", "1.2"),
+            ("0", "0"),
+            ("1", "1"),
+            ("-0.5", "-0.5"),
+            ("nan", "NaN"),
+            ("inf", "inf"),
+        ] {
+            q_err(
+                &q_with("level = 0.85", &format!("level = {l}")),
+                "shape.part[2].level",
+                &["must be strictly between 0 and 1", &format!("got {shown}")],
+            );
+        }
+        q_err(
+            &q_with(
+                "polygon = [[0, 0], [100, 0], [100, 300], [0, 300]]",
+                "polygon = []",
+            ),
+            "shape.part[1].polygon",
+            &["at least 3 points", "got 0"],
+        );
+        q_err(
+            &q_with("[0, 300]]", "[nan, 300]]"),
+            "shape.part[1].polygon",
+            &["point 4 must be finite", "[NaN, 300]"],
+        );
+        q_err(
+            &q_with(
+                "polygon = [[0, 0], [100, 0], [100, 300], [0, 300]]",
+                "polygon = [[0, 0], [100, 100], [50, 50], [200, 200]]",
+            ),
+            "shape.part[1].polygon",
+            &["on one line"],
+        );
+        q_err(
+            &q_with(
+                "polygon = [[0, 0], [100, 0], [100, 300], [0, 300]]",
+                "svg = \"  \"",
+            ),
+            "shape.part[1].svg",
+            &["must not be empty"],
+        );
+        q_err(
+            &q_with("singularities = 300", "singularities = 0"),
+            "shape.part[5].singularities",
+            &[">= 1, got 0"],
+        );
+        q_err(
+            &q_with("singularities = 300", "singularities = 2.5"),
+            "shape.part[5].singularities",
+            &["whole number, got 2.5"],
+        );
+        q_err(
+            &q_with("singularities = 300", "singularities = \"many\""),
+            "shape.part[5].singularities",
+            &["\"many\""],
+        );
+        q_err(
+            &q_with("height = 60.0", "height = -60.0"),
+            "shape.height",
+            &["got -60"],
+        );
+        q_err(
+            &q_with("origin = [10.0, 10.0]", "origin = [10.0, inf]"),
+            "shape.origin",
+            &["got inf"],
+        );
+        let t = q_with(
+            "name = \"m1\"\npolygon = [[0, 0], [100, 0], [100, 300], [0, 300]]",
+            "name = \"m1\"\ntext = \"IZ\"",
+        );
+        q_err(&t, "shape.part[1].text", &["'Z'", "no glyph"]);
+        q_err(
+            &t.replace("text = \"IZ\"", "text = \"I\"\nsize = 0"),
+            "shape.part[1].size",
+            &["positive", "got 0"],
+        );
+        let e = parse_job(
+            &t.replace("text = \"IZ\"", "text = \"I\"\nfont = \"fonts/none.ttf\""),
+            "x",
+            Path::new("/some/dir"),
+        )
+        .unwrap_err();
+        assert_eq!(e.key(), Some("shape.part[1].font"));
+        assert_eq!(
+            e.to_string(),
+            "shape.part[1].font: no such file: /some/dir/fonts/none.ttf"
+        );
+    }
+
+    #[test]
+    fn result_must_be_bounded() {
+        let inverted = q_with(
+            "op = \"subtract\"\nof = [\"m6\", \"m3\"]",
+            "op = \"invert\"\nof = \"m6\"",
+        );
+        q_err(
+            &inverted,
+            "shape.result",
+            &["\"Q\", which is an invert", "unbounded"],
+        );
+        q_err(
+            &inverted.replace("result = \"Q\"\n", ""),
+            "shape.result",
+            &["an invert", "the last part is the result"],
+        );
+        // Built from an invert: a union with the void is unbounded, an
+        // intersection with it is not.
+        let more = format!(
+            "{inverted}\n[[shape.part]]\nname = \"R\"\nop = \"union\"\nof = [\"m4\", \"Q\"]\n"
+        );
+        q_err(
+            &more.replace("result = \"Q\"", "result = \"R\""),
+            "shape.result",
+            &["\"R\"", "built from an invert"],
+        );
+        q_err(
+            &more
+                .replace("result = \"Q\"", "result = \"R\"")
+                .replace("of = [\"m4\", \"Q\"]", "of = [\"Q\", \"m4\"]")
+                .replace("\"union\"\nof = [\"Q\"", "\"subtract\"\nof = [\"Q\""),
+            "shape.result",
+            &["built from an invert"],
+        );
+        let ok = more.replace("result = \"Q\"", "result = \"R\"").replace(
+            "op = \"union\"\nof = [\"m4\", \"Q\"]",
+            "op = \"intersect\"\nof = [\"m4\", \"Q\"]",
+        );
+        assert!(parse(&ok).is_ok());
+        let ok = more.replace("result = \"Q\"", "result = \"R\"").replace(
+            "op = \"union\"\nof = [\"m4\", \"Q\"]",
+            "op = \"subtract\"\nof = [\"m4\", \"Q\"]",
+        );
+        assert!(parse(&ok).is_ok());
+    }
+
+    #[test]
+    fn one_shape_source_per_job() {
+        q_err(
+            &q_with("result = \"Q\"", "result = \"Q\"\ntext = \"A\""),
+            "shape.part",
+            &["cannot be combined with shape.text", "one shape source"],
+        );
+        q_err(
+            &q_with(
+                "result = \"Q\"",
+                "result = \"Q\"\nsvg_path = \"M0 0 L1 0 L0 1 Z\"",
+            ),
+            "shape.part",
+            &["cannot be combined with shape.svg_path"],
+        );
+        q_err(
+            &q_with("result = \"Q\"", "result = \"Q\"\nfont = \"paper\""),
+            "shape.font",
+            &["[[shape.part]]"],
+        );
+        q_err(
+            &q_with("result = \"Q\"", "result = \"Q\"\nletter_spacing = 2"),
+            "shape.letter_spacing",
+            &["[[shape.part]]"],
+        );
+        q_err(
+            &with("shape", "result = \"A\""),
+            "shape.result",
+            &["[[shape.part]]"],
+        );
+        q_err(
+            &with("shape", "part = []").replace("text = \"A\"\n", ""),
+            "shape.part",
+            &["at least one part"],
+        );
+    }
+
+    #[test]
+    fn part_keys_are_named_in_toml_errors() {
+        // A misspelt key, a wrong type, and a [shape] key written after the parts.
+        let (k, msg) = err_key(&q_with("level = 0.95", "levle = 0.95"));
+        assert_eq!(k, "shape.part[3].levle");
+        assert!(msg.contains("unknown field `levle`"), "{msg}");
+        let (k, msg) = err_key(&q_with("of = \"m4\"", "of = 4"));
+        assert_eq!(k, "shape.part[5].of");
+        assert!(msg.contains("a part name or a list of part names"), "{msg}");
+        // In a multi-line array, the key that opened it.
+        let (k, msg) = err_key(&q_with("[50, 120], [100, 120]", "[50, 120], [100]"));
+        assert_eq!(k, "shape.part[4].polygon", "{msg}");
+        let (k, msg) = err_key(&format!("{Q}result = \"m6\"\n"));
+        assert_eq!(k, "shape.part[7].result");
+        assert!(
+            msg.contains("belong in [shape], above the first [[shape.part]]"),
+            "{msg}"
+        );
+        let (k, _) = err_key(&q_with(
+            "polygon = [[0, 0], [100, 0], [100, 300], [0, 300]]",
+            "polygon = [[0, 0], [100, 0], \"x\"]",
+        ));
+        assert_eq!(k, "shape.part[1].polygon");
+    }
+
     #[test]
     fn load_job_names_the_file() {
         let e = load_job(Path::new("/no/such/job.toml")).unwrap_err();
@@ -1517,10 +2615,36 @@ mod doc_tests {
             "s2",
             "steepness",
             "points",
+            "shape.result",
+            "shape.part.name",
+            "shape.part.polygon",
+            "shape.part.svg",
+            "shape.part.text",
+            "shape.part.font",
+            "shape.part.size",
+            "shape.part.of",
+            "shape.part.op",
+            "shape.part.level",
+            "shape.part.singularities",
         ];
+        // The text of the section `## `heading``, up to the next `## `.
+        let section = |heading: &str| -> &str {
+            let h = format!("## `{heading}`");
+            let from = DOC
+                .find(&h)
+                .unwrap_or_else(|| panic!("{heading} is not documented"));
+            let rest = &DOC[from + h.len()..];
+            &rest[..rest.find("\n## ").unwrap_or(rest.len())]
+        };
         for k in keys {
+            // `shape.part.level` in `[[shape.part]]`, `shape.result` in `[shape]`.
+            let (text, key) = match k.rsplit_once('.') {
+                Some(("shape.part", key)) => (section("[[shape.part]]"), key),
+                Some((table, key)) => (section(&format!("[{table}]")), key),
+                None => (DOC, k),
+            };
             assert!(
-                DOC.contains(&format!("| `{k}` |")),
+                text.contains(&format!("| `{key}` |")),
                 "{k} is not in docs/job-format.md"
             );
         }
@@ -1534,6 +2658,7 @@ mod doc_tests {
             "machine",
             "output",
             "profile",
+            "[shape.part]",
         ] {
             assert!(
                 DOC.contains(&format!("## `[{t}]`")),
@@ -1542,16 +2667,45 @@ mod doc_tests {
         }
     }
 
+    /// The first TOML block after `after` in the doc.
+    fn toml_block(after: &str) -> &'static str {
+        let from = DOC
+            .find(after)
+            .unwrap_or_else(|| panic!("no {after:?} in docs/job-format.md"));
+        let start = DOC[from..].find("```toml\n").map(|i| from + i + 8);
+        let block = start.and_then(|s| DOC[s..].find("```").map(|e| &DOC[s..s + e]));
+        block.unwrap_or_else(|| panic!("no toml example after {after:?} in docs/job-format.md"))
+    }
+
     #[test]
     fn the_documented_example_is_valid() {
-        let start = DOC.find("```toml\n").map(|i| i + 8);
-        let block = start.and_then(|s| DOC[s..].find("```").map(|e| &DOC[s..s + e]));
-        let Some(block) = block else {
-            panic!("no toml example in docs/job-format.md")
-        };
-        match parse_job(block, "x", Path::new(".")) {
+        match parse_job(toml_block("\n## Example\n"), "x", Path::new(".")) {
             Ok(j) => assert_eq!(j.name, "mfs-sign"),
             Err(e) => panic!("docs example: {e}"),
         }
+    }
+
+    #[test]
+    fn the_documented_letter_q_is_the_papers() {
+        let doc = parse_job(
+            toml_block("### Example: the paper's letter Q"),
+            "x",
+            Path::new("."),
+        )
+        .unwrap_or_else(|e| panic!("docs example: {e}"));
+        assert_eq!(doc.name, "letter-q");
+        let ShapeSource::Composite(mut doc) = doc.shape else {
+            panic!("{:?}", doc.shape)
+        };
+        let ShapeSource::Composite(test) = parse_job(super::tests::Q, "x", Path::new("."))
+            .unwrap()
+            .shape
+        else {
+            panic!()
+        };
+        // The test's m5 sets its singularities; the doc's leaves them to pfcam.
+        assert_eq!(doc.parts[4].singularities, None);
+        doc.parts[4].singularities = test.parts[4].singularities;
+        assert_eq!(doc, test);
     }
 }
