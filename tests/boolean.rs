@@ -49,6 +49,11 @@ fn op(name: &str, op: BoolOp, of: &[&str]) -> Part {
 
 fn build(parts: Vec<Part>) -> compose::Built {
     let result = parts.last().expect("parts").name.clone();
+    build_result(parts, &result)
+}
+
+fn build_result(parts: Vec<Part>, result: &str) -> compose::Built {
+    let result = result.to_string();
     let comp = Composition {
         parts,
         result,
@@ -76,7 +81,10 @@ fn exact(a: &[Vec2], b: &[Vec2], op: CcOp) -> Vec<Vec<Vec2>> {
             (0..p.pline.vertex_count())
                 .map(|i| {
                     let v = p.pline.at(i);
-                    assert!(v.bulge.abs() < 1e-12, "straight inputs give straight results");
+                    assert!(
+                        v.bulge.abs() < 1e-12,
+                        "straight inputs give straight results"
+                    );
                     Vec2::new(v.x, v.y)
                 })
                 .collect()
@@ -288,9 +296,8 @@ fn the_paper_q_is_the_boolean_of_its_ovals_and_tail() {
     assert_eq!(built.model.is_counter.iter().filter(|c| **c).count(), 1);
     // The exact Boolean of the level curves themselves.
     let curve = |name: &str| {
-        let b = build(parts.iter().take_while(|p| p.name != name).cloned().chain(
-            parts.iter().filter(|p| p.name == name).cloned(),
-        ).collect());
+        // The same parts (so the same outer circle), the result being `name`.
+        let b = build_result(parts.clone(), name);
         let mut l = boundary(&b.model);
         assert_eq!(l.len(), 1, "{name} is one closed curve");
         l.remove(0)
@@ -300,6 +307,24 @@ fn the_paper_q_is_the_boolean_of_its_ovals_and_tail() {
     assert_eq!(m6.len(), 1, "m2 ∪ m5 is one curve");
     let want = exact(&m6[0], &m3, CcOp::Not);
     let (d, at) = hausdorff_at(&got, &want, 0.5);
+    for (what, ls) in [("got", &got), ("want", &want)] {
+        for l in ls.iter() {
+            let (lo, hi) = l.iter().fold((l[0], l[0]), |(a, b), p| {
+                (
+                    Vec2::new(a.x.min(p.x), a.y.min(p.y)),
+                    Vec2::new(b.x.max(p.x), b.y.max(p.y)),
+                )
+            });
+            println!(
+                "{what}: loop of {} vertices, box ({:.1}, {:.1})–({:.1}, {:.1})",
+                l.len(),
+                lo.x,
+                lo.y,
+                hi.x,
+                hi.y
+            );
+        }
+    }
     report("Q", &built, d, 300.0);
     println!("  worst at ({:.2}, {:.2})", at.x, at.y);
     assert!(d < 0.01 * 300.0, "{d}");

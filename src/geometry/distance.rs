@@ -263,7 +263,12 @@ pub fn deepest_point(poly: &[Vec2], part: &DistanceIndex) -> (Vec2, f64) {
         lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
         hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
     }
-    deepest_point_in(lo, hi, &|p| super::polygon_winding_number(poly, p) != 0, part)
+    deepest_point_in(
+        lo,
+        hi,
+        &|p| super::polygon_winding_number(poly, p) != 0,
+        part,
+    )
 }
 
 /// As `deepest_point`, for the region `inside` within the box [lo, hi].
