@@ -428,6 +428,12 @@ fn cmd_surface(
         anyhow!("internal error: the surface mesh is not watertight: {e} (please report this pfcam bug)")
     })?;
     let bytes = surface::stl_bytes(mesh, &job.name);
+    // And the file as a viewer will read it: its 32-bit vertices welded.
+    surface::read_stl(&bytes)
+        .and_then(|(_, tris)| surface::weld(&tris).check())
+        .map_err(|e| {
+            anyhow!("internal error: the STL is not watertight: {e} (please report this pfcam bug)")
+        })?;
     write_atomic(&target, &bytes, force || own)?;
     if !quiet {
         let (lo, hi) = mesh.bbox().unwrap_or(([0.0; 3], [0.0; 3]));
