@@ -387,3 +387,19 @@ fn bad_jobs_write_nothing() {
     assert_eq!(o.status.code(), Some(1));
     assert!(!dir.join("x.stl").exists());
 }
+
+#[test]
+fn same_job_same_stl_on_any_thread_count() {
+    let job = parse_job(LETTER_I, "i", Path::new(".")).expect("job");
+    let bytes: Vec<Vec<u8>> = [1, 3]
+        .iter()
+        .map(|&n| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .expect("pool");
+            pool.install(|| stl_bytes(&build(&job).surface.mesh, &job.name))
+        })
+        .collect();
+    assert!(bytes[0] == bytes[1], "the STL depends on the thread count");
+}
