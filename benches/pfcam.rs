@@ -120,5 +120,40 @@ fn levels(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, letter_i_solve, field_eval, profiles, levels);
+/// `pfcam surface` on mfs-sign without its field solve (benched above): stock,
+/// grid, level crossings, isobands, walls and bottom.
+fn surface(c: &mut Criterion) {
+    let sign = job("jobs/mfs-sign.toml");
+    let (shape, _) = pfcam::pipeline::job_shape(&sign, &mut |_| {}).unwrap();
+    let flat_tol = sign.operation.tolerance * pfcam::pipeline::FLATTEN_FRACTION;
+    let (solved, _, _) =
+        pfcam::pipeline::solve_shape(&shape, &sign, flat_tol, &mut |_| {}).unwrap();
+    let glyphs: Vec<Vec<Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
+    let sj = pfcam::surface::SurfaceJob {
+        field: &solved.solution.field,
+        glyphs: &glyphs,
+        profile: sign.profile.as_ref().unwrap(),
+        cavity: false,
+        top: sign.stock.top,
+        margin: sign.stock.margin,
+        tol: sign.operation.tolerance,
+    };
+    let opts = pfcam::surface::SurfaceOptions::default();
+    let mut g = c.benchmark_group("surface");
+    g.sample_size(10);
+    g.bench_function(
+        "mfs-sign surface mesh (0.4 mm grid, field solved once)",
+        |b| b.iter(|| pfcam::surface::build(black_box(&sj), &opts, &mut |_| {}).unwrap()),
+    );
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    letter_i_solve,
+    field_eval,
+    profiles,
+    levels,
+    surface
+);
 criterion_main!(benches);

@@ -102,6 +102,26 @@ pub enum Command {
         #[arg(long, value_name = "N")]
         power: Option<f64>,
     },
+    /// Write the modelled part of a boss or cavity job (the surface S2: walls
+    /// from the level curves, flat top and floor, closed by side walls and a
+    /// bottom) as a watertight binary STL.
+    Surface {
+        /// The job file (operation.kind = "boss" or "cavity").
+        job: PathBuf,
+        /// The STL file to write (default: out/<name>.stl).
+        #[arg(long, short, value_name = "FILE.stl")]
+        output: Option<PathBuf>,
+        /// Overwrite FILE even if pfcam did not write it.
+        #[arg(long)]
+        force: bool,
+        /// Print nothing but errors.
+        #[arg(long, short)]
+        quiet: bool,
+        /// Grid spacing, mm (the walls also get a vertex on every level curve
+        /// the grid edges cross).
+        #[arg(long, value_name = "MM", default_value_t = pfcam::surface::DEFAULT_RESOLUTION)]
+        resolution: f64,
+    },
     /// Check a job file and its shape without running it; prints `ok: <name>`.
     Validate {
         /// The job file.
@@ -168,6 +188,13 @@ pub fn run(args: Args) -> Result<()> {
             map,
             power,
         } => cmd_field(&job, output, force, quiet, px_per_mm, &map, power),
+        Command::Surface {
+            job,
+            output,
+            force,
+            quiet,
+            resolution,
+        } => cmd_surface(&job, output, force, quiet, resolution),
         Command::Validate { job } => cmd_validate(&job),
         Command::Glyphs => cmd_glyphs(),
         Command::Convergence { glyph, n, json } => cmd_convergence(glyph, &n, json),
@@ -363,6 +390,69 @@ fn cmd_field(
     write_atomic(&target, &png, force)?;
     if !quiet {
         stdout_line(&format!("wrote {}", target.display()))?;
+    }
+    Ok(())
+}
+
+fn cmd_surface(
+    path: &Path,
+    output: Option<PathBuf>,
+    force: bool,
+    quiet: bool,
+    resolution: f64,
+) -> Result<()> {
+    use pfcam::surface::{self, SurfaceError, SurfaceOptions};
+    if !(resolution > 0.0 && resolution.is_finite()) {
+        bail!("--resolution must be a positive number of mm, got {resolution}");
+    }
+    let t0 = std::time::Instant::now();
+    let job = load(path)?;
+    if job.operation.kind == pfcam::job::OperationKind::Profile {
+        return Err(anyhow!(SurfaceError::Invalid(
+            surface::PROFILE_MESSAGE.into()
+        )))
+        .with_context(|| path.display().to_string());
+    }
+    let target = output.unwrap_or_else(|| Path::new("out").join(format!("{}.stl", job.name)));
+    // Refuse before the solve, and again when writing.
+    let own = surface::check_stl_target(&target, force)?;
+    let mut progress = Reporter::new(quiet);
+    let result = surface::job_surface(&job, &SurfaceOptions { resolution }, &mut |p| {
+        progress.event(p)
+    });
+    progress.finish();
+    let built = result
+        .map_err(|e| anyhow!(e))
+        .with_context(|| path.display().to_string())?;
+    let mesh = &built.surface.mesh;
+    // Never write a mesh that is not closed (it would be a pfcam bug).
+    mesh.check().map_err(|e| {
+        anyhow!("internal error: the surface mesh is not watertight: {e} (please report this pfcam bug)")
+    })?;
+    let bytes = surface::stl_bytes(mesh, &job.name);
+    // And the file as a viewer will read it: its 32-bit vertices welded.
+    surface::read_stl(&bytes)
+        .and_then(|(_, tris)| surface::weld(&tris).check())
+        .map_err(|e| {
+            anyhow!("internal error: the STL is not watertight: {e} (please report this pfcam bug)")
+        })?;
+    write_atomic(&target, &bytes, force || own)?;
+    if !quiet {
+        let (lo, hi) = mesh.bbox().unwrap_or(([0.0; 3], [0.0; 3]));
+        stdout_line(&format!(
+            "wrote {}: {} triangles, {} vertices, box x {:.3}..{:.3} y {:.3}..{:.3} z {:.3}..{:.3} mm, volume {:.1} mm³, watertight, {:.2} s",
+            target.display(),
+            mesh.triangles.len(),
+            mesh.vertices.len(),
+            lo[0],
+            hi[0],
+            lo[1],
+            hi[1],
+            lo[2],
+            hi[2],
+            mesh.volume(),
+            t0.elapsed().as_secs_f64()
+        ))?;
     }
     Ok(())
 }

@@ -15,4 +15,5 @@ pub mod output;
 pub mod pipeline;
 pub mod preview;
 pub mod report;
+pub mod surface;
 pub mod toolpath;
