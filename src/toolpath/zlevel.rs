@@ -4,7 +4,7 @@
 use super::profile::{deepest_point, ProfileError};
 use super::trace::{trace, Navigator, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
-use crate::geometry::{DistanceIndex, Vec2};
+use crate::geometry::{polygon_winding_number, DistanceIndex, Vec2};
 
 /// Settings shared by every level, mm, mm/min and degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -217,7 +217,26 @@ pub fn boss_paths<N: Navigator + Sync>(
             if rj > room - p.tol {
                 continue;
             }
-            let t = trace(nav, &index, deep, tp(rj)).map_err(|source| ProfileError::Trace {
+            // The innermost rings of a long hole are thin slivers about its
+            // medial axis, which the rolling disk may fail to close (the Q's
+            // counter): such a ring is retried up to three times, each a fifth
+            // of a stepover closer to the wall, which keeps the rings within a
+            // stepover of each other.
+            let mut traced = trace(nav, &index, deep, tp(rj));
+            for k in 1..=3 {
+                if traced.is_ok() || j == 0 {
+                    break;
+                }
+                let rk = rj - 0.2 * k as f64 * p.stepover;
+                traced = trace(nav, &index, deep, tp(rk));
+                if traced.is_ok() {
+                    warnings.push(format!(
+                        "{label}: ring {j} in hole {} traced at {rk:.3} mm from the wall instead of {rj:.3} mm",
+                        h + 1
+                    ));
+                }
+            }
+            let t = traced.map_err(|source| ProfileError::Trace {
                 label: format!("{label}: ring {j} in hole {}", h + 1),
                 source,
             })?;
@@ -460,10 +479,49 @@ pub fn cavity_paths<N: Navigator + Sync>(
     };
     let pockets: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
     let islands: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
+    // The point of a pocket farthest from every wall, islands excluded: a
+    // pocket's own polygon contains its islands (the counter of a Q's mould is
+    // wider than the ring around it, and the tool started inside it).
+    let deepest_in_pocket = |pk: &Vec<Vec2>| {
+        let (mut lo, mut hi) = (pk[0], pk[0]);
+        for q in pk.iter() {
+            lo = Vec2::new(lo.x.min(q.x), lo.y.min(q.y));
+            hi = Vec2::new(hi.x.max(q.x), hi.y.max(q.y));
+        }
+        let inside = |q: Vec2| {
+            polygon_winding_number(pk, q) != 0
+                && islands.iter().all(|is| polygon_winding_number(is, q) == 0)
+        };
+        crate::geometry::deepest_point_in(lo, hi, &inside, &index)
+    };
+    // Where the wall of a pocket with islands is traced from: just below its
+    // highest point, so the disk meets that wall and not an island's, which may
+    // be nearer to the deepest point (the Q's counter). Without islands, the
+    // deepest point, as before.
+    let pocket_start = |pk: &Vec<Vec2>, deep: Vec2, radius: f64| {
+        if islands.is_empty() {
+            return deep;
+        }
+        let top = pk.iter().copied().fold(pk[0], |a, b| {
+            if b.y > a.y || (b.y == a.y && b.x < a.x) {
+                b
+            } else {
+                a
+            }
+        });
+        let q = top - Vec2::new(0.0, radius + p.tol);
+        let inside = polygon_winding_number(pk, q) != 0
+            && islands.iter().all(|is| polygon_winding_number(is, q) == 0);
+        if inside && index.distance(q) >= radius {
+            q
+        } else {
+            deep
+        }
+    };
     // 1. Finishing loops.
     let mut finish: Vec<Vec<Vec2>> = Vec::new();
     for (i, pk) in pockets.iter().enumerate() {
-        let (deep, room) = deepest_point(pk, &index);
+        let (deep, room) = deepest_in_pocket(pk);
         if room < r + p.tol {
             warnings.push(format!(
                 "{label}: pocket {} is too narrow for the tool (room {room:.3} mm): not cut",
@@ -471,9 +529,11 @@ pub fn cavity_paths<N: Navigator + Sync>(
             ));
             continue;
         }
-        let t = trace(nav, &index, deep, tp).map_err(|source| ProfileError::Trace {
-            label: format!("{label}: wall of pocket {}", i + 1),
-            source,
+        let t = trace(nav, &index, pocket_start(pk, deep, r), tp).map_err(|source| {
+            ProfileError::Trace {
+                label: format!("{label}: wall of pocket {}", i + 1),
+                source,
+            }
         })?;
         finish.push(t.points);
     }
@@ -505,9 +565,9 @@ pub fn cavity_paths<N: Navigator + Sync>(
     let mut second: Vec<Vec<Vec2>> = Vec::new();
     let mut n_pockets2 = 0;
     for pk in &pockets {
-        let (deep, room) = deepest_point(pk, &index);
+        let (deep, room) = deepest_in_pocket(pk);
         if room > r2 + p.stepover {
-            if let Ok(t) = trace(nav, &index, deep, tp2) {
+            if let Ok(t) = trace(nav, &index, pocket_start(pk, deep, r2), tp2) {
                 second.push(t.points);
                 n_pockets2 += 1;
             }
