@@ -148,12 +148,32 @@ fn surface(c: &mut Criterion) {
     g.finish();
 }
 
+/// The paper's letter Q: its composition alone (eight MFS solves), and the whole
+/// boss and mould jobs.
+fn letter_q(c: &mut Criterion) {
+    let sign = job("jobs/q-sign.toml");
+    let mould = job("jobs/q-mould.toml");
+    let mut g = c.benchmark_group("letter Q");
+    g.sample_size(10);
+    g.bench_function("Q from its parts (m1..m6, Q: eight solves)", |b| {
+        b.iter(|| pfcam::pipeline::job_shape(black_box(&sign), &mut |_| {}).unwrap())
+    });
+    g.bench_function("q-sign boss, end to end", |b| {
+        b.iter(|| pfcam::pipeline::run(black_box(&sign), &mut |_| {}).unwrap())
+    });
+    g.bench_function("q-mould cavity, end to end", |b| {
+        b.iter(|| pfcam::pipeline::run(black_box(&mould), &mut |_| {}).unwrap())
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     letter_i_solve,
     field_eval,
     profiles,
     levels,
-    surface
+    surface,
+    letter_q
 );
 criterion_main!(benches);

@@ -316,6 +316,77 @@ fn ramp_loop(
     });
 }
 
+/// Moves that enter an open path by ramping from `z_from` to `z` at `angle`
+/// degrees back and forth along its start, ending at its first point at `z`.
+fn ramp_open(
+    pts: &[Vec2],
+    z_from: f64,
+    z: f64,
+    angle: f64,
+    plunge_feed: f64,
+    feed: f64,
+    out: &mut Vec<Move>,
+) {
+    let drop = (z_from - z).max(0.0);
+    if drop <= 0.0 || pts.len() < 2 {
+        out.push(Move::Linear {
+            to: Vec3::new(pts[0].x, pts[0].y, z),
+            feed: plunge_feed,
+        });
+        return;
+    }
+    let ramp_len = drop / angle.to_radians().tan();
+    // Walk forward and back along the path, descending with the distance walked.
+    let mut walked = 0.0;
+    let mut trail: Vec<Vec2> = vec![pts[0]];
+    let (mut k, mut dir) = (0usize, 1isize);
+    let mut guard = 0;
+    while walked < ramp_len && guard < 1_000_000 {
+        guard += 1;
+        let next_k = k as isize + dir;
+        if next_k < 0 || next_k >= pts.len() as isize {
+            dir = -dir;
+            continue;
+        }
+        let (a, b) = (pts[k], pts[next_k as usize]);
+        let seg = a.dist(b);
+        if walked + seg >= ramp_len {
+            let t = if seg > 0.0 {
+                (ramp_len - walked) / seg
+            } else {
+                1.0
+            };
+            let q = a.lerp(b, t);
+            out.push(Move::Linear {
+                to: Vec3::new(q.x, q.y, z),
+                feed: plunge_feed,
+            });
+            trail.push(q);
+            break;
+        }
+        walked += seg;
+        out.push(Move::Linear {
+            to: Vec3::new(b.x, b.y, z_from - drop * walked / ramp_len),
+            feed: plunge_feed,
+        });
+        trail.push(b);
+        k = next_k as usize;
+        // Turn back at the end of a short path.
+        if k == pts.len() - 1 {
+            dir = -1;
+        } else if k == 0 {
+            dir = 1;
+        }
+    }
+    // Back to the start at depth, along the trail just ramped.
+    for q in trail.iter().rev().skip(1) {
+        out.push(Move::Linear {
+            to: Vec3::new(q.x, q.y, z),
+            feed,
+        });
+    }
+}
+
 /// Rotate a closed loop (last = first) so it starts at the vertex nearest to `p`.
 fn start_near(lp: &[Vec2], p: Vec2) -> Vec<Vec2> {
     let n = lp.len() - 1;
@@ -394,10 +465,37 @@ pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
                         &mut moves,
                     );
                 } else {
-                    moves.push(Move::Linear {
-                        to: Vec3::new(first.x, first.y, lv.z),
-                        feed: p.plunge_feed,
-                    });
+                    // An open path (a boss ring clipped to the stock) starts
+                    // outside the stock, in air, and goes straight down. Should
+                    // one start over the stock, it ramps: down to the floor
+                    // above (cleared by the level before), then back and forth
+                    // along its start at the ramp angle, back to its start at
+                    // depth, and along it.
+                    let r = p.radius;
+                    let in_air = first.x < p.stock_lo.x - r
+                        || first.x > p.stock_hi.x + r
+                        || first.y < p.stock_lo.y - r
+                        || first.y > p.stock_hi.y + r;
+                    if in_air {
+                        moves.push(Move::Linear {
+                            to: Vec3::new(first.x, first.y, lv.z),
+                            feed: p.plunge_feed,
+                        });
+                    } else {
+                        moves.push(Move::Linear {
+                            to: Vec3::new(first.x, first.y, lv.z_prev),
+                            feed: p.plunge_feed,
+                        });
+                        ramp_open(
+                            &pts,
+                            lv.z_prev,
+                            lv.z,
+                            p.ramp_angle,
+                            p.plunge_feed,
+                            p.feed,
+                            &mut moves,
+                        );
+                    }
                     for q in &pts[1..] {
                         moves.push(Move::Linear {
                             to: Vec3::new(q.x, q.y, lv.z),
@@ -416,6 +514,23 @@ pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
                 to: Vec3::new(a.x, a.y, p.safe_z),
             });
         }
+        // No zero-length moves (a path's repeated point, a link onto the spot
+        // where the tool already is).
+        let mut pos = sections
+            .last()
+            .and_then(|s: &Section| s.moves.last().map(|m| m.to()))
+            .unwrap_or(start);
+        moves.retain(|m| {
+            let to = m.to();
+            let keep = !matches!(m, Move::Linear { .. } | Move::Rapid { .. })
+                || (to.x - pos.x).abs() > 1e-9
+                || (to.y - pos.y).abs() > 1e-9
+                || (to.z - pos.z).abs() > 1e-9;
+            if keep {
+                pos = to;
+            }
+            keep
+        });
         sections.push(Section {
             label: format!("level z {:.3} (s = {:.4})", lv.z, lv.s),
             z: lv.z,
