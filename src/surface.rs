@@ -527,49 +527,6 @@ fn space_out(ts: &mut [f64], ascending: bool) {
     }
 }
 
-/// Newton's method along ∇u from `p` to Γ(s) (as the level planner's `project`).
-fn project(field: &Field, p: Vec2, s: f64, limit: f64) -> Option<Vec2> {
-    let mut q = p;
-    for _ in 0..6 {
-        let (u, g) = field.value_grad(q);
-        let g2 = g.norm2();
-        if g2 == 0.0 {
-            return None;
-        }
-        let step = g * ((u - s) / g2);
-        q -= step;
-        if step.norm() < 1e-10 {
-            break;
-        }
-    }
-    (q.dist(p) <= limit).then_some(q)
-}
-
-/// Vertices inserted where a chord strays more than `tol` from Γ(s), up to four
-/// halvings (as the level planner's `refine`, so the stock comes out the same).
-fn refine(poly: &[Vec2], field: &Field, s: f64, tol: f64) -> Vec<Vec2> {
-    fn edge(a: Vec2, b: Vec2, f: &Field, s: f64, tol: f64, depth: usize, out: &mut Vec<Vec2>) {
-        if depth == 0 {
-            return;
-        }
-        let m = a.lerp(b, 0.5);
-        if let Some(q) = project(f, m, s, a.dist(b)) {
-            if q.dist(m) > tol {
-                edge(a, q, f, s, tol, depth - 1, out);
-                out.push(q);
-                edge(q, b, f, s, tol, depth - 1, out);
-            }
-        }
-    }
-    let n = poly.len();
-    let mut out = Vec::with_capacity(2 * n);
-    for i in 0..n {
-        out.push(poly[i]);
-        edge(poly[i], poly[(i + 1) % n], field, s, tol, 4, &mut out);
-    }
-    out
-}
-
 fn bbox2(polys: &[Vec<Vec2>]) -> Option<(Vec2, Vec2)> {
     let mut it = polys.iter().flatten();
     let first = *it.next()?;
@@ -610,7 +567,7 @@ pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
     let base: Vec<Vec<Vec2>> = isolines(&grid, s_lo, f, sj.glyphs)
         .into_iter()
         .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
-        .map(|p| refine(&p, f, s_lo, 0.25 * sj.tol))
+        .map(|p| crate::levels::plan::refine(&p, f, s_lo, 0.25 * sj.tol))
         .collect();
     let (blo, bhi) = bbox2(&base).ok_or_else(|| {
         SurfaceError::Invalid(format!(
