@@ -120,6 +120,11 @@ impl DistanceIndex {
         self.edges.len()
     }
 
+    /// Total length of the indexed edges.
+    pub fn perimeter(&self) -> f64 {
+        self.edges.iter().map(|(a, b)| a.dist(*b)).sum()
+    }
+
     /// Distance from `p` to the nearest edge and the nearest point on it.
     pub fn nearest(&self, p: Vec2) -> (f64, Vec2) {
         if self.edges.is_empty() {

@@ -284,7 +284,15 @@ pub fn trace<N: Navigator>(
     // A loop of the paper's letters takes a few hundred steps; this bound only
     // turns a bug into an error instead of a hang.
     let max_steps = 200_000;
+    // A disk rolling once around walls of total length P travels at most
+    // P + 2πr; one that has gone twice that (plus slack) without closing is
+    // circling in a sliver it cannot get out of (the innermost ring of a long
+    // hole), and stops here instead of after 200 000 steps.
+    let max_travel = 2.0 * (t.part.perimeter() + std::f64::consts::TAU * r) + 10.0 * h_max;
     for _ in 0..max_steps {
+        if travelled > max_travel {
+            return Err(TraceError::NotClosed { steps: pts.len() });
+        }
         // The field's direction toward the part; it only has to point into the
         // arc of blocked directions (the compass finds the exit from there).
         // It must also lean toward the wall the disk touches (within 90° of the
