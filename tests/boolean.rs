@@ -329,3 +329,40 @@ fn the_paper_q_is_the_boolean_of_its_ovals_and_tail() {
     // The composite's field is 1 on the Q's boundary to 6.7e-4 (measured).
     assert!(built.model.max_error < 2e-3, "{}", built.model.max_error);
 }
+
+/// Shapes that do not meet: their union is both (two regions), their
+/// intersection is an error that names the part and says why.
+#[test]
+fn disjoint_parts_unite_into_two_regions_and_do_not_intersect() {
+    let (a, b) = (rect(0.0, 0.0, 40.0, 30.0), rect(80.0, 0.0, 120.0, 30.0));
+    let built = build(vec![
+        prim("a", a.clone()),
+        prim("b", b.clone()),
+        op("r", BoolOp::Union, &["a", "b"]),
+    ]);
+    assert_eq!(built.shape.regions.len(), 2);
+    let got = boundary(&built.model);
+    let d = hausdorff(&got, &[a.clone(), b.clone()], 0.25);
+    println!(
+        "disjoint union: Hausdorff {d:.4}, max error {:.2e}",
+        built.model.max_error
+    );
+    assert!(d < 0.002 * 120.0, "{d}");
+    let comp = Composition {
+        parts: vec![
+            prim("a", a),
+            prim("b", b),
+            op("r", BoolOp::Intersect, &["a", "b"]),
+        ],
+        result: "r".into(),
+        height: None,
+        origin: Vec2::ZERO,
+    };
+    let err = compose::build(&comp, &mut |_, _| {})
+        .expect_err("disjoint parts have no intersection")
+        .to_string();
+    assert!(
+        err.contains("\"r\"") && err.contains("do not overlap"),
+        "{err}"
+    );
+}
