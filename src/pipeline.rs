@@ -218,8 +218,20 @@ pub fn job_shape(
         name: "modelling the shape from its parts".into(),
         total: comp.parts.len() as u64,
     });
-    let built = crate::compose::build(comp, &mut |_, _| progress(Progress::Step))
-        .map_err(|e| PipelineError::Other(format!("shape: {e}")))?;
+    let built = crate::compose::build(comp, &mut |_, _| progress(Progress::Step)).map_err(|e| {
+        // Name the part as the job file does: shape.part[i], numbered from 1.
+        let (name, msg) = match &e {
+            crate::compose::ComposeError::Part { part, msg } => (part.clone(), msg.clone()),
+            crate::compose::ComposeError::Geometry { part, source } => {
+                (part.clone(), source.to_string())
+            }
+        };
+        let base = name.split(':').next().unwrap_or(&name).trim();
+        match comp.parts.iter().position(|p| p.name == base) {
+            Some(i) => PipelineError::Other(format!("shape.part[{}] \"{name}\": {msg}", i + 1)),
+            None => PipelineError::Other(format!("shape: {e}")),
+        }
+    })?;
     let reports = built
         .reports
         .iter()

@@ -164,6 +164,36 @@ fn open_svg_path_is_named_open() {
     assert_rejected("open-svg-named", OPEN_SVG, &["shape", "open"]);
 }
 
+/// A composition that parses but cannot be built (the intersection of two parts
+/// that do not meet) fails while modelling, naming the part as the file numbers
+/// it, and writes nothing.
+#[test]
+fn a_composition_that_cannot_be_built_names_its_part() {
+    let job = "[shape]\nheight = 30.0\n\
+        [[shape.part]]\nname = \"a\"\npolygon = [[0, 0], [40, 0], [40, 30], [0, 30]]\n\
+        [[shape.part]]\nname = \"b\"\npolygon = [[80, 0], [120, 0], [120, 30], [80, 30]]\n\
+        [[shape.part]]\nname = \"r\"\nop = \"intersect\"\nof = [\"a\", \"b\"]\n\
+        [tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n";
+    let dir = scratch("disjoint-intersection");
+    fs::write(dir.join("job.toml"), job).expect("write job");
+    for args in [
+        &["validate", "job.toml"][..],
+        &["run", "job.toml", "--out", "out"][..],
+    ] {
+        let o = pfcam(args, &dir);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        // `run` may have shown the modelling stage first; the error is last.
+        let last = err.lines().last().unwrap_or("");
+        assert!(last.starts_with("error: "), "{args:?}: {err}");
+        for n in ["shape.part[3] \"r\"", "do not overlap"] {
+            assert!(last.contains(n), "{args:?}: stderr lacks {n:?}: {err}");
+        }
+        let left = files_in(&dir.join("out"));
+        assert!(left.is_empty(), "files left behind: {left:?}");
+    }
+}
+
 #[test]
 fn foreign_output_file_is_not_overwritten() {
     let dir = scratch("foreign");
