@@ -366,3 +366,55 @@ fn disjoint_parts_unite_into_two_regions_and_do_not_intersect() {
         "{err}"
     );
 }
+
+/// Text and SVG parts take part like polygons: the paper's letter I (cap height
+/// 100 design units) united with an SVG bar across its foot, in design units.
+#[test]
+fn text_and_svg_parts_compose() {
+    use pfcam::geometry::FontSource;
+    let parts = vec![
+        Part {
+            name: "i".into(),
+            source: PartSource::Text {
+                text: "I".into(),
+                font: FontSource::Paper,
+                size: 100.0,
+            },
+            level: None,
+            singularities: None,
+        },
+        Part {
+            name: "bar".into(),
+            source: PartSource::Svg("M -20 -10 L 60 -10 L 60 5 L -20 5 Z".into()),
+            level: None,
+            singularities: None,
+        },
+        op("r", BoolOp::Union, &["i", "bar"]),
+    ];
+    let built = build(parts);
+    assert_eq!(
+        built.shape.regions.len(),
+        1,
+        "the bar overlaps the I's foot"
+    );
+    assert!(built.model.max_error < 5e-3, "{}", built.model.max_error);
+    // The result spans the bar's width and the letter's height.
+    let (lo, hi) = built.model.contours.iter().filter_map(|c| c.bbox()).fold(
+        (Vec2::new(1e9, 1e9), Vec2::new(-1e9, -1e9)),
+        |(a, b), (c, d)| {
+            (
+                Vec2::new(a.x.min(c.x), a.y.min(c.y)),
+                Vec2::new(b.x.max(d.x), b.y.max(d.y)),
+            )
+        },
+    );
+    println!(
+        "I ∪ bar: box ({:.2}, {:.2})–({:.2}, {:.2}), max error {:.2e}",
+        lo.x, lo.y, hi.x, hi.y, built.model.max_error
+    );
+    assert!(
+        (lo.x + 20.0).abs() < 0.5 && (lo.y + 10.0).abs() < 0.5,
+        "{lo:?}"
+    );
+    assert!((hi.y - 100.0).abs() < 1.0, "{hi:?}");
+}
