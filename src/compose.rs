@@ -18,11 +18,19 @@
 //!   points of A outside B, the points of B and its outside singularities R_I inside
 //!   A, and the sinks of B (the paper's P̂_I1 ∪ P̂_I2, Q̂_I1 ∪ R̂_I2, P_O2, R_O2).
 //!
+//! The measured refinements of the paper's recipe (docs/method.md §10): points of
+//! a union inside the other operand are kept as interior points of u = 1, and
+//! dropped where an intersection brings them next to a new boundary; singularities
+//! that would sit almost on the new boundary are dropped; sinks stay only where the
+//! result's material shuts them in; crossings that are convex corners of the
+//! result get a cluster of singularities.
+//!
 //! The combined problem is solved afresh, and the explicit boundary of the result
-//! is the equipotential Γ(1 − τ) of its own field just outside the material (τ
-//! twice the solve's boundary error): every vertex is checked to lie on that level
-//! of the raw field, so a composite whose field does not reach 1 on some piece of
-//! its boundary is an error, not a curve copied from the membership test.
+//! is {u = 1} of its own field: Γ(1 − τ) just outside the material (τ 1.5 times the
+//! largest deficit 1 − u at its check points), every vertex checked to lie on that
+//! level of the raw field, so a composite whose field does not reach 1 on some
+//! piece of its boundary is an error, not a curve copied from the membership test;
+//! then each vertex is carried onto u = 1 by Newton's method.
 
 use crate::field::isolines::{isolines_in, polygon_area, Grid};
 use crate::field::setup::{Boundary, Layout, Prepared, Sink, OUTER_CHARGES, SINK_CHARGES};
