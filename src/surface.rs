@@ -463,44 +463,6 @@ impl EdgeMask {
     }
 }
 
-/// Root of f on [0, 1] with f(0) = fa, f(1) = fb of opposite signs, by the
-/// Illinois variant of regula falsi (as `field::isolines`).
-fn root(fa: f64, fb: f64, f: &dyn Fn(f64) -> f64) -> f64 {
-    let (mut ta, mut tb, mut fa, mut fb) = (0.0_f64, 1.0_f64, fa, fb);
-    let mut side = 0;
-    let mut t = 0.5;
-    for _ in 0..40 {
-        t = if (fb - fa).abs() > 0.0 {
-            (ta * fb - tb * fa) / (fb - fa)
-        } else {
-            0.5 * (ta + tb)
-        };
-        if !(t > ta.min(tb) && t < ta.max(tb)) {
-            t = 0.5 * (ta + tb);
-        }
-        let ft = f(t);
-        if ft.abs() < 1e-12 || (tb - ta).abs() < 1e-12 {
-            break;
-        }
-        if (ft < 0.0) == (fa < 0.0) {
-            ta = t;
-            fa = ft;
-            if side == -1 {
-                fb *= 0.5;
-            }
-            side = -1;
-        } else {
-            tb = t;
-            fb = ft;
-            if side == 1 {
-                fa *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    t
-}
-
 /// Keep the crossings of one edge in level order along it (`ascending`: t grows
 /// with the level), at least [`T_MIN`] of the edge from its ends and from each
 /// other (less only if an edge carries more than 1/T_MIN levels).
@@ -527,24 +489,13 @@ fn space_out(ts: &mut [f64], ascending: bool) {
     }
 }
 
-fn bbox2(polys: &[Vec<Vec2>]) -> Option<(Vec2, Vec2)> {
-    let mut it = polys.iter().flatten();
-    let first = *it.next()?;
-    Some(it.fold((first, first), |(lo, hi), p| {
-        (
-            Vec2::new(lo.x.min(p.x), lo.y.min(p.y)),
-            Vec2::new(hi.x.max(p.x), hi.y.max(p.y)),
-        )
-    }))
-}
-
 /// The stock rectangle exactly as `levels::plan::plan_levels` computes it: the
 /// bounding box of the largest level Γ(s_bottom) (a boss's foot, a cavity's rim)
 /// plus the margin.
 pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
     let f = sj.field;
     let (s_lo, _) = sj.profile.s_range();
-    let (lo, hi) = bbox2(sj.glyphs)
+    let (lo, hi) = crate::geometry::polygons_bbox(sj.glyphs)
         .ok_or_else(|| SurfaceError::Invalid("the shape is empty: nothing to model".into()))?;
     let diag = (hi - lo).norm();
     let mut pad = 0.1 * diag;
@@ -569,7 +520,7 @@ pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
         .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
         .map(|p| crate::levels::plan::refine(&p, f, s_lo, 0.25 * sj.tol))
         .collect();
-    let (blo, bhi) = bbox2(&base).ok_or_else(|| {
+    let (blo, bhi) = crate::geometry::polygons_bbox(&base).ok_or_else(|| {
         SurfaceError::Invalid(format!(
             "the level s = {s_lo} has no contour around the shape"
         ))
@@ -667,7 +618,10 @@ pub fn build(
     let boxes: Vec<(Vec2, Vec2)> = sj
         .glyphs
         .iter()
-        .map(|p| bbox2(std::slice::from_ref(p)).unwrap_or((Vec2::ZERO, Vec2::ZERO)))
+        .map(|p| {
+            crate::geometry::polygons_bbox(std::slice::from_ref(p))
+                .unwrap_or((Vec2::ZERO, Vec2::ZERO))
+        })
         .collect();
 
     // u on the grid, the material pinned to 1, everything else just below 1.
@@ -735,7 +689,7 @@ pub fn build(
                         .and_then(|m| m.outline(va < vb))
                         .unwrap_or(0.5)
                 } else {
-                    root(va - s, vb - s, &|t| u(t) - s)
+                    crate::field::isolines::root_in_unit(va - s, vb - s, &|t| u(t) - s)
                 }
             })
             .collect();

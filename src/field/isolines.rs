@@ -304,8 +304,7 @@ pub fn isolines_in(
         .collect()
 }
 
-/// Root of u − s on the segment pa–pb (u − s = fa at pa, fb at pb, opposite signs)
-/// by the Illinois variant of regula falsi.
+/// Root of u − s on the segment pa–pb (u − s = fa at pa, fb at pb, opposite signs).
 fn edge_root(
     pa: Vec2,
     pb: Vec2,
@@ -314,6 +313,12 @@ fn edge_root(
     s: f64,
     value_at: &(dyn Fn(Vec2) -> f64 + Sync),
 ) -> Vec2 {
+    pa.lerp(pb, root_in_unit(fa, fb, &|t| value_at(pa.lerp(pb, t)) - s))
+}
+
+/// Root of f on [0, 1], given f(0) = fa and f(1) = fb of opposite signs, by the
+/// Illinois variant of regula falsi (40 steps at most, to |f| < 1e-12).
+pub fn root_in_unit(fa: f64, fb: f64, f: &dyn Fn(f64) -> f64) -> f64 {
     let (mut ta, mut tb, mut fa, mut fb) = (0.0_f64, 1.0_f64, fa, fb);
     let mut side = 0;
     let mut t = 0.5;
@@ -326,7 +331,7 @@ fn edge_root(
         if !(t > ta.min(tb) && t < ta.max(tb)) {
             t = 0.5 * (ta + tb);
         }
-        let ft = value_at(pa.lerp(pb, t)) - s;
+        let ft = f(t);
         if ft.abs() < 1e-12 || (tb - ta).abs() < 1e-12 {
             break;
         }
@@ -346,7 +351,7 @@ fn edge_root(
             side = 1;
         }
     }
-    pa.lerp(pb, t)
+    t
 }
 
 /// As `isolines`, with every vertex placed by linear interpolation of the grid

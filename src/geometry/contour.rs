@@ -65,6 +65,20 @@ impl Contour {
         Ok(c)
     }
 
+    /// The closed polygon through `points` (the last joins the first), as line
+    /// segments.
+    pub fn polygon(points: &[Vec2]) -> Result<Contour, GeometryError> {
+        let n = points.len();
+        Contour::new(
+            (0..n)
+                .map(|i| Segment::Line {
+                    a: points[i],
+                    b: points[(i + 1) % n],
+                })
+                .collect(),
+        )
+    }
+
     /// Bounding box of the control points (contains the curve).
     pub fn bbox(&self) -> Option<(Vec2, Vec2)> {
         let mut it = self.segments.iter().flat_map(|s| match *s {

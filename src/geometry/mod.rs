@@ -148,6 +148,28 @@ pub fn polygon_winding_number(poly: &[Vec2], p: Vec2) -> i32 {
     w
 }
 
+/// Bounding box of the vertices of polygons; `None` when there are none.
+pub fn polygons_bbox(polys: &[Vec<Vec2>]) -> Option<(Vec2, Vec2)> {
+    let mut it = polys.iter().flatten();
+    let first = *it.next()?;
+    Some(it.fold((first, first), |(lo, hi), p| {
+        (
+            Vec2::new(lo.x.min(p.x), lo.y.min(p.y)),
+            Vec2::new(hi.x.max(p.x), hi.y.max(p.y)),
+        )
+    }))
+}
+
+/// Where the lines p + u·d1 and r + v·d2 meet, as (u, v); `None` when they are
+/// parallel.
+pub fn line_crossing(p: Vec2, d1: Vec2, r: Vec2, d2: Vec2) -> Option<(f64, f64)> {
+    let den = d1.cross(d2);
+    if den.abs() < 1e-300 {
+        return None;
+    }
+    Some(((r - p).cross(d2) / den, (r - p).cross(d1) / den))
+}
+
 /// Where a shape comes from, as the job describes it (mm).
 #[derive(Clone, Debug, PartialEq)]
 pub enum ShapeSource {

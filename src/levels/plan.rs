@@ -6,7 +6,7 @@
 use super::{schedule, DepthProfile};
 use crate::field::isolines::{isolines, polygon_area, Grid};
 use crate::field::{self, Boundary, Field, FieldError, Layout, Prepared};
-use crate::geometry::{Contour, DistanceIndex, Segment, Vec2};
+use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
 use crate::toolpath::profile::ProfileError;
 use crate::toolpath::zlevel::{boss_paths, LevelCut, LevelParams};
 use rayon::prelude::*;
@@ -125,16 +125,17 @@ fn refine_edge(
     }
 }
 
-fn to_contour(poly: &[Vec2]) -> Option<Contour> {
-    let n = poly.len();
-    let segs: Vec<Segment> = (0..n)
-        .map(|i| Segment::Line {
-            a: poly[i],
-            b: poly[(i + 1) % n],
-        })
-        .collect();
-    Contour::new(segs).ok()
-}
+/// The box of nothing: every point extends it.
+const EMPTY_BOX: (Vec2, Vec2) = (
+    Vec2 {
+        x: f64::MAX,
+        y: f64::MAX,
+    },
+    Vec2 {
+        x: f64::MIN,
+        y: f64::MIN,
+    },
+);
 
 /// Everything the planner produced.
 pub struct Planned {
@@ -156,7 +157,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
     let f = job.field;
     let (s_lo, _) = job.profile.s_range();
     // One grid for the whole job, grown until Γ(s_lo) closes inside it.
-    let (lo, hi) = bbox(job.glyphs);
+    let (lo, hi) = polygons_bbox(job.glyphs).unwrap_or(EMPTY_BOX);
     let diag = (hi - lo).norm();
     let mut pad = 0.1 * diag;
     let h = GRID_SPACING.max(diag / 2000.0);
@@ -239,7 +240,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
     let t_schedule = t_start.elapsed().as_secs_f64();
     // The stock: the largest level (a boss's base, a cavity's rim) plus the margin.
     let base = contours_at(if job.cavity { s_of(0.0) } else { s_of(-depth) });
-    let (blo, bhi) = bbox(&base);
+    let (blo, bhi) = polygons_bbox(&base).unwrap_or(EMPTY_BOX);
     let mut params = job.params;
     params.stock_lo = blo - Vec2::new(job.margin, job.margin);
     params.stock_hi = bhi + Vec2::new(job.margin, job.margin);
@@ -268,7 +269,10 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
             } else {
                 polys.clone()
             };
-            let contours: Vec<Contour> = oriented.iter().filter_map(|p| to_contour(p)).collect();
+            let contours: Vec<Contour> = oriented
+                .iter()
+                .filter_map(|p| Contour::polygon(p).ok())
+                .collect();
             let is_counter: Vec<bool> = oriented.iter().map(|p| polygon_area(p) < 0.0).collect();
             let loops = oriented
                 .iter()
@@ -378,16 +382,6 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
         params,
         t_schedule,
     })
-}
-
-fn bbox(polys: &[Vec<Vec2>]) -> (Vec2, Vec2) {
-    let mut lo = Vec2::new(f64::MAX, f64::MAX);
-    let mut hi = Vec2::new(f64::MIN, f64::MIN);
-    for p in polys.iter().flatten() {
-        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
-    }
-    (lo, hi)
 }
 
 /// Why planning levels failed.

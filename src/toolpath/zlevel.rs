@@ -4,7 +4,7 @@
 use super::profile::{deepest_point, ProfileError};
 use super::trace::{trace, Navigator, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
-use crate::geometry::{polygon_winding_number, DistanceIndex, Vec2};
+use crate::geometry::{polygon_winding_number, polygons_bbox, DistanceIndex, Vec2};
 
 /// Settings shared by every level, mm, mm/min and degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -250,6 +250,51 @@ pub fn boss_paths<N: Navigator + Sync>(
     Ok(paths)
 }
 
+/// Ramp moves from `start` at `z_from` down to `z`, over the points of `seq` in
+/// turn, descending with the distance walked until `ramp_len` is reached (the
+/// last move ends part-way along a segment, at `z`). Returns the points walked
+/// (from `start` to where the ramp ended) and the number of whole segments.
+fn descend(
+    seq: impl Iterator<Item = Vec2>,
+    start: Vec2,
+    z_from: f64,
+    z: f64,
+    ramp_len: f64,
+    plunge_feed: f64,
+    out: &mut Vec<Move>,
+) -> (Vec<Vec2>, usize) {
+    let drop = z_from - z;
+    let mut walked = 0.0;
+    let mut trail = vec![start];
+    let mut at = start;
+    for (steps, next) in seq.enumerate() {
+        let seg = at.dist(next);
+        if walked + seg >= ramp_len {
+            let t = if seg > 0.0 {
+                (ramp_len - walked) / seg
+            } else {
+                1.0
+            };
+            let q = at.lerp(next, t);
+            out.push(Move::Linear {
+                to: Vec3::new(q.x, q.y, z),
+                feed: plunge_feed,
+            });
+            trail.push(q);
+            return (trail, steps);
+        }
+        walked += seg;
+        out.push(Move::Linear {
+            to: Vec3::new(next.x, next.y, z_from - drop * walked / ramp_len),
+            feed: plunge_feed,
+        });
+        trail.push(next);
+        at = next;
+    }
+    let steps = trail.len() - 1;
+    (trail, steps)
+}
+
 /// Moves that enter a closed loop by ramping down along it from `z_from` to `z`
 /// at `angle` degrees (several laps if the loop is short), then cut one full lap
 /// at `z` from where the ramp ended.
@@ -264,43 +309,13 @@ fn ramp_loop(
 ) {
     let n = lp.len() - 1;
     let drop = (z_from - z).max(0.0);
-    let ramp_len = drop / angle.to_radians().tan();
-    let mut travelled = 0.0;
-    let mut k = 0;
-    let mut at = lp[0];
-    // Ramp.
+    let (mut k, mut at) = (0, lp[0]);
     if drop > 0.0 {
-        let mut guard = 0;
-        loop {
-            let next = lp[(k + 1) % n];
-            let seg = at.dist(next);
-            if travelled + seg >= ramp_len {
-                let t = if seg > 0.0 {
-                    (ramp_len - travelled) / seg
-                } else {
-                    1.0
-                };
-                let q = at.lerp(next, t);
-                out.push(Move::Linear {
-                    to: Vec3::new(q.x, q.y, z),
-                    feed: plunge_feed,
-                });
-                at = q;
-                break;
-            }
-            travelled += seg;
-            let zz = z_from - drop * travelled / ramp_len;
-            out.push(Move::Linear {
-                to: Vec3::new(next.x, next.y, zz),
-                feed: plunge_feed,
-            });
-            at = next;
-            k = (k + 1) % n;
-            guard += 1;
-            if guard > 1_000_000 {
-                break;
-            }
-        }
+        let ramp_len = drop / angle.to_radians().tan();
+        let seq = (1..=1_000_001).map(|i| lp[i % n]);
+        let (trail, steps) = descend(seq, lp[0], z_from, z, ramp_len, plunge_feed, out);
+        k = steps % n;
+        at = *trail.last().unwrap_or(&lp[0]);
     }
     // One full lap at z from `at` (which lies on segment k → k+1).
     for step in 1..=n {
@@ -336,48 +351,13 @@ fn ramp_open(
         return;
     }
     let ramp_len = drop / angle.to_radians().tan();
-    // Walk forward and back along the path, descending with the distance walked.
-    let mut walked = 0.0;
-    let mut trail: Vec<Vec2> = vec![pts[0]];
-    let (mut k, mut dir) = (0usize, 1isize);
-    let mut guard = 0;
-    while walked < ramp_len && guard < 1_000_000 {
-        guard += 1;
-        let next_k = k as isize + dir;
-        if next_k < 0 || next_k >= pts.len() as isize {
-            dir = -dir;
-            continue;
-        }
-        let (a, b) = (pts[k], pts[next_k as usize]);
-        let seg = a.dist(b);
-        if walked + seg >= ramp_len {
-            let t = if seg > 0.0 {
-                (ramp_len - walked) / seg
-            } else {
-                1.0
-            };
-            let q = a.lerp(b, t);
-            out.push(Move::Linear {
-                to: Vec3::new(q.x, q.y, z),
-                feed: plunge_feed,
-            });
-            trail.push(q);
-            break;
-        }
-        walked += seg;
-        out.push(Move::Linear {
-            to: Vec3::new(b.x, b.y, z_from - drop * walked / ramp_len),
-            feed: plunge_feed,
-        });
-        trail.push(b);
-        k = next_k as usize;
-        // Turn back at the end of a short path.
-        if k == pts.len() - 1 {
-            dir = -1;
-        } else if k == 0 {
-            dir = 1;
-        }
-    }
+    // Forward and back along the path: indices 1, 2, …, m − 1, m − 2, …, 0, 1, …
+    let period = 2 * (pts.len() - 1);
+    let seq = (1..=1_000_000).map(|i| {
+        let j = i % period;
+        pts[if j < pts.len() { j } else { period - j }]
+    });
+    let (trail, _) = descend(seq, pts[0], z_from, z, ramp_len, plunge_feed, out);
     // Back to the start at depth, along the trail just ramped.
     for q in trail.iter().rev().skip(1) {
         out.push(Move::Linear {
@@ -598,11 +578,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // pocket's own polygon contains its islands (the counter of a Q's mould is
     // wider than the ring around it, and the tool started inside it).
     let deepest_in_pocket = |pk: &Vec<Vec2>| {
-        let (mut lo, mut hi) = (pk[0], pk[0]);
-        for q in pk.iter() {
-            lo = Vec2::new(lo.x.min(q.x), lo.y.min(q.y));
-            hi = Vec2::new(hi.x.max(q.x), hi.y.max(q.y));
-        }
+        let (lo, hi) = polygons_bbox(std::slice::from_ref(pk)).unwrap_or((pk[0], pk[0]));
         let inside = |q: Vec2| {
             polygon_winding_number(pk, q) != 0
                 && islands.iter().all(|is| polygon_winding_number(is, q) == 0)
@@ -1075,4 +1051,41 @@ pub fn cavity_paths<N: Navigator + Sync>(
         0.0
     };
     Ok((paths, frac))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ramp into an open path shorter than the ramp goes back and forth along
+    /// it, never straight down, reaches the depth at the ramp angle, and ends at
+    /// the path's start at depth.
+    #[test]
+    fn an_open_path_is_entered_back_and_forth_at_the_ramp_angle() {
+        let pts = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(3.0, 0.0),
+            Vec2::new(3.0, 2.0),
+        ];
+        let (z_from, z, angle) = (-1.0, -2.0, 3.0);
+        let mut out = Vec::new();
+        ramp_open(&pts, z_from, z, angle, 100.0, 500.0, &mut out);
+        let mut at = Vec3::new(0.0, 0.0, z_from);
+        let mut walked = 0.0;
+        for m in &out {
+            let to = m.to();
+            let d = ((to.x - at.x).powi(2) + (to.y - at.y).powi(2)).sqrt();
+            assert!(d > 1e-9, "a vertical move to {to:?}");
+            assert!(to.z >= z - 1e-12 && to.z <= at.z + 1e-12);
+            if to.z < at.z {
+                walked += d;
+                let slope = (at.z - to.z) / d;
+                assert!((slope - angle.to_radians().tan()).abs() < 1e-9);
+            }
+            at = to;
+        }
+        // 1 mm at 3° is about 19 mm of ramp on a 5 mm path: several passes.
+        assert!((walked - 1.0 / angle.to_radians().tan()).abs() < 1e-9);
+        assert_eq!((at.x, at.y, at.z), (0.0, 0.0, z));
+    }
 }
