@@ -231,7 +231,7 @@ pub fn exit_code(e: &anyhow::Error) -> u8 {
 /// Load a job; errors without the file's name in them get it as context.
 fn load(path: &Path) -> Result<Job> {
     load_job(path).map_err(|e| match e {
-        JobError::Parse { .. } | JobError::Read { .. } => anyhow!(e),
+        JobError::Parse { .. } | JobError::Read { .. } | JobError::NotAJob { .. } => anyhow!(e),
         e => anyhow!(e).context(path.display().to_string()),
     })
 }
@@ -619,8 +619,9 @@ fn cmd_convergence(glyph: char, ns: &[usize], json: bool) -> Result<()> {
         let list: String = have.iter().collect();
         bail!("--glyph: the paper font has no glyph {glyph:?} (it has {list})");
     }
-    if ns.is_empty() || ns.contains(&0) {
-        bail!("--n: give one or more counts >= 1, e.g. --n 78,148,272");
+    let max = pfcam::job::limits::MAX_SINGULARITIES;
+    if ns.is_empty() || ns.iter().any(|&n| n == 0 || n > max) {
+        bail!("--n: give one or more counts in [1, {max}], e.g. --n 78,148,272");
     }
     let rows = pfcam::field::convergence_table(glyph, ns)
         .with_context(|| format!("convergence study of {glyph:?}"))?;

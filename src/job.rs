@@ -13,6 +13,9 @@ use crate::geometry::{
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
+mod exact;
+pub mod limits;
+
 /// A resolved job: units in mm, mm/min and rev/min, defaults applied, validated.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Job {
@@ -233,12 +236,20 @@ pub const DIRECTIONS: &[&str] = &["climb", "conventional"];
 #[derive(Debug, thiserror::Error)]
 pub enum JobError {
     /// The job file cannot be read.
-    #[error("cannot read job file {}: {source}", path.display())]
+    #[error("cannot read job file {}: {reason}", path.display(), reason = io_reason(error))]
     Read {
         /// the file
         path: PathBuf,
-        /// why
-        source: std::io::Error,
+        /// why (not a `source`: the message already says it, once)
+        error: std::io::Error,
+    },
+    /// The file is not a job file at all (too large, not text, a directory).
+    #[error("{} is not a job file: {why}", path.display())]
+    NotAJob {
+        /// the file
+        path: PathBuf,
+        /// why not
+        why: String,
     },
     /// The TOML does not parse, or does not fit the schema (unknown key, wrong type).
     #[error("{origin}:{line}:{column}: {}{message}", key.as_ref().map(|k| format!("{k}: ")).unwrap_or_default())]
@@ -272,11 +283,22 @@ pub enum JobError {
     },
 }
 
+/// An I/O error as a reader wants it: `no such file` rather than
+/// `No such file or directory (os error 2)`.
+fn io_reason(e: &std::io::Error) -> String {
+    use std::io::ErrorKind;
+    match e.kind() {
+        ErrorKind::NotFound => "no such file".into(),
+        ErrorKind::PermissionDenied => "permission denied".into(),
+        _ => e.to_string(),
+    }
+}
+
 impl JobError {
     /// The key the error is about, when there is one.
     pub fn key(&self) -> Option<&str> {
         match self {
-            JobError::Read { .. } => None,
+            JobError::Read { .. } | JobError::NotAJob { .. } => None,
             JobError::Parse { key, .. } => key.as_deref(),
             JobError::Invalid { key, .. } => Some(key),
             JobError::FontNotFound { key, .. } => Some(key),
@@ -330,6 +352,7 @@ pub struct RawProfile {
     /// `steepness` (sigmoid)
     pub steepness: Option<f64>,
     /// `points`: [[s, z], ...] (spline, table), z in mm relative to stock.top
+    #[serde(default, deserialize_with = "exact::opt_vec")]
     pub points: Option<Vec<[f64; 2]>>,
 }
 
@@ -356,6 +379,7 @@ pub struct RawShape {
     /// `letter_spacing`, mm
     pub letter_spacing: Option<f64>,
     /// `origin`, mm
+    #[serde(default, deserialize_with = "exact::opt")]
     pub origin: Option<[f64; 2]>,
     /// `result`: the name of the part that is the shape (with `[[shape.part]]`)
     pub result: Option<String>,
@@ -370,6 +394,7 @@ pub struct RawPart {
     /// `name`
     pub name: Option<String>,
     /// `polygon`: [[x, y], ...]
+    #[serde(default, deserialize_with = "exact::opt_vec")]
     pub polygon: Option<Vec<[f64; 2]>>,
     /// `svg`: path data
     pub svg: Option<String>,
@@ -487,8 +512,10 @@ pub struct RawMachine {
     /// `coolant`
     pub coolant: Option<bool>,
     /// `travel`, mm: [x, y, z]
+    #[serde(default, deserialize_with = "exact::opt")]
     pub travel: Option<[f64; 3]>,
     /// `work_offset`, mm: [x, y, z]
+    #[serde(default, deserialize_with = "exact::opt")]
     pub work_offset: Option<[f64; 3]>,
 }
 
@@ -510,7 +537,7 @@ impl RawMachine {
             None => None,
             Some(t) => {
                 for (k, axis) in t.iter().zip(["x", "y", "z"]) {
-                    positive(&format!("machine.travel ({axis})"), *k, "mm")?;
+                    limits::TRAVEL.check(&format!("machine.travel ({axis})"), *k)?;
                 }
                 Some(t)
             }
@@ -525,30 +552,20 @@ impl RawMachine {
                     ));
                 }
                 for v in o {
-                    finite("machine.work_offset", v)?;
+                    limits::WORK_OFFSET.check("machine.work_offset", v)?;
                 }
                 Some(o)
             }
         };
         Ok(Machine {
-            rapid_rate: positive(
+            rapid_rate: limits::RAPID_RATE.check(
                 "machine.rapid_rate",
                 m.rapid_rate.unwrap_or(defaults::RAPID_RATE),
-                "mm/min",
             )?,
-            spindle_dwell: {
-                let d = finite(
-                    "machine.spindle_dwell",
-                    m.spindle_dwell.unwrap_or(defaults::SPINDLE_DWELL),
-                )?;
-                if d < 0.0 {
-                    return Err(invalid(
-                        "machine.spindle_dwell",
-                        format!("must be >= 0 s, got {}", show(d)),
-                    ));
-                }
-                d
-            },
+            spindle_dwell: limits::SPINDLE_DWELL.check(
+                "machine.spindle_dwell",
+                m.spindle_dwell.unwrap_or(defaults::SPINDLE_DWELL),
+            )?,
             coolant: m.coolant.unwrap_or(defaults::COOLANT),
             travel,
             work_offset,
@@ -575,10 +592,7 @@ pub enum MachineSource {
 /// Reads `[machine]` from either a job file or a machine file (a TOML file whose
 /// only table is `[machine]`), with the same keys and checks as in a job.
 pub fn load_machine(path: &Path) -> Result<(Machine, MachineSource), JobError> {
-    let text = std::fs::read_to_string(path).map_err(|source| JobError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = read_bounded(path)?;
     let is_machine_file = match text.parse::<toml::Table>() {
         Ok(t) => t.keys().all(|k| k == "machine"),
         // Let the job reader report where the TOML is wrong.
@@ -651,10 +665,7 @@ impl<'de> Deserialize<'de> for AutoOr {
 /// Read and resolve a job file. The job name defaults to the file stem, and a font
 /// path is resolved relative to the file's directory.
 pub fn load_job(path: &Path) -> Result<Job, JobError> {
-    let text = std::fs::read_to_string(path).map_err(|source| JobError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = read_bounded(path)?;
     let stem = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -678,9 +689,82 @@ pub fn load_job(path: &Path) -> Result<Job, JobError> {
     })
 }
 
+/// The tables of a job file.
+const SECTIONS: &[&str] = &[
+    "job",
+    "shape",
+    "tool",
+    "stock",
+    "operation",
+    "field",
+    "machine",
+    "output",
+    "profile",
+];
+
+/// Every section is a table: `[[tool]]` (an array of tables) or `tool = 3`
+/// would otherwise reach serde, which reads a struct from an array and says
+/// `tool[1]: invalid type: map, expected f64`.
+fn check_sections(table: &toml::Table) -> Result<(), JobError> {
+    for (key, value) in table.iter().filter(|(k, _)| SECTIONS.contains(&k.as_str())) {
+        let what = match value {
+            toml::Value::Table(_) => continue,
+            toml::Value::Array(a) if a.iter().all(|v| v.is_table()) => {
+                format!("an array of tables [[{key}]]")
+            }
+            v => format!("a {}", v.type_str()),
+        };
+        return Err(invalid(
+            key,
+            format!("must be a table, written [{key}], not {what}"),
+        ));
+    }
+    Ok(())
+}
+
+/// The text of a job file, refused past `limits::MAX_JOB_BYTES` without reading
+/// further (a device such as `/dev/zero`, a log given by mistake) and when it is
+/// not a regular file or not UTF-8.
+fn read_bounded(path: &Path) -> Result<String, JobError> {
+    use std::io::Read;
+    let read_error = |error| JobError::Read {
+        path: path.to_path_buf(),
+        error,
+    };
+    if path.is_dir() {
+        return Err(JobError::NotAJob {
+            path: path.to_path_buf(),
+            why: "it is a directory".into(),
+        });
+    }
+    let file = std::fs::File::open(path).map_err(read_error)?;
+    let mut bytes = Vec::new();
+    file.take(limits::MAX_JOB_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(read_error)?;
+    if bytes.len() as u64 > limits::MAX_JOB_BYTES {
+        return Err(JobError::NotAJob {
+            path: path.to_path_buf(),
+            why: format!(
+                "it is larger than {} KiB; a job file is a few kilobytes of TOML",
+                limits::MAX_JOB_BYTES / 1024
+            ),
+        });
+    }
+    String::from_utf8(bytes).map_err(|e| JobError::NotAJob {
+        path: path.to_path_buf(),
+        why: format!(
+            "it is not UTF-8 text (byte {} is not valid)",
+            e.utf8_error().valid_up_to() + 1
+        ),
+    })
+}
+
 /// Parse and resolve job text. `name_hint` is the name used when `[job] name` is
 /// absent; `base_dir` is where relative font paths are looked up.
 pub fn parse_job(text: &str, name_hint: &str, base_dir: &Path) -> Result<Job, JobError> {
+    let table: toml::Table = text.parse().map_err(|e| parse_error(text, &e))?;
+    check_sections(&table)?;
     let raw: RawJob = toml::from_str(text).map_err(|e| parse_error(text, &e))?;
     raw.resolve(name_hint, base_dir)
 }
@@ -798,19 +882,12 @@ fn key_at(text: &str, pos: usize) -> Option<String> {
     })
 }
 
-/// `x` as the user wrote it: `-3`, `0.5`.
+/// `x` as the user wrote it, short: `-3`, `0.5`, `1e300` (never 300 digits).
 fn show(x: f64) -> String {
-    format!("{x}")
-}
-
-fn positive(key: &str, x: f64, unit: &str) -> Result<f64, JobError> {
-    if x.is_finite() && x > 0.0 {
-        Ok(x)
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{x}")
     } else {
-        Err(invalid(
-            key,
-            format!("must be a positive number of {unit}, got {}", show(x)),
-        ))
+        format!("{x:?}")
     }
 }
 
@@ -887,40 +964,26 @@ impl RawJob {
 
         // The tool first: the letter spacing defaults to its diameter.
         let t = self.tool.unwrap_or_default();
-        let diameter = positive(
+        let diameter = limits::TOOL_DIAMETER.check(
             "tool.diameter",
             t.diameter
                 .ok_or_else(|| invalid("tool.diameter", "is required (mm)"))?,
-            "mm",
         )?;
         let tool = Tool {
             diameter,
-            feed: positive("tool.feed", t.feed.unwrap_or(defaults::FEED), "mm/min")?,
-            plunge_feed: positive(
+            feed: limits::FEED.check("tool.feed", t.feed.unwrap_or(defaults::FEED))?,
+            plunge_feed: limits::FEED.check(
                 "tool.plunge_feed",
                 t.plunge_feed.unwrap_or(defaults::PLUNGE_FEED),
-                "mm/min",
             )?,
-            spindle: {
-                let s = finite("tool.spindle", t.spindle.unwrap_or(defaults::SPINDLE))?;
-                if s < 0.0 {
-                    return Err(invalid(
-                        "tool.spindle",
-                        format!("must be >= 0 rev/min, got {}", show(s)),
-                    ));
-                }
-                s
-            },
-            stepdown: positive(
-                "tool.stepdown",
-                t.stepdown.unwrap_or(defaults::STEPDOWN),
-                "mm",
-            )?,
+            spindle: limits::SPINDLE
+                .check("tool.spindle", t.spindle.unwrap_or(defaults::SPINDLE))?,
+            stepdown: limits::STEPDOWN
+                .check("tool.stepdown", t.stepdown.unwrap_or(defaults::STEPDOWN))?,
             stepover: {
-                let so = positive(
+                let so = limits::STEPOVER.check(
                     "tool.stepover",
                     t.stepover.unwrap_or(defaults::STEPOVER_FRACTION * diameter),
-                    "mm",
                 )?;
                 if so > diameter / 2.0 {
                     return Err(invalid(
@@ -934,30 +997,32 @@ impl RawJob {
                 }
                 so
             },
-            ramp_angle: {
-                let a = positive(
-                    "tool.ramp_angle",
-                    t.ramp_angle.unwrap_or(defaults::RAMP_ANGLE),
-                    "degrees",
-                )?;
-                if a > 45.0 {
-                    return Err(invalid(
-                        "tool.ramp_angle",
-                        format!("must be at most 45 degrees, got {}", show(a)),
-                    ));
-                }
-                a
-            },
+            ramp_angle: limits::RAMP_ANGLE.check(
+                "tool.ramp_angle",
+                t.ramp_angle.unwrap_or(defaults::RAMP_ANGLE),
+            )?,
         };
 
         let shape = resolve_shape(self.shape.unwrap_or_default(), diameter, base_dir)?;
+        check_height_per_tool(&shape, diameter)?;
 
         let s = self.stock.unwrap_or_default();
-        let top = finite("stock.top", s.top.unwrap_or(defaults::STOCK_TOP))?;
+        let top = limits::STOCK_TOP.check("stock.top", s.top.unwrap_or(defaults::STOCK_TOP))?;
         let safe_z = finite(
             "stock.safe_z",
             s.safe_z.unwrap_or(top + defaults::SAFE_CLEARANCE),
         )?;
+        if safe_z > top && !limits::SAFE_CLEARANCE.contains(safe_z - top) {
+            return Err(invalid(
+                "stock.safe_z",
+                format!(
+                    "must be at most {} mm above stock.top ({}), got {}",
+                    show(limits::SAFE_CLEARANCE.hi),
+                    show(top),
+                    show(safe_z)
+                ),
+            ));
+        }
         if safe_z <= top {
             return Err(invalid(
                 "stock.safe_z",
@@ -968,13 +1033,7 @@ impl RawJob {
                 ),
             ));
         }
-        let margin = finite("stock.margin", s.margin.unwrap_or(defaults::MARGIN))?;
-        if margin < 0.0 {
-            return Err(invalid(
-                "stock.margin",
-                format!("must be >= 0 mm, got {}", show(margin)),
-            ));
-        }
+        let margin = limits::MARGIN.check("stock.margin", s.margin.unwrap_or(defaults::MARGIN))?;
         let stock = Stock {
             top,
             safe_z,
@@ -997,13 +1056,19 @@ impl RawJob {
                 format!("must be > 0 (mm below stock.top), got {}", show(depth)),
             ));
         }
-        let tolerance = o.tolerance.unwrap_or(defaults::TOLERANCE);
-        if !(tolerance.is_finite() && tolerance > 0.0) {
+        limits::DEPTH.check("operation.depth", depth)?;
+        if depth / tool.stepdown > limits::MAX_PASSES {
             return Err(invalid(
-                "operation.tolerance",
-                format!("must be > 0 mm, got {}", show(tolerance)),
+                "operation.depth",
+                format!(
+                    "needs {} passes of tool.stepdown = {} mm; at most {} are allowed (raise tool.stepdown)",
+                    (depth / tool.stepdown).ceil(),
+                    show(tool.stepdown),
+                    limits::MAX_PASSES
+                ),
             ));
         }
+        let tolerance = o.tolerance.unwrap_or(defaults::TOLERANCE);
         if tolerance >= diameter / 2.0 {
             return Err(invalid(
                 "operation.tolerance",
@@ -1014,10 +1079,10 @@ impl RawJob {
                 ),
             ));
         }
-        let max_scallop = positive(
+        limits::TOLERANCE.check("operation.tolerance", tolerance)?;
+        let max_scallop = limits::MAX_SCALLOP.check(
             "operation.max_scallop",
             o.max_scallop.unwrap_or(defaults::MAX_SCALLOP),
-            "mm",
         )?;
         let op_kind = match kind.as_str() {
             "boss" => OperationKind::Boss,
@@ -1049,39 +1114,37 @@ impl RawJob {
         };
 
         let f = self.field.unwrap_or_default();
-        let singularities =
-            match f.singularities {
-                None => None,
-                Some(AutoOr::Word(w)) => {
-                    auto_word("field.singularities", &w, "a whole number of singularities")?;
-                    None
-                }
-                Some(AutoOr::Float(x)) => {
-                    return Err(invalid(
-                        "field.singularities",
-                        format!("must be \"auto\" or a whole number, got {}", show(x)),
-                    ))
-                }
-                Some(AutoOr::Int(n)) => {
-                    if n < 1 {
-                        return Err(invalid(
-                            "field.singularities",
-                            format!("must be \"auto\" or a count >= 1, got {n}"),
-                        ));
-                    }
-                    Some(usize::try_from(n).map_err(|_| {
-                        invalid("field.singularities", format!("is too large: {n}"))
-                    })?)
-                }
-            };
+        let singularities = match f.singularities {
+            None => None,
+            Some(AutoOr::Word(w)) => {
+                auto_word("field.singularities", &w, "a whole number of singularities")?;
+                None
+            }
+            Some(AutoOr::Float(x)) => {
+                return Err(invalid(
+                    "field.singularities",
+                    format!("must be \"auto\" or a whole number, got {x:?}"),
+                ))
+            }
+            Some(AutoOr::Int(n)) => Some(limits::count(
+                "field.singularities",
+                n,
+                limits::MAX_SINGULARITIES,
+                "singularities",
+            )?),
+        };
         let pseudo_boundary = match f.pseudo_boundary {
             None => None,
             Some(AutoOr::Word(w)) => {
                 auto_word("field.pseudo_boundary", &w, "a distance in mm")?;
                 None
             }
-            Some(AutoOr::Int(d)) => Some(positive("field.pseudo_boundary", d as f64, "mm")?),
-            Some(AutoOr::Float(d)) => Some(positive("field.pseudo_boundary", d, "mm")?),
+            Some(AutoOr::Int(d)) => {
+                Some(limits::PSEUDO_BOUNDARY.check("field.pseudo_boundary", d as f64)?)
+            }
+            Some(AutoOr::Float(d)) => {
+                Some(limits::PSEUDO_BOUNDARY.check("field.pseudo_boundary", d)?)
+            }
         };
         let field = FieldSpec {
             singularities,
@@ -1093,10 +1156,9 @@ impl RawJob {
         let o = self.output.unwrap_or_default();
         let output = Output {
             arcs: o.arcs.unwrap_or(defaults::ARCS),
-            max_arc_radius: positive(
+            max_arc_radius: limits::MAX_ARC_RADIUS.check(
                 "output.max_arc_radius",
                 o.max_arc_radius.unwrap_or(defaults::MAX_ARC_RADIUS),
-                "mm",
             )?,
         };
 
@@ -1161,7 +1223,8 @@ fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProf
                     format!("must be below profile.s1 ({}), got {}", show(s1), show(s2)),
                 ));
             }
-            let steepness = positive("profile.steepness", p.steepness.unwrap_or(dk), "")?;
+            let steepness =
+                limits::STEEPNESS.check("profile.steepness", p.steepness.unwrap_or(dk))?;
             Ok(DepthProfile::Sigmoid {
                 s1,
                 s2,
@@ -1177,6 +1240,16 @@ fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProf
             let points = p
                 .points
                 .ok_or_else(|| invalid("profile.points", "is required for a spline or table: [[s, z], ...] with z in mm relative to stock.top"))?;
+            if points.len() > limits::MAX_PROFILE_POINTS {
+                return Err(invalid(
+                    "profile.points",
+                    format!(
+                        "has {} points; at most {} are allowed",
+                        points.len(),
+                        limits::MAX_PROFILE_POINTS
+                    ),
+                ));
+            }
             let prof = DepthProfile::from_points(&points, kind == "spline")
                 .map_err(|e| invalid("profile.points", e.to_string()))?;
             if (prof.depth() - depth).abs() > 1e-9 {
@@ -1192,6 +1265,46 @@ fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProf
             Ok(prof)
         }
     }
+}
+
+/// The shape's height against the tool: a sign thousands of tool diameters
+/// tall has kilometres of tool path (`limits::MAX_HEIGHT_PER_DIAMETER`).
+fn check_height_per_tool(shape: &ShapeSource, diameter: f64) -> Result<(), JobError> {
+    let height = match shape {
+        ShapeSource::Text { height, .. } => Some(*height),
+        ShapeSource::SvgPath { height, .. } => *height,
+        ShapeSource::Composite(c) => c.height,
+    };
+    match height {
+        Some(h) if h / diameter > limits::MAX_HEIGHT_PER_DIAMETER => Err(invalid(
+            "shape.height",
+            format!(
+                "is {} mm, more than {} times tool.diameter ({} mm): the tool path would run to kilometres; use a larger tool or a smaller shape",
+                show(h),
+                limits::MAX_HEIGHT_PER_DIAMETER,
+                show(diameter)
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Text to lay out: not blank, and at most `limits::MAX_TEXT_CHARS` characters.
+fn check_text(key: &str, text: &str) -> Result<(), JobError> {
+    if text.trim().is_empty() {
+        return Err(invalid(key, "must not be empty"));
+    }
+    let n = text.chars().count();
+    if n > limits::MAX_TEXT_CHARS {
+        return Err(invalid(
+            key,
+            format!(
+                "has {n} characters; at most {} are allowed",
+                limits::MAX_TEXT_CHARS
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn auto_word(key: &str, word: &str, what: &str) -> Result<(), JobError> {
@@ -1211,12 +1324,15 @@ fn resolve_shape(
     base_dir: &Path,
 ) -> Result<ShapeSource, JobError> {
     let origin = match s.origin {
-        Some([x, y]) => Vec2::new(finite("shape.origin", x)?, finite("shape.origin", y)?),
+        Some([x, y]) => Vec2::new(
+            limits::ORIGIN.check("shape.origin", x)?,
+            limits::ORIGIN.check("shape.origin", y)?,
+        ),
         None => Vec2::ZERO,
     };
     let height = s
         .height
-        .map(|h| positive("shape.height", h, "mm"))
+        .map(|h| limits::SHAPE_HEIGHT.check("shape.height", h))
         .transpose()?;
     if let Some(parts) = s.part {
         for (key, given) in [
@@ -1266,9 +1382,7 @@ fn resolve_shape(
             "or shape.svg_path or [[shape.part]] is required (exactly one of them)",
         )),
         (Some(text), None) => {
-            if text.trim().is_empty() {
-                return Err(invalid("shape.text", "must not be empty"));
-            }
+            check_text("shape.text", &text)?;
             let font = resolve_font(
                 "shape.font",
                 "shape.text",
@@ -1276,7 +1390,7 @@ fn resolve_shape(
                 &text,
                 base_dir,
             )?;
-            let letter_spacing = finite(
+            let letter_spacing = limits::LETTER_SPACING.check(
                 "shape.letter_spacing",
                 s.letter_spacing.unwrap_or(tool_diameter),
             )?;
@@ -1333,6 +1447,15 @@ fn resolve_font(
         }
         path => {
             let p = base_dir.join(path);
+            if p.is_dir() {
+                return Err(invalid(
+                    font_key,
+                    format!(
+                        "is a directory, not a font file: {} (give a .ttf or .otf file)",
+                        p.display()
+                    ),
+                ));
+            }
             if !p.is_file() {
                 return Err(JobError::FontNotFound {
                     key: font_key.into(),
@@ -1359,6 +1482,16 @@ fn resolve_composition(
         return Err(invalid(
             "shape.part",
             "must have at least one part ([[shape.part]] tables)",
+        ));
+    }
+    if raw.len() > limits::MAX_PARTS {
+        return Err(invalid(
+            "shape.part",
+            format!(
+                "has {} parts; at most {} are allowed (each may need a field solve)",
+                raw.len(),
+                limits::MAX_PARTS
+            ),
         ));
     }
     // Every name first, so that a reference to a later part can say so.
@@ -1398,31 +1531,25 @@ fn resolve_composition(
                 ))
             }
         };
-        let singularities =
-            match p.singularities {
-                None => None,
-                Some(AutoOr::Word(w)) => {
-                    auto_word(&key("singularities"), &w, "a whole number of singularities")?;
-                    None
-                }
-                Some(AutoOr::Float(x)) => {
-                    return Err(invalid(
-                        &key("singularities"),
-                        format!("must be \"auto\" or a whole number, got {}", show(x)),
-                    ))
-                }
-                Some(AutoOr::Int(n)) => {
-                    if n < 1 {
-                        return Err(invalid(
-                            &key("singularities"),
-                            format!("must be \"auto\" or a count >= 1, got {n}"),
-                        ));
-                    }
-                    Some(usize::try_from(n).map_err(|_| {
-                        invalid(&key("singularities"), format!("is too large: {n}"))
-                    })?)
-                }
-            };
+        let singularities = match p.singularities {
+            None => None,
+            Some(AutoOr::Word(w)) => {
+                auto_word(&key("singularities"), &w, "a whole number of singularities")?;
+                None
+            }
+            Some(AutoOr::Float(x)) => {
+                return Err(invalid(
+                    &key("singularities"),
+                    format!("must be \"auto\" or a whole number, got {x:?}"),
+                ))
+            }
+            Some(AutoOr::Int(n)) => Some(limits::count(
+                &key("singularities"),
+                n,
+                limits::MAX_SINGULARITIES,
+                "singularities",
+            )?),
+        };
         parts.push(Part {
             name: names[i].clone(),
             source,
@@ -1560,9 +1687,7 @@ fn resolve_part_source(
         return Ok(PartSource::Svg(d.clone()));
     }
     if let Some(text) = &p.text {
-        if text.trim().is_empty() {
-            return Err(invalid(&key("text"), "must not be empty"));
-        }
+        check_text(&key("text"), text)?;
         let font = resolve_font(
             &key("font"),
             &key("text"),
@@ -1572,7 +1697,7 @@ fn resolve_part_source(
         )?;
         let size = match p.size {
             None => defaults::PART_TEXT_SIZE,
-            Some(s) => positive(&key("size"), s, "design units")?,
+            Some(s) => limits::PART_SIZE.check(&key("size"), s)?,
         };
         return Ok(PartSource::Text {
             text: text.clone(),
@@ -1675,20 +1800,25 @@ fn resolve_part_source(
 
 /// A polygon: at least 3 finite points, not all on one line.
 fn resolve_polygon(key: &str, points: &[[f64; 2]]) -> Result<Vec<Vec2>, JobError> {
-    if points.len() < 3 {
+    if points.len() < 3 || points.len() > limits::MAX_POLYGON_POINTS {
         return Err(invalid(
             key,
-            format!("must have at least 3 points [x, y], got {}", points.len()),
+            format!(
+                "must have 3 to {} points [x, y], got {}",
+                limits::MAX_POLYGON_POINTS,
+                points.len()
+            ),
         ));
     }
     let mut out = Vec::with_capacity(points.len());
     for (j, [x, y]) in points.iter().enumerate() {
-        if !(x.is_finite() && y.is_finite()) {
+        if !(limits::DESIGN.contains(*x) && limits::DESIGN.contains(*y)) {
             return Err(invalid(
                 key,
                 format!(
-                    "point {} must be finite numbers, got [{}, {}]",
+                    "point {} must be finite numbers in {}, got [{}, {}]",
                     j + 1,
+                    limits::DESIGN.describe(),
                     show(*x),
                     show(*y)
                 ),
@@ -2382,7 +2512,7 @@ of = ["m6", "m3"]
                 "polygon = []",
             ),
             "shape.part[1].polygon",
-            &["at least 3 points", "got 0"],
+            &["3 to 10000 points", "got 0"],
         );
         q_err(
             &q_with("[0, 300]]", "[nan, 300]]"),
@@ -2408,7 +2538,7 @@ of = ["m6", "m3"]
         q_err(
             &q_with("singularities = 300", "singularities = 0"),
             "shape.part[5].singularities",
-            &[">= 1, got 0"],
+            &["in [1, 10000], got 0"],
         );
         q_err(
             &q_with("singularities = 300", "singularities = 2.5"),
@@ -2648,21 +2778,36 @@ mod doc_tests {
                 "{k} is not in docs/job-format.md"
             );
         }
-        for t in [
-            "job",
-            "shape",
-            "tool",
-            "stock",
-            "operation",
-            "field",
-            "machine",
-            "output",
-            "profile",
-            "[shape.part]",
-        ] {
+        for t in SECTIONS.iter().copied().chain(["[shape.part]"]) {
             assert!(
                 DOC.contains(&format!("## `[{t}]`")),
                 "[{t}] is not documented"
+            );
+        }
+    }
+
+    /// Every range in `limits::KEYS` is the one docs/job-format.md gives on
+    /// that key's row.
+    #[test]
+    fn every_range_is_documented() {
+        for (k, range) in limits::KEYS {
+            let (table, key) = k.rsplit_once('.').unwrap_or(("", k));
+            let heading = if table == "shape.part" {
+                "## `[[shape.part]]`".to_string()
+            } else {
+                format!("## `[{table}]`")
+            };
+            let from = DOC.find(&heading).unwrap_or_else(|| panic!("{heading}"));
+            let rest = &DOC[from + heading.len()..];
+            let text = &rest[..rest.find("\n## ").unwrap_or(rest.len())];
+            let row = text
+                .lines()
+                .find(|l| l.starts_with(&format!("| `{key}` |")))
+                .unwrap_or_else(|| panic!("{k} has no row"));
+            assert!(
+                row.contains(&range.interval()),
+                "{k}: the row does not say {}: {row}",
+                range.interval()
             );
         }
     }

@@ -378,3 +378,252 @@ fn convergence_json_has_the_documented_keys() {
         assert!(r["max_error"].as_f64().is_some_and(|e| e >= 0.0));
     }
 }
+
+/// Runs pfcam with a time bound: a case that would hang or run for minutes fails
+/// the test instead of stalling it (a guard, not a speed target).
+fn pfcam_bounded(args: &[&str], dir: &Path, secs: u64) -> Output {
+    use std::io::Read;
+    let mut child = Command::new(PFCAM)
+        .args(args)
+        .current_dir(dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run pfcam");
+    let start = std::time::Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            let mut stdout = Vec::new();
+            let mut stderr = Vec::new();
+            if let Some(mut o) = child.stdout.take() {
+                o.read_to_end(&mut stdout).expect("stdout");
+            }
+            if let Some(mut e) = child.stderr.take() {
+                e.read_to_end(&mut stderr).expect("stderr");
+            }
+            return Output {
+                status,
+                stdout,
+                stderr,
+            };
+        }
+        if start.elapsed().as_secs() >= secs {
+            let _ = child.kill();
+            panic!("pfcam {args:?} still running after {secs} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
+/// A job whose one part is a circle of `n` polygon points.
+fn circle_job(n: usize) -> String {
+    let pts: Vec<String> = (0..n)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / n as f64;
+            format!("[{:.4},{:.4}]", 50.0 * a.cos(), 50.0 * a.sin())
+        })
+        .collect();
+    format!(
+        "[shape]\nheight = 50.0\n[[shape.part]]\nname = \"p\"\npolygon = [{}]\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n",
+        pts.join(",")
+    )
+}
+
+/// The inputs that once crashed, aborted or ran without bound (issue 15's
+/// table), one case per row: each now fails at load time with exit 1, a single
+/// message naming the key, and no file written.
+#[test]
+fn values_no_machine_could_use_are_refused_by_key() {
+    let boss = "[shape]\ntext = \"I\"\nheight = 50.0\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"boss\"\ndepth = 3.0\n";
+    let cases: &[(&str, String, &str)] = &[
+        (
+            "depth-1e300",
+            GOOD.replace("depth = 3.0", "depth = 1e300"),
+            "operation.depth",
+        ),
+        (
+            "depth-1e6",
+            GOOD.replace("depth = 3.0", "depth = 1e6"),
+            "operation.depth",
+        ),
+        (
+            "margin-1e300",
+            format!("{boss}[stock]\nmargin = 1e300\n"),
+            "stock.margin",
+        ),
+        (
+            "margin-1e6",
+            format!("{boss}[stock]\nmargin = 1e6\n"),
+            "stock.margin",
+        ),
+        (
+            "singularities-1e5",
+            format!("{GOOD}[field]\nsingularities = 100000\n"),
+            "field.singularities",
+        ),
+        (
+            "height-1e6",
+            GOOD.replace("height = 50.0", "height = 1e6"),
+            "shape.height",
+        ),
+        (
+            "height-1e300",
+            GOOD.replace("height = 50.0", "height = 1e300"),
+            "shape.height",
+        ),
+        (
+            "diameter-1e300",
+            GOOD.replace("diameter = 3.175", "diameter = 1e300"),
+            "tool.diameter",
+        ),
+        (
+            "feed-1e300",
+            GOOD.replace("diameter = 3.175", "diameter = 3.175\nfeed = 1e300"),
+            "tool.feed",
+        ),
+        (
+            "plunge-1e300",
+            GOOD.replace("diameter = 3.175", "diameter = 3.175\nplunge_feed = 1e300"),
+            "tool.plunge_feed",
+        ),
+        (
+            "spindle-1e300",
+            GOOD.replace("diameter = 3.175", "diameter = 3.175\nspindle = 1e300"),
+            "tool.spindle",
+        ),
+        (
+            "safe-z-1e300",
+            format!("{GOOD}[stock]\nsafe_z = 1e300\n"),
+            "stock.safe_z",
+        ),
+        (
+            "dwell-1e300",
+            format!("{GOOD}[machine]\nspindle_dwell = 1e300\n"),
+            "machine.spindle_dwell",
+        ),
+        ("polygon-500k", circle_job(500_000), "not a job file"),
+        ("polygon-20k", circle_job(20_000), "shape.part[1].polygon"),
+        (
+            "parts-20k",
+            {
+                let mut s = String::from("[shape]\nheight = 50.0\n");
+                for i in 0..20_000 {
+                    s += &format!(
+                        "[[shape.part]]\nname = \"p{i}\"\npolygon = [[0,0],[1,0],[0,1]]\n"
+                    );
+                }
+                s + "[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n"
+            },
+            "not a job file",
+        ),
+        (
+            "parts-200",
+            {
+                let mut s = String::from("[shape]\nheight = 50.0\n");
+                for i in 0..200 {
+                    s += &format!(
+                        "[[shape.part]]\nname = \"p{i}\"\npolygon = [[0,0],[1,0],[0,1]]\n"
+                    );
+                }
+                s + "[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n"
+            },
+            "shape.part",
+        ),
+        (
+            "text-10k",
+            GOOD.replace(
+                "text = \"I\"",
+                &format!("text = \"{}\"", "I".repeat(10_000)),
+            ),
+            "shape.text",
+        ),
+    ];
+    for (case, job, key) in cases {
+        let dir = scratch(case);
+        fs::write(dir.join("job.toml"), job).expect("write job");
+        for args in [
+            &["validate", "job.toml"][..],
+            &["run", "job.toml", "--out", "out"][..],
+        ] {
+            let o = pfcam_bounded(args, &dir, 60);
+            let err = text(&o.stderr);
+            assert_eq!(o.status.code(), Some(1), "{case}: {args:?}: {err}");
+            assert!(err.starts_with("error: "), "{case}: {err}");
+            assert!(err.contains(key), "{case}: {args:?}: no {key:?} in {err}");
+            assert_eq!(err.lines().count(), 1, "{case}: one message: {err}");
+            assert!(err.len() < 400, "{case}: message not clipped: {err}");
+            let left = files_in(&dir.join("out"));
+            assert!(left.is_empty(), "{case}: files left behind: {left:?}");
+        }
+    }
+}
+
+#[test]
+fn a_job_file_that_is_no_job_file_is_refused_unread() {
+    let dir = scratch("not-a-job");
+    let big = dir.join("big.toml");
+    fs::write(&big, "# ".repeat(5 << 20)).expect("write");
+    for (file, needle) in [
+        (
+            "/dev/zero",
+            "/dev/zero is not a job file: it is larger than",
+        ),
+        (
+            big.to_str().unwrap(),
+            "is not a job file: it is larger than",
+        ),
+        (
+            dir.to_str().unwrap(),
+            "is not a job file: it is a directory",
+        ),
+        (
+            "missing.toml",
+            "cannot read job file missing.toml: no such file",
+        ),
+    ] {
+        let o = pfcam_bounded(&["validate", file], &dir, 60);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{file}: {err}");
+        assert!(err.contains(needle), "{file}: {err}");
+        assert_eq!(err.lines().count(), 1, "{file}: {err}");
+    }
+    let o = pfcam_bounded(&["convergence", "--glyph", "I", "--n", "100000"], &dir, 60);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("--n") && err.contains("10000"), "{err}");
+}
+
+/// Wrong shapes of values are named by their key, once: extra numbers, an
+/// array of tables for a table, a float for a count, a directory for a font.
+#[test]
+fn wrongly_shaped_values_name_their_key() {
+    for (case, job, needles) in [
+        (
+            "origin-3",
+            GOOD.replace("height = 50.0", "height = 50.0\norigin = [1.0, 2.0, 3.0]"),
+            &["shape.origin", "invalid length 3, expected 2 numbers [x, y]"][..],
+        ),
+        (
+            "tool-array",
+            GOOD.replace("[tool]", "[[tool]]"),
+            &["tool must be a table, written [tool], not an array of tables [[tool]]"][..],
+        ),
+        (
+            "singularities-float",
+            format!("{GOOD}[field]\nsingularities = 100.0\n"),
+            &["field.singularities", "got 100.0"][..],
+        ),
+        (
+            "steepness-0",
+            "[shape]\ntext = \"I\"\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"boss\"\ndepth = 3.0\n[profile]\nkind = \"sigmoid\"\nsteepness = 0\n".to_string(),
+            &["profile.steepness must be a positive number, got 0"][..],
+        ),
+        (
+            "font-dir",
+            GOOD.replace("height = 50.0", "height = 50.0\nfont = \".\""),
+            &["shape.font is a directory, not a font file"][..],
+        ),
+    ] {
+        assert_rejected(case, &job, needles);
+    }
+}

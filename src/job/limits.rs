@@ -1,0 +1,244 @@
+//! The sane range of every numeric job key, and the sizes that drive memory and
+//! time (points, parts, text, singularities), checked when a job is loaded so
+//! that a value no machine could use fails at once, naming its key, instead of
+//! exhausting memory or running for hours. `docs/job-format.md` lists the same
+//! ranges; `every_range_is_documented` (in `job.rs`) keeps the two in step.
+
+use super::{invalid, show, JobError};
+
+/// A closed or half-open interval of accepted values, with its unit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Range {
+    /// Smallest accepted value (excluded when `lo_open`).
+    pub lo: f64,
+    /// Whether `lo` itself is refused (`> lo` rather than `>= lo`).
+    pub lo_open: bool,
+    /// Largest accepted value (included).
+    pub hi: f64,
+    /// The unit, as written in messages (`mm`, `mm/min`), or empty.
+    pub unit: &'static str,
+}
+
+impl Range {
+    const fn open(lo: f64, hi: f64, unit: &'static str) -> Range {
+        Range {
+            lo,
+            lo_open: true,
+            hi,
+            unit,
+        }
+    }
+
+    const fn closed(lo: f64, hi: f64, unit: &'static str) -> Range {
+        Range {
+            lo,
+            lo_open: false,
+            hi,
+            unit,
+        }
+    }
+
+    /// Whether `x` is in the range (NaN never is).
+    pub fn contains(&self, x: f64) -> bool {
+        let above = if self.lo_open {
+            x > self.lo
+        } else {
+            x >= self.lo
+        };
+        above && x <= self.hi
+    }
+
+    /// The interval as docs/job-format.md writes it: `(0, 50]`.
+    pub fn interval(&self) -> String {
+        let open = if self.lo_open { '(' } else { '[' };
+        format!("{open}{}, {}]", show(self.lo), show(self.hi))
+    }
+
+    /// The range as messages write it: `(0, 50] mm`.
+    pub fn describe(&self) -> String {
+        if self.unit.is_empty() {
+            self.interval()
+        } else {
+            format!("{} {}", self.interval(), self.unit)
+        }
+    }
+
+    /// `x` if it is in the range, else an error naming `key`. A range of
+    /// positive numbers says so for a value ≤ 0: `must be a positive number of
+    /// mm, got -3`.
+    pub fn check(&self, key: &str, x: f64) -> Result<f64, JobError> {
+        if self.contains(x) {
+            return Ok(x);
+        }
+        let message = if self.lo == 0.0 && self.lo_open && (x.is_nan() || x <= 0.0) {
+            let of = if self.unit.is_empty() {
+                String::new()
+            } else {
+                format!(" of {}", self.unit)
+            };
+            format!("must be a positive number{of}, got {}", show(x))
+        } else {
+            format!("must be in {}, got {}", self.describe(), show(x))
+        };
+        Err(invalid(key, message))
+    }
+}
+
+/// `tool.diameter`: from an engraving bit to a large surfacing cutter.
+pub const TOOL_DIAMETER: Range = Range::open(0.0, 50.0, "mm");
+/// `tool.feed` and `tool.plunge_feed`: no GRBL machine moves faster than 50 m/min.
+pub const FEED: Range = Range::open(0.0, 50_000.0, "mm/min");
+/// `tool.spindle`.
+pub const SPINDLE: Range = Range::closed(0.0, 100_000.0, "rev/min");
+/// `tool.stepdown`.
+pub const STEPDOWN: Range = Range::open(0.0, 50.0, "mm");
+/// `tool.stepover` (also at most the tool radius, checked on its own).
+pub const STEPOVER: Range = Range::closed(0.01, 25.0, "mm");
+/// `tool.ramp_angle`: below half a degree a ramp is longer than any part.
+pub const RAMP_ANGLE: Range = Range::closed(0.5, 45.0, "degrees");
+/// `stock.top`.
+pub const STOCK_TOP: Range = Range::closed(-1000.0, 1000.0, "mm");
+/// `stock.safe_z`, as a height above `stock.top` (also above it, checked on its own).
+pub const SAFE_CLEARANCE: Range = Range::open(0.0, 200.0, "mm above stock.top");
+/// `stock.margin`.
+pub const MARGIN: Range = Range::closed(0.0, 200.0, "mm");
+/// `operation.depth`.
+pub const DEPTH: Range = Range::open(0.0, 200.0, "mm");
+/// `operation.tolerance` (also below the tool radius, checked on its own).
+pub const TOLERANCE: Range = Range::closed(0.0001, 1.0, "mm");
+/// `operation.max_scallop`.
+pub const MAX_SCALLOP: Range = Range::closed(0.01, 50.0, "mm");
+/// `shape.height` for text and SVG: a sign no larger than a large router's bed.
+pub const SHAPE_HEIGHT: Range = Range::open(0.0, 2000.0, "mm");
+/// `shape.origin`, each coordinate.
+pub const ORIGIN: Range = Range::closed(-10_000.0, 10_000.0, "mm");
+/// `shape.letter_spacing`.
+pub const LETTER_SPACING: Range = Range::closed(-1000.0, 1000.0, "mm");
+/// Every polygon coordinate of a part, design units.
+pub const DESIGN: Range = Range::closed(-1e6, 1e6, "design units");
+/// `shape.part[i].size`, the cap height of a text part, design units.
+pub const PART_SIZE: Range = Range::open(0.0, 1e6, "design units");
+/// `profile.steepness`.
+pub const STEEPNESS: Range = Range::open(0.0, 10_000.0, "");
+/// `field.pseudo_boundary`.
+pub const PSEUDO_BOUNDARY: Range = Range::open(0.0, 10_000.0, "mm");
+/// `machine.rapid_rate`.
+pub const RAPID_RATE: Range = Range::open(0.0, 100_000.0, "mm/min");
+/// `machine.spindle_dwell`.
+pub const SPINDLE_DWELL: Range = Range::closed(0.0, 600.0, "s");
+/// `machine.travel`, each axis.
+pub const TRAVEL: Range = Range::open(0.0, 10_000.0, "mm");
+/// `machine.work_offset`, each axis.
+pub const WORK_OFFSET: Range = Range::closed(-10_000.0, 10_000.0, "mm");
+/// `output.max_arc_radius`.
+pub const MAX_ARC_RADIUS: Range = Range::open(0.0, 100_000.0, "mm");
+
+/// Every numeric key with its range, for the docs test and for `pfcam validate`.
+pub const KEYS: &[(&str, Range)] = &[
+    ("tool.diameter", TOOL_DIAMETER),
+    ("tool.feed", FEED),
+    ("tool.plunge_feed", FEED),
+    ("tool.spindle", SPINDLE),
+    ("tool.stepdown", STEPDOWN),
+    ("tool.stepover", STEPOVER),
+    ("tool.ramp_angle", RAMP_ANGLE),
+    ("stock.top", STOCK_TOP),
+    ("stock.safe_z", SAFE_CLEARANCE),
+    ("stock.margin", MARGIN),
+    ("operation.depth", DEPTH),
+    ("operation.tolerance", TOLERANCE),
+    ("operation.max_scallop", MAX_SCALLOP),
+    ("shape.height", SHAPE_HEIGHT),
+    ("shape.origin", ORIGIN),
+    ("shape.letter_spacing", LETTER_SPACING),
+    ("shape.part.size", PART_SIZE),
+    ("shape.part.polygon", DESIGN),
+    ("profile.steepness", STEEPNESS),
+    ("field.pseudo_boundary", PSEUDO_BOUNDARY),
+    ("machine.rapid_rate", RAPID_RATE),
+    ("machine.spindle_dwell", SPINDLE_DWELL),
+    ("machine.travel", TRAVEL),
+    ("machine.work_offset", WORK_OFFSET),
+    ("output.max_arc_radius", MAX_ARC_RADIUS),
+];
+
+/// Largest job file read, bytes: a job is a few kilobytes; this leaves room for
+/// long SVG path data and polygons while refusing `/dev/zero` or a stray log.
+pub const MAX_JOB_BYTES: u64 = 1 << 20;
+/// Largest number of singularities of one MFS solve (`field.singularities`,
+/// `shape.part[i].singularities`, `pfcam convergence --n`): the dense system is
+/// about 3N × N numbers, 2.4 GB at this N.
+pub const MAX_SINGULARITIES: usize = 10_000;
+/// Largest number of characters of `shape.text` or a text part.
+pub const MAX_TEXT_CHARS: usize = 200;
+/// Largest number of `[[shape.part]]` tables: each may need a field solve.
+pub const MAX_PARTS: usize = 100;
+/// Largest number of points of one polygon part.
+pub const MAX_POLYGON_POINTS: usize = 10_000;
+/// Largest number of `profile.points`.
+pub const MAX_PROFILE_POINTS: usize = 1000;
+/// Largest number of passes or stepdown levels, `operation.depth / tool.stepdown`.
+pub const MAX_PASSES: f64 = 1000.0;
+/// Largest ratio of the shape's height to the tool diameter: beyond it the tool
+/// path runs to kilometres (issue-sized letters with an engraving bit).
+pub const MAX_HEIGHT_PER_DIAMETER: f64 = 2000.0;
+
+/// `n` if it is a count in [1, limit], else an error naming `key`.
+pub fn count(key: &str, n: i64, limit: usize, what: &str) -> Result<usize, JobError> {
+    match usize::try_from(n) {
+        Ok(u) if (1..=limit).contains(&u) => Ok(u),
+        _ => Err(invalid(
+            key,
+            format!("must be \"auto\" or a whole number of {what} in [1, {limit}], got {n}"),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_refuse_nan_infinity_and_their_ends_as_stated() {
+        for (key, r) in KEYS {
+            assert!(!r.contains(f64::NAN), "{key}");
+            assert!(!r.contains(f64::INFINITY), "{key}");
+            assert!(!r.contains(f64::NEG_INFINITY), "{key}");
+            assert!(r.contains(r.hi), "{key}");
+            assert!(!r.contains(r.hi * 1.000_001 + 1e-9), "{key}");
+            assert_eq!(r.contains(r.lo), !r.lo_open, "{key}");
+            assert!(r
+                .check(key, 1e300)
+                .unwrap_err()
+                .to_string()
+                .starts_with(key));
+        }
+    }
+
+    #[test]
+    fn describe_and_message() {
+        assert_eq!(TOOL_DIAMETER.describe(), "(0, 50] mm");
+        assert_eq!(SPINDLE.describe(), "[0, 100000] rev/min");
+        assert_eq!(STEEPNESS.describe(), "(0, 10000]");
+        let e = TOOL_DIAMETER.check("tool.diameter", 1e300).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "tool.diameter must be in (0, 50] mm, got 1e300"
+        );
+        let e = TOOL_DIAMETER.check("tool.diameter", -3.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "tool.diameter must be a positive number of mm, got -3"
+        );
+        let e = STEEPNESS.check("profile.steepness", 0.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "profile.steepness must be a positive number, got 0"
+        );
+        assert_eq!(count("field.singularities", 100_000, 10_000, "singularities").unwrap_err().to_string(),
+            "field.singularities must be \"auto\" or a whole number of singularities in [1, 10000], got 100000");
+        assert_eq!(count("k", 7, 10, "x").unwrap(), 7);
+        assert!(count("k", 0, 10, "x").is_err());
+        assert!(count("k", -3, 10, "x").is_err());
+    }
+}
