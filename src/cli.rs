@@ -8,7 +8,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use pfcam::gcode::{format_duration, write_gcode};
 use pfcam::geometry::glyphs::paper_chars;
 use pfcam::job::{load_job, Job, JobError};
-use pfcam::output::{check_target, write_atomic, OutputError};
+use pfcam::output::{check_target, check_writable, write_atomic, OutputError};
 use pfcam::pipeline::{self, Progress, RunOutput};
 use pfcam::preview::colormap::ColourMap;
 use pfcam::preview::{field_png, preview_svg, PreviewOptions};
@@ -42,8 +42,14 @@ pub enum Command {
     Run {
         /// The job file (TOML, see docs/job-format.md).
         job: PathBuf,
-        /// Directory for the output file (created if missing).
-        #[arg(long, value_name = "DIR", default_value = "out")]
+        /// Directory for the output files (created if missing).
+        #[arg(
+            long,
+            short = 'o',
+            visible_alias = "output",
+            value_name = "DIR",
+            default_value = "out"
+        )]
         out: PathBuf,
         /// Overwrite DIR/<name>.nc even if pfcam did not write it.
         #[arg(long)]
@@ -73,7 +79,7 @@ pub enum Command {
         #[arg(long)]
         field_image: bool,
         /// Equipotential values s to draw, comma separated, each in (0, 1).
-        #[arg(long, value_delimiter = ',', default_values_t = pfcam::preview::DEFAULT_LEVELS)]
+        #[arg(long, value_delimiter = ',', default_value = "0.9,0.95,0.98,0.99")]
         levels: Vec<f64>,
     },
     /// Run a job and write its potential field as the paper's colour map (PNG).
@@ -126,6 +132,9 @@ pub enum Command {
     Validate {
         /// The job file.
         job: PathBuf,
+        /// Print nothing but errors (the exit status says whether it is valid).
+        #[arg(long, short)]
+        quiet: bool,
     },
     /// List the glyphs of the built-in `paper` font.
     Glyphs,
@@ -135,7 +144,7 @@ pub enum Command {
         #[arg(long)]
         glyph: char,
         /// Numbers of singularities N, comma separated (M = 2N).
-        #[arg(long, value_delimiter = ',', default_values_t = [78, 148, 272, 396, 516])]
+        #[arg(long, value_delimiter = ',', default_value = "78,148,272,396,516")]
         n: Vec<usize>,
         /// Print a JSON array of {n, m, distance, max_error} instead of a table.
         #[arg(long)]
@@ -158,6 +167,9 @@ pub enum Command {
         /// Print the findings and totals as JSON.
         #[arg(long)]
         json: bool,
+        /// Print only the errors (no warnings, no totals).
+        #[arg(long, short)]
+        quiet: bool,
     },
 }
 
@@ -195,14 +207,15 @@ pub fn run(args: Args) -> Result<()> {
             quiet,
             resolution,
         } => cmd_surface(&job, output, force, quiet, resolution),
-        Command::Validate { job } => cmd_validate(&job),
+        Command::Validate { job, quiet } => cmd_validate(&job, quiet),
         Command::Glyphs => cmd_glyphs(),
         Command::Convergence { glyph, n, json } => cmd_convergence(glyph, &n, json),
         Command::Check {
             file,
             machine,
             json,
-        } => cmd_check(&file, machine.as_deref(), json),
+            quiet,
+        } => cmd_check(&file, machine.as_deref(), json, quiet),
         // Dispatched in main.rs: the streamer has its own exit codes.
         Command::Stream(_) => Ok(()),
     }
@@ -215,6 +228,21 @@ pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
         c.downcast_ref::<std::io::Error>()
             .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
     })
+}
+
+/// The error as one line: each cause after the first is added only when the
+/// text so far does not already say it (`anyhow`'s `{:#}` repeats an I/O
+/// error that a message quotes as well as holds as its source).
+pub fn message(e: &anyhow::Error) -> String {
+    let mut text = e.to_string();
+    for cause in e.chain().skip(1) {
+        let c = cause.to_string();
+        if !text.contains(&c) {
+            text += ": ";
+            text += &c;
+        }
+    }
+    text
 }
 
 /// The exit status for an error from [`run`].
@@ -241,13 +269,16 @@ fn stdout_line(s: &str) -> Result<()> {
     writeln!(out, "{s}").context("writing to standard output")
 }
 
-fn cmd_validate(path: &Path) -> Result<()> {
+fn cmd_validate(path: &Path, quiet: bool) -> Result<()> {
     let job = load(path)?;
     // A composition is built by solving fields, as `run` would. The error as one
     // line: `{:#}` would repeat its source after it.
     pipeline::job_shape(&job, &mut |_| {})
         .map_err(|e| anyhow!("{e}"))
         .with_context(|| path.display().to_string())?;
+    if quiet {
+        return Ok(());
+    }
     stdout_line(&format!("ok: {}", job.name))
 }
 
@@ -260,6 +291,7 @@ fn cmd_run(path: &Path, out_dir: &Path, force: bool, quiet: bool, field_image: b
     for t in [&target, &svg_target, &json_target] {
         check_target(t, force)?;
     }
+    check_writable(&target)?;
 
     let mut progress = Reporter::new(quiet);
     let result = pipeline::run(&job, &mut |p| progress.event(p));
@@ -323,6 +355,36 @@ fn run_quietly(path: &Path, quiet: bool) -> Result<(Job, RunOutput)> {
     Ok((job, output))
 }
 
+/// A file named for another format would hold the wrong bytes: `preview -o
+/// x.png` would write SVG into a `.png`.
+fn require_extension(target: &Path, ext: &str) -> Result<()> {
+    let given = target
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if given.as_deref() == Some(ext) {
+        return Ok(());
+    }
+    Err(UsageError(format!(
+        "--output {}: this command writes a .{ext} file; name it *.{ext}{}",
+        target.display(),
+        if ext == "svg" {
+            " (to get a PNG, render the SVG: cargo run --release --example render_svg -- IN.svg OUT.png 5)"
+        } else {
+            ""
+        }
+    ))
+    .into())
+}
+
+/// Before a run: the output name fits the format, may be replaced, and its
+/// directory takes files.
+fn check_output(target: &Path, ext: &str, force: bool) -> Result<()> {
+    require_extension(target, ext)?;
+    check_target(target, force)?;
+    check_writable(target)?;
+    Ok(())
+}
+
 /// `FILE` as given, or `out/<name>.<ext>`; the job is loaded to know the name.
 fn output_path(path: &Path, given: Option<PathBuf>, ext: &str) -> Result<PathBuf> {
     match given {
@@ -343,7 +405,7 @@ fn cmd_preview(
         bail!("--levels: every value must lie strictly between 0 and 1, got {s}");
     }
     let target = output_path(path, output, "svg")?;
-    check_target(&target, force)?;
+    check_output(&target, "svg", force)?;
     let (job, out) = run_quietly(path, quiet)?;
     let report = RunReport::new(&job, &out);
     let opts = PreviewOptions {
@@ -384,7 +446,7 @@ fn cmd_field(
         _ => ColourMap::RedCyan(power.unwrap_or(auto)),
     };
     let target = output_path(path, output, "png")?;
-    check_target(&target, force)?;
+    check_output(&target, "png", force)?;
     let (job, out) = run_quietly(path, quiet)?;
     let png = field_png(&job, &out, px_per_mm, pick).context("drawing the field")?;
     write_atomic(&target, &png, force)?;
@@ -405,6 +467,9 @@ fn cmd_surface(
     if !(resolution > 0.0 && resolution.is_finite()) {
         bail!("--resolution must be a positive number of mm, got {resolution}");
     }
+    if let Some(o) = &output {
+        require_extension(o, "stl")?;
+    }
     let t0 = std::time::Instant::now();
     let job = load(path)?;
     if job.operation.kind == pfcam::job::OperationKind::Profile {
@@ -416,6 +481,7 @@ fn cmd_surface(
     let target = output.unwrap_or_else(|| Path::new("out").join(format!("{}.stl", job.name)));
     // Refuse before the solve, and again when writing.
     let own = surface::check_stl_target(&target, force)?;
+    check_writable(&target)?;
     let mut progress = Reporter::new(quiet);
     let result = surface::job_surface(&job, &SurfaceOptions { resolution }, &mut |p| {
         progress.event(p)
@@ -537,13 +603,46 @@ impl Reporter {
     }
 }
 
+/// Largest G-code file `check` reads: far above any program GRBL could run in
+/// a day, and a bound for `/dev/zero` or a disk image given by mistake.
+const MAX_GCODE_BYTES: u64 = 2 << 30;
+
+/// The bytes of a G-code file, bounded by [`MAX_GCODE_BYTES`]; a file that
+/// cannot be read is a usage error (exit 2).
+fn read_gcode_file(file: &Path) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let unreadable = |e: std::io::Error| UsageError(format!("cannot read {}: {e}", file.display()));
+    if file.is_dir() {
+        return Err(UsageError(format!(
+            "{} is a directory, not a G-code file",
+            file.display()
+        ))
+        .into());
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(file)
+        .map_err(unreadable)?
+        .take(MAX_GCODE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(unreadable)?;
+    if bytes.len() as u64 > MAX_GCODE_BYTES {
+        return Err(UsageError(format!(
+            "{} is larger than {} GiB: not a G-code file pfcam will read",
+            file.display(),
+            MAX_GCODE_BYTES >> 30
+        ))
+        .into());
+    }
+    Ok(bytes)
+}
+
 /// A command given something it cannot use (an unreadable file): exit 2.
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]
 struct UsageError(String);
 
-fn cmd_check(file: &Path, machine: Option<&Path>, json: bool) -> Result<()> {
-    use pfcam::gcode::check::{check_gcode, CheckOptions, Limits};
+fn cmd_check(file: &Path, machine: Option<&Path>, json: bool, quiet: bool) -> Result<()> {
+    use pfcam::gcode::check::{check_gcode, CheckOptions, Limits, Severity};
     use pfcam::job::{load_machine, MachineSource};
 
     let mut opts = CheckOptions::default();
@@ -554,7 +653,7 @@ fn cmd_check(file: &Path, machine: Option<&Path>, json: bool) -> Result<()> {
             travel,
             work_offset: m.work_offset,
         });
-        if m.travel.is_none() {
+        if m.travel.is_none() && !quiet {
             let what = match source {
                 MachineSource::Job => "job file",
                 MachineSource::MachineFile => "machine file",
@@ -565,12 +664,14 @@ fn cmd_check(file: &Path, machine: Option<&Path>, json: bool) -> Result<()> {
             );
         }
     }
-    let bytes = std::fs::read(file)
-        .map_err(|e| UsageError(format!("cannot read {}: {e}", file.display())))?;
+    let bytes = read_gcode_file(file)?;
     // GRBL reads bytes; a stray non-UTF-8 byte becomes U+FFFD and then error 1.
     let text = String::from_utf8_lossy(&bytes);
-    let report = check_gcode(&text, &opts);
     let name = file.display().to_string();
+    if text.trim().is_empty() {
+        bail!("{name} is empty: there is no G-code to check");
+    }
+    let report = check_gcode(&text, &opts);
     if json {
         let v = serde_json::json!({
             "file": name,
@@ -580,6 +681,18 @@ fn cmd_check(file: &Path, machine: Option<&Path>, json: bool) -> Result<()> {
             "totals": report.totals,
         });
         stdout_line(&serde_json::to_string_pretty(&v)?)?;
+    } else if quiet {
+        let mut s = String::new();
+        for f in report
+            .findings
+            .iter()
+            .filter(|f| f.severity == Severity::Error)
+        {
+            s += &format!("{name}:{}: {f}\n", f.line);
+        }
+        if !s.is_empty() {
+            stdout_line(s.trim_end())?;
+        }
     } else {
         let mut s = String::new();
         for f in &report.findings {

@@ -26,7 +26,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::from(cli::EXIT_OK),
         Err(e) if cli::is_broken_pipe(&e) => ExitCode::from(cli::EXIT_OK),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", cli::message(&e));
             ExitCode::from(cli::exit_code(&e))
         }
     }

@@ -27,6 +27,20 @@ pub enum OutputError {
         /// the path
         path: PathBuf,
     },
+    /// A symbolic link is in the way (replaced only with `--force`).
+    #[error("{} is a symbolic link; use --force to replace the link itself (what it points to is left alone)", path.display())]
+    Symlink {
+        /// the path
+        path: PathBuf,
+    },
+    /// The output directory cannot be written (checked before a long run).
+    #[error("cannot write into {}: {source}", path.display())]
+    Unwritable {
+        /// the directory
+        path: PathBuf,
+        /// why
+        source: io::Error,
+    },
     /// The output directory cannot be created.
     #[error("cannot create directory {}: {source}", path.display())]
     CreateDir {
@@ -85,7 +99,8 @@ pub fn is_pfcam_file(prefix: &[u8]) -> bool {
 }
 
 /// Check that `path` may be written: it does not exist, or it is a regular file
-/// that pfcam wrote, or `force` is set.
+/// that pfcam wrote, or `force` is set. A symbolic link is replaced (the link
+/// itself, not what it points to) only with `force`.
 pub fn check_target(path: &Path, force: bool) -> Result<(), OutputError> {
     match fs::symlink_metadata(path) {
         Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
@@ -93,6 +108,8 @@ pub fn check_target(path: &Path, force: bool) -> Result<(), OutputError> {
             path: path.into(),
             source,
         }),
+        Ok(m) if m.file_type().is_symlink() && force => Ok(()),
+        Ok(m) if m.file_type().is_symlink() => Err(OutputError::Symlink { path: path.into() }),
         Ok(m) if !m.is_file() => Err(OutputError::NotAFile { path: path.into() }),
         Ok(_) if force => Ok(()),
         Ok(_) => match written_by_pfcam(path) {
@@ -110,14 +127,7 @@ pub fn check_target(path: &Path, force: bool) -> Result<(), OutputError> {
 /// parent directory if needed, after [`check_target`].
 pub fn write_atomic(path: &Path, contents: &[u8], force: bool) -> Result<(), OutputError> {
     check_target(path, force)?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    fs::create_dir_all(&dir).map_err(|source| OutputError::CreateDir {
-        path: dir.clone(),
-        source,
-    })?;
+    let dir = parent_dir(path)?;
     let io_err = |source| OutputError::Io {
         path: path.into(),
         source,
@@ -139,6 +149,33 @@ pub fn write_atomic(path: &Path, contents: &[u8], force: bool) -> Result<(), Out
         return Err(io_err(e));
     }
     Ok(())
+}
+
+/// Check, before a long computation, that files can be created in the
+/// directory of `path`: the directory is created if missing and a probe file
+/// is created there and removed again.
+pub fn check_writable(path: &Path) -> Result<(), OutputError> {
+    let dir = parent_dir(path)?;
+    let (probe, file) =
+        create_temp(&dir, "pfcam-probe").map_err(|source| OutputError::Unwritable {
+            path: dir.clone(),
+            source,
+        })?;
+    drop(file);
+    fs::remove_file(&probe).map_err(|source| OutputError::Unwritable { path: dir, source })
+}
+
+/// The directory `path` goes in (`.` for a bare name), created if missing.
+fn parent_dir(path: &Path) -> Result<PathBuf, OutputError> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    fs::create_dir_all(&dir).map_err(|source| OutputError::CreateDir {
+        path: dir.clone(),
+        source,
+    })?;
+    Ok(dir)
 }
 
 /// A new temporary file next to the target, never one that exists already.
@@ -178,6 +215,44 @@ mod tests {
             .collect();
         v.sort();
         v
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symlink_is_replaced_only_with_force_and_its_target_kept() {
+        let d = scratch("symlink");
+        let target = d.join("user-file.nc");
+        fs::write(&target, "(pfcam 0.0.1 job x)\n").unwrap();
+        let link = d.join("x.nc");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let e = write_atomic(&link, b"(pfcam 0.1.0 job x)\nM2\n", false).unwrap_err();
+        assert!(matches!(e, OutputError::Symlink { .. }), "{e}");
+        write_atomic(&link, b"(pfcam 0.1.0 job x)\nM2\n", true).unwrap();
+        assert!(!fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(
+            fs::read_to_string(&target).unwrap(),
+            "(pfcam 0.0.1 job x)\n"
+        );
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// /proc takes no new files even from root, so this holds whoever runs it.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn an_unwritable_directory_is_found_before_the_work() {
+        let r = check_writable(Path::new("/proc/pfcam-x.nc"));
+        assert!(matches!(r, Err(OutputError::Unwritable { .. })), "{r:?}");
+        let d = scratch("writable");
+        let file = d.join("a-file");
+        fs::write(&file, b"").unwrap();
+        let r = check_writable(&file.join("x.nc"));
+        assert!(matches!(r, Err(OutputError::CreateDir { .. })), "{r:?}");
+        assert!(check_writable(&d.join("new/sub/x.nc")).is_ok());
+        assert_eq!(entries(&d.join("new/sub")), Vec::<String>::new());
+        fs::remove_dir_all(&d).unwrap();
     }
 
     #[test]

@@ -627,3 +627,69 @@ fn wrongly_shaped_values_name_their_key() {
         assert_rejected(case, &job, needles);
     }
 }
+
+/// The command line reads the same way in every command: `-o`, `-q`, comma
+/// separated defaults, an output name that fits its format, an empty G-code
+/// file named as such, an unwritable directory found before the work.
+#[test]
+fn command_line_consistency() {
+    let dir = scratch("consistency");
+    fs::write(dir.join("job.toml"), GOOD).expect("write job");
+    // `run -o DIR` as the other commands' -o.
+    let o = pfcam(&["run", "job.toml", "-o", "o1", "-q"], &dir);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert!(dir.join("o1/job.nc").is_file());
+    // validate -q prints nothing when the job is good.
+    let o = pfcam(&["validate", "-q", "job.toml"], &dir);
+    assert!(
+        o.status.success() && o.stdout.is_empty(),
+        "{}",
+        text(&o.stdout)
+    );
+    // check -q prints no totals for a clean file.
+    let o = pfcam(&["check", "-q", "o1/job.nc"], &dir);
+    assert!(
+        o.status.success() && o.stdout.is_empty(),
+        "{}",
+        text(&o.stdout)
+    );
+    // The help shows defaults as they must be typed.
+    let o = pfcam(&["convergence", "--help"], &dir);
+    assert!(
+        text(&o.stdout).contains("78,148,272,396,516"),
+        "{}",
+        text(&o.stdout)
+    );
+    let o = pfcam(&["preview", "--help"], &dir);
+    assert!(
+        text(&o.stdout).contains("0.9,0.95,0.98,0.99"),
+        "{}",
+        text(&o.stdout)
+    );
+    // A preview into a .png name, a field into .svg: refused before the run.
+    for (cmd, name) in [
+        ("preview", "p.png"),
+        ("field", "f.svg"),
+        ("surface", "s.nc"),
+    ] {
+        let o = pfcam(&[cmd, "job.toml", "-o", name], &dir);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {err}");
+        assert!(err.contains("--output") && err.contains(name), "{err}");
+        assert!(!dir.join(name).exists());
+    }
+    // An empty G-code file is an error that says so.
+    fs::write(dir.join("empty.nc"), "").expect("write");
+    let o = pfcam(&["check", "empty.nc"], &dir);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        text(&o.stderr).contains("empty.nc is empty"),
+        "{}",
+        text(&o.stderr)
+    );
+    // An output directory that cannot take files fails before the run.
+    let o = pfcam(&["run", "job.toml", "--out", "/proc/pfcam-out"], &dir);
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o.stderr));
+    assert!(!text(&o.stderr).contains("solving"), "{}", text(&o.stderr));
+    assert_eq!(text(&o.stderr).lines().count(), 1, "{}", text(&o.stderr));
+}
