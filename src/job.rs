@@ -2786,6 +2786,112 @@ mod doc_tests {
         }
     }
 
+    /// Mangled job files (the shipped jobs with bytes dropped, repeated or
+    /// swapped, numbers replaced by extremes, lines shuffled) always give a job
+    /// or an error, never a panic; every job that resolves has every numeric
+    /// key within its documented range. A fixed seed, so a failure repeats.
+    #[test]
+    fn mangled_jobs_never_panic() {
+        let jobs: Vec<String> = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/jobs"))
+            .expect("jobs/")
+            .filter_map(|e| std::fs::read_to_string(e.ok()?.path()).ok())
+            .collect();
+        assert!(jobs.len() >= 5);
+        let mut seed: u64 = 0x6a6f62;
+        let mut next = |n: usize| -> usize {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((seed >> 33) as usize) % n.max(1)
+        };
+        let extremes = [
+            "1e300",
+            "-1e300",
+            "nan",
+            "inf",
+            "-inf",
+            "0",
+            "-0.0",
+            "1e-320",
+            "99999999999999999999",
+            "-9223372036854775808",
+            "\"\"",
+            "[]",
+            "[[]]",
+            "{}",
+            "true",
+            "\"auto\"",
+            "1.5",
+            "-3",
+        ];
+        let (mut ok, mut refused) = (0, 0);
+        for round in 0..3000 {
+            let mut text = jobs[round % jobs.len()].clone().into_bytes();
+            for _ in 0..1 + next(4) {
+                let at = next(text.len());
+                match next(5) {
+                    0 => {
+                        let len = next(8).min(text.len() - at);
+                        text.drain(at..at + len);
+                    }
+                    1 => {
+                        let piece: Vec<u8> = text[at..(at + next(40)).min(text.len())].to_vec();
+                        let to = next(text.len());
+                        text.splice(to..to, piece);
+                    }
+                    2 => {
+                        let junk = b"=[]{}\"#.,-\n\x00\xff";
+                        text.insert(at, junk[next(junk.len())]);
+                    }
+                    _ => {
+                        // Replace the number after the next `=` by an extreme.
+                        let s = String::from_utf8_lossy(&text).into_owned();
+                        let from = (at.min(s.len())..=s.len())
+                            .find(|&i| s.is_char_boundary(i))
+                            .unwrap_or(s.len());
+                        if let Some(eq) = s[from..].find('=').map(|i| i + from) {
+                            let end = s[eq..].find('\n').map_or(s.len(), |i| eq + i);
+                            let new = format!(
+                                "{}= {}{}",
+                                &s[..eq],
+                                extremes[next(extremes.len())],
+                                &s[end..]
+                            );
+                            text = new.into_bytes();
+                        }
+                    }
+                }
+            }
+            let text = String::from_utf8_lossy(&text);
+            match parse_job(&text, "fuzz", Path::new(".")) {
+                Ok(job) => {
+                    ok += 1;
+                    let t = &job.tool;
+                    for (key, x) in [
+                        ("tool.diameter", t.diameter),
+                        ("tool.feed", t.feed),
+                        ("tool.plunge_feed", t.plunge_feed),
+                        ("tool.spindle", t.spindle),
+                        ("operation.depth", job.operation.depth),
+                        ("stock.margin", job.stock.margin),
+                    ] {
+                        let r = limits::KEYS.iter().find(|(k, _)| *k == key).unwrap().1;
+                        assert!(
+                            r.contains(x),
+                            "round {round}: {key} = {x} resolved from\n{text}"
+                        );
+                    }
+                }
+                Err(e) => {
+                    refused += 1;
+                    assert!(!e.to_string().is_empty());
+                }
+            }
+        }
+        // The mutations are neither all harmless nor all fatal.
+        assert!(ok > 100 && refused > 100, "ok {ok}, refused {refused}");
+    }
+
     /// Every range in `limits::KEYS` is the one docs/job-format.md gives on
     /// that key's row.
     #[test]
