@@ -16,6 +16,8 @@ use pfcam::report::RunReport;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
+mod batch;
+
 /// Exit status: success.
 pub const EXIT_OK: u8 = 0;
 /// Exit status: the job, its shape or the run failed (the message says where).
@@ -39,9 +41,12 @@ pub struct Args {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Generate the tool path of a job and write it as G-code to DIR/<name>.nc.
+    /// Several jobs run in parallel and end with one table; a failing job does
+    /// not stop the others.
     Run {
-        /// The job file (TOML, see docs/job-format.md).
-        job: PathBuf,
+        /// The job files (TOML, see docs/job-format.md).
+        #[arg(required = true, num_args = 1..)]
+        job: Vec<PathBuf>,
         /// Directory for the output files (created if missing).
         #[arg(
             long,
@@ -182,7 +187,10 @@ pub fn run(args: Args) -> Result<()> {
             force,
             quiet,
             field_image,
-        } => cmd_run(&job, &out, force, quiet, field_image),
+        } => match job.as_slice() {
+            [one] => cmd_run(one, &out, force, quiet, field_image).map(|_| ()),
+            many => batch::run_all(many, &out, force, quiet, field_image),
+        },
         Command::Preview {
             job,
             output,
@@ -247,7 +255,9 @@ pub fn message(e: &anyhow::Error) -> String {
 
 /// The exit status for an error from [`run`].
 pub fn exit_code(e: &anyhow::Error) -> u8 {
-    if e.chain().any(|c| c.is::<OutputError>()) {
+    if let Some(b) = e.downcast_ref::<batch::BatchFailed>() {
+        b.code
+    } else if e.chain().any(|c| c.is::<OutputError>()) {
         EXIT_OUTPUT
     } else if e.chain().any(|c| c.is::<UsageError>()) {
         EXIT_USAGE
@@ -282,7 +292,27 @@ fn cmd_validate(path: &Path, quiet: bool) -> Result<()> {
     stdout_line(&format!("ok: {}", job.name))
 }
 
-fn cmd_run(path: &Path, out_dir: &Path, force: bool, quiet: bool, field_image: bool) -> Result<()> {
+/// What a finished run gives the batch table.
+pub struct Done {
+    /// The job's name.
+    pub name: String,
+    /// Z-levels (1 for a profile).
+    pub levels: usize,
+    /// Estimated machining time, s.
+    pub machining_s: f64,
+    /// Warnings of the run.
+    pub warnings: usize,
+}
+
+/// Run one job and write its G-code, preview and report; with `quiet` nothing
+/// is printed but errors.
+fn cmd_run(
+    path: &Path,
+    out_dir: &Path,
+    force: bool,
+    quiet: bool,
+    field_image: bool,
+) -> Result<Done> {
     let job = load(path)?;
     let target = out_dir.join(format!("{}.nc", job.name));
     let svg_target = target.with_extension("svg");
@@ -335,7 +365,12 @@ fn cmd_run(path: &Path, out_dir: &Path, force: bool, quiet: bool, field_image: b
         );
         stdout_line(&s)?;
     }
-    Ok(())
+    Ok(Done {
+        name: job.name.clone(),
+        levels: output.levels.len().max(1),
+        machining_s: output.toolpath.stats(job.machine.rapid_rate).time_s,
+        warnings: output.warnings.len(),
+    })
 }
 
 /// Run a job for a command that writes one file derived from the run.

@@ -693,3 +693,55 @@ fn command_line_consistency() {
     assert!(!text(&o.stderr).contains("solving"), "{}", text(&o.stderr));
     assert_eq!(text(&o.stderr).lines().count(), 1, "{}", text(&o.stderr));
 }
+
+/// A batch: the good jobs are written, the bad one is named in the table, and
+/// the exit status says a job failed; two jobs with one name are refused.
+#[test]
+fn a_batch_runs_every_job_and_reports_each() {
+    let dir = scratch("batch");
+    fs::write(dir.join("a.toml"), GOOD).expect("write");
+    fs::write(dir.join("b.toml"), GOOD.replace("\"I\"", "\"H\"")).expect("write");
+    fs::write(dir.join("bad.toml"), GOOD.replace("3.175", "-3")).expect("write");
+    let o = pfcam(&["run", "a.toml", "bad.toml", "b.toml", "-o", "out"], &dir);
+    let table = text(&o.stdout);
+    assert_eq!(o.status.code(), Some(1), "{table}{}", text(&o.stderr));
+    let rows: Vec<&str> = table.lines().collect();
+    assert_eq!(rows.len(), 4, "{table}");
+    assert!(
+        rows[1].starts_with("a ") && rows[1].contains("ok: a.nc"),
+        "{table}"
+    );
+    assert!(
+        rows[2].starts_with("bad.toml") && rows[2].contains("tool.diameter"),
+        "{table}"
+    );
+    assert!(
+        rows[3].starts_with("b ") && rows[3].contains("ok: b.nc"),
+        "{table}"
+    );
+    assert!(text(&o.stderr).contains("1 of 3 jobs failed"));
+    let written: Vec<String> = files_in(&dir.join("out"))
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        written,
+        ["a.json", "a.nc", "a.svg", "b.json", "b.nc", "b.svg"]
+    );
+    // The same G-code as a run of its own.
+    let alone = pfcam(&["run", "b.toml", "-o", "alone", "-q"], &dir);
+    assert!(alone.status.success());
+    assert_eq!(
+        fs::read(dir.join("out/b.nc")).unwrap(),
+        fs::read(dir.join("alone/b.nc")).unwrap()
+    );
+    fs::write(dir.join("a2.toml"), format!("[job]\nname = \"a\"\n{GOOD}")).expect("write");
+    let o = pfcam(&["run", "a.toml", "a2.toml", "-o", "dup"], &dir);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        text(&o.stderr).contains("would write the same files"),
+        "{}",
+        text(&o.stderr)
+    );
+    assert!(files_in(&dir.join("dup")).is_empty());
+}
