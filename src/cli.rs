@@ -5,7 +5,7 @@
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use pfcam::gcode::{format_duration, write_gcode};
+use pfcam::gcode::{format_duration, write_gcode_on};
 use pfcam::geometry::glyphs::paper_chars;
 use pfcam::job::{load_job, Job, JobError};
 use pfcam::output::{check_target, check_writable, write_atomic, OutputError};
@@ -347,7 +347,7 @@ fn cmd_run(
     let svg = svg.context("drawing the preview")?;
 
     // Everything is in memory: the G-code first, then its companions.
-    let gcode = write_gcode(&output.toolpath, &job)?;
+    let gcode = write_gcode_on(&output.toolpath, &job, output.stock)?;
     write_atomic(&target, gcode.as_bytes(), force)?;
     write_atomic(&svg_target, svg.as_bytes(), force)?;
     write_atomic(&json_target, report.to_json().as_bytes(), force)?;

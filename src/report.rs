@@ -168,6 +168,8 @@ pub struct RunReport {
     pub tolerance_mm: f64,
     /// Glyphs (regions) of the shape.
     pub glyphs: Vec<String>,
+    /// The stock and where the work zero sits on it (as in the G-code header).
+    pub stock: Option<StockReport>,
     /// Every MFS solve.
     pub solves: Vec<SolveEntry>,
     /// Per level, shallowest first.
@@ -176,6 +178,48 @@ pub struct RunReport {
     pub totals: Totals,
     /// Warnings of the run.
     pub warnings: Vec<String>,
+}
+
+/// The stock of a run, in work coordinates (mm): the rectangle, its top and
+/// safe Z, and how far the work zero X0 Y0 is from its left and front edges.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct StockReport {
+    /// `"stock"` (a boss's or cavity's own stock rectangle) or `"sheet"` (a
+    /// profile: the least sheet the tool sweeps).
+    pub kind: String,
+    /// Lower-left corner, X.
+    pub x_min: f64,
+    /// Lower-left corner, Y.
+    pub y_min: f64,
+    /// Upper-right corner, X.
+    pub x_max: f64,
+    /// Upper-right corner, Y.
+    pub y_max: f64,
+    /// Z of the stock's top.
+    pub top: f64,
+    /// Z of rapid moves.
+    pub safe_z: f64,
+    /// X0 measured from the stock's left edge.
+    pub zero_from_left: f64,
+    /// Y0 measured from the stock's front (low-Y) edge.
+    pub zero_from_front: f64,
+}
+
+impl StockReport {
+    fn new(job: &Job, out: &RunOutput) -> Option<StockReport> {
+        let e = crate::gcode::stock_extent(&out.toolpath, job.tool.diameter / 2.0, out.stock)?;
+        Some(StockReport {
+            kind: if e.known { "stock" } else { "sheet" }.into(),
+            x_min: e.lo.x,
+            y_min: e.lo.y,
+            x_max: e.hi.x,
+            y_max: e.hi.y,
+            top: job.stock.top,
+            safe_z: job.stock.safe_z,
+            zero_from_left: -e.lo.x,
+            zero_from_front: -e.lo.y,
+        })
+    }
 }
 
 /// The field a level at depth `z` follows: (s, N, max boundary error). For the
@@ -301,6 +345,7 @@ impl RunReport {
             tool_diameter_mm: job.tool.diameter,
             tolerance_mm: job.operation.tolerance,
             glyphs: out.glyphs.clone(),
+            stock: StockReport::new(job, out),
             solves: out.solves.iter().map(SolveEntry::from).collect(),
             levels,
             totals,

@@ -137,7 +137,8 @@ fn every_job_matches_its_sample() {
         let job = load_job(&path).unwrap_or_else(|e| panic!("{e}"));
         let out = pfcam::pipeline::run(&job, &mut |_| {})
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        let g = write_gcode(&out.toolpath, &job).unwrap_or_else(|e| panic!("{e}"));
+        let g = pfcam::gcode::write_gcode_on(&out.toolpath, &job, out.stock)
+            .unwrap_or_else(|e| panic!("{e}"));
         check_golden(&job.name, &g);
     }
 }

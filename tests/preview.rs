@@ -209,6 +209,45 @@ fn rendered_preview_shows_the_part_the_path_and_the_start() {
     assert!(close(c, [0x00, 0xa6, 0x50], 40), "start pixel {c:?}");
 }
 
+/// The machinist's set-up: the work zero is drawn where X0 Y0 is, and the
+/// report gives the stock rectangle and the zero's distance from its edges as
+/// the G-code header does.
+#[test]
+fn preview_and_report_place_the_stock_and_the_work_zero() {
+    let (job, out) = letter_a();
+    let report = RunReport::new(job, out);
+    let svg = preview_svg(job, out, &report, &PreviewOptions::default()).expect("preview");
+    let img = Rendered::new(&svg, 12.0);
+    let blue = hex("#0050b4");
+    let near_zero = (-2..=2)
+        .flat_map(|i| (-2..=2).map(move |j| Vec2::new(0.05 * i as f64, 0.05 * j as f64)))
+        .filter_map(|p| img.at(p))
+        .filter(|c| close(*c, blue, 40))
+        .count();
+    assert!(
+        near_zero >= 3,
+        "the work-zero cross is not at (0, 0): {near_zero} pixels"
+    );
+    let stock = report.stock.as_ref().expect("a stock");
+    assert_eq!(stock.kind, "sheet");
+    let radius = job.tool.diameter / 2.0;
+    let mut lo = Vec2::new(f64::MAX, f64::MAX);
+    for m in out.toolpath.moves() {
+        if !matches!(m, Move::Rapid { .. }) {
+            lo = Vec2::new(lo.x.min(m.to().x), lo.y.min(m.to().y));
+        }
+    }
+    assert!(
+        (stock.x_min - (lo.x - radius)).abs() < 0.01,
+        "{stock:?} vs {lo:?}"
+    );
+    assert_eq!(stock.zero_from_left, -stock.x_min);
+    assert_eq!(stock.zero_from_front, -stock.y_min);
+    let json: serde_json::Value = serde_json::from_str(&report.to_json()).expect("json");
+    assert_eq!(json["stock"]["kind"], "sheet");
+    assert!(json["stock"]["zero_from_left"].as_f64().is_some());
+}
+
 #[test]
 fn preview_with_the_field_image_embeds_a_png_and_renders_it() {
     let (job, out) = letter_a();

@@ -12,7 +12,10 @@ pub mod parse;
 pub mod writer;
 
 pub use compare::{compare_gcode, GcodeDiff, GOLDEN_TOLERANCE};
-pub use writer::{format_duration, write_gcode, GcodeError, DECIMALS, MAX_LINE_LEN};
+pub use writer::{
+    format_duration, stock_extent, write_gcode, write_gcode_on, GcodeError, StockExtent, DECIMALS,
+    MAX_LINE_LEN,
+};
 
 /// What every pfcam G-code file's first line starts with.
 pub const HEADER_PREFIX: &str = "(pfcam ";

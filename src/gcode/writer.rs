@@ -28,6 +28,7 @@
 //! only words GRBL 1.1 accepts are written. The output depends on nothing but the
 //! input, so the same job gives byte-identical files.
 
+use crate::geometry::Vec2;
 use crate::job::{Direction, Job, OperationKind, Side};
 use crate::toolpath::arcfit::{self, ArcLimits, MIN_ARC_CHORD};
 use crate::toolpath::{Move, Toolpath, Vec3};
@@ -368,6 +369,79 @@ pub fn arc_limits(job: &Job) -> ArcLimits {
     }
 }
 
+/// The stock as the machinist sets it up: the rectangle (lower-left `lo`,
+/// upper-right `hi`, mm in work coordinates), and whether it is the job's own
+/// stock (`known`) or, for a profile cut from a sheet, the least sheet the tool
+/// sweeps (the cut bounds grown by the tool radius `r`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StockExtent {
+    /// Lower-left corner.
+    pub lo: Vec2,
+    /// Upper-right corner.
+    pub hi: Vec2,
+    /// The job's stock rectangle, not a sheet bound derived from the cut.
+    pub known: bool,
+}
+
+/// The [`StockExtent`] of a program: `stock` when given, else the cut bounds
+/// grown by `r`; `None` for a program with no feed move and no stock.
+pub fn stock_extent(tp: &Toolpath, r: f64, stock: Option<(Vec2, Vec2)>) -> Option<StockExtent> {
+    match (stock, cut_bounds(tp)) {
+        (Some((lo, hi)), _) => Some(StockExtent {
+            lo,
+            hi,
+            known: true,
+        }),
+        (None, Some((lo, hi))) => Some(StockExtent {
+            lo: Vec2::new(lo.x - r, lo.y - r),
+            hi: Vec2::new(hi.x + r, hi.y + r),
+            known: false,
+        }),
+        (None, None) => None,
+    }
+}
+
+/// The header's stock comments: the stock rectangle (or, for a sheet, the area
+/// the tool sweeps: the cut bounds grown by the tool radius), its top and safe
+/// Z, and where the work zero X0 Y0 Z0 sits on the stock, which is what the
+/// machinist needs to set up the job.
+fn stock_lines(tp: &Toolpath, job: &Job, stock: Option<(Vec2, Vec2)>) -> Vec<String> {
+    let top = fmt_num(job.stock.top);
+    let safe = fmt_num(job.stock.safe_z);
+    let Some(extent) = stock_extent(tp, job.tool.diameter / 2.0, stock) else {
+        return vec![format!("stock: top {top}, safe z {safe} mm")];
+    };
+    let (lo, hi) = (extent.lo, extent.hi);
+    let what = if extent.known {
+        "stock"
+    } else {
+        "sheet at least"
+    };
+    let t = job.stock.top;
+    let z0 = if t == 0.0 {
+        "Z0 on the stock top".to_string()
+    } else if t > 0.0 {
+        format!("Z0 {} mm below the stock top", fmt_num(t))
+    } else {
+        format!("Z0 {} mm above the stock top", fmt_num(-t))
+    };
+    vec![
+        format!(
+            "{what}: X{}..{} Y{}..{}, top {top}, safe z {safe} mm",
+            fmt_num(lo.x),
+            fmt_num(hi.x),
+            fmt_num(lo.y),
+            fmt_num(hi.y)
+        ),
+        format!(
+            "work zero: X0 {} mm from its left, Y0 {} from its front",
+            fmt_num(-lo.x),
+            fmt_num(-lo.y)
+        ),
+        format!("work zero: {z0}"),
+    ]
+}
+
 /// The G-code program for `tp`, cut with `job`'s tool, stock and machine settings.
 ///
 /// Arcs are first made fit to write ([`arcfit::legalize`] with [`arc_limits`]):
@@ -375,6 +449,18 @@ pub fn arc_limits(job: &Job) -> ArcLimits {
 /// shorter than [`MIN_ARC_CHORD`], an arc is written as lines within half the
 /// tolerance; an arc of more than half a turn is split.
 pub fn write_gcode(tp: &Toolpath, job: &Job) -> Result<String, GcodeError> {
+    write_gcode_on(tp, job, None)
+}
+
+/// As [`write_gcode`], on a known stock rectangle (lower-left and upper-right
+/// corner, mm; a boss's or cavity's stock, `RunOutput::stock`): the header says
+/// where the stock is and where the work zero sits on it. Without one (a
+/// profile cut from a sheet) it gives the area the tool sweeps.
+pub fn write_gcode_on(
+    tp: &Toolpath,
+    job: &Job,
+    stock: Option<(Vec2, Vec2)>,
+) -> Result<String, GcodeError> {
     check_finite(tp)?;
     let legal = arcfit::legalize(tp, &arc_limits(job));
     let tp = &legal;
@@ -394,11 +480,7 @@ pub fn write_gcode(tp: &Toolpath, job: &Job) -> Result<String, GcodeError> {
         fmt_num(job.tool.plunge_feed),
         fmt_num(job.tool.spindle.round()),
     )));
-    l.push(comment(&format!(
-        "stock: top {}, safe z {} mm",
-        fmt_num(job.stock.top),
-        fmt_num(job.stock.safe_z)
-    )));
+    l.extend(stock_lines(tp, job, stock).iter().map(|c| comment(c)));
     let kind = match job.operation.kind {
         OperationKind::Profile => "profile",
         OperationKind::Boss => "boss",
@@ -519,6 +601,33 @@ pub fn write_gcode(tp: &Toolpath, job: &Job) -> Result<String, GcodeError> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn the_header_places_the_stock_and_the_work_zero() {
+        let stock = Some((Vec2::new(-12.5, -3.0), Vec2::new(40.0, 60.0)));
+        let g = write_gcode_on(&square(), &job(), stock).unwrap();
+        assert!(
+            g.contains("(stock: X-12.5..40 Y-3..60, top 0, safe z 5 mm)"),
+            "{g}"
+        );
+        assert!(
+            g.contains("(work zero: X0 12.5 mm from its left, Y0 3 from its front)"),
+            "{g}"
+        );
+        assert!(g.contains("(work zero: Z0 on the stock top)"), "{g}");
+        // A profile's sheet: the cut bounds grown by the tool radius.
+        let g = write_gcode(&square(), &job()).unwrap();
+        let e = stock_extent(&square(), job().tool.diameter / 2.0, None).unwrap();
+        let (lo, hi) = cut_bounds(&square()).unwrap();
+        let r = job().tool.diameter / 2.0;
+        assert!(!e.known);
+        assert!((e.lo.x - (lo.x - r)).abs() < 1e-12 && (e.hi.y - (hi.y + r)).abs() < 1e-12);
+        assert!(g.contains("(sheet at least: X"), "{g}");
+        for line in g.lines() {
+            assert!(line.len() <= MAX_LINE_LEN, "{line}");
+        }
+    }
+
     use super::*;
     use crate::job::parse_job;
     use crate::toolpath::Section;

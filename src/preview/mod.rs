@@ -100,6 +100,11 @@ pub fn drawing_area(job: &Job, out: &RunOutput) -> (Vec2, Vec2) {
         add(a);
         add(b);
     }
+    if let Some((a, b)) = out.stock {
+        add(a);
+        add(b);
+    }
+    add(Vec2::ZERO);
     add(xy(out.toolpath.start));
     for m in out.toolpath.moves() {
         add(xy(m.to()));
@@ -310,6 +315,47 @@ fn text(x: f64, y: f64, size: f64, content: &str) -> Text {
         .set("x", num(x))
         .set("y", num(y))
         .set("font-size", num(size))
+}
+
+/// The stock rectangle (a boss's or cavity's; for a profile the least sheet
+/// the tool sweeps, dotted) and the work zero X0 Y0 as a cross with its label:
+/// where the machinist sets the job up.
+fn stock_and_zero(job: &Job, out: &RunOutput, lw: f64, fs: f64) -> Group {
+    let mut g = Group::new().set("class", "stock");
+    if let Some(e) = crate::gcode::stock_extent(&out.toolpath, job.tool.diameter / 2.0, out.stock) {
+        let rect = vec![
+            e.lo,
+            Vec2::new(e.hi.x, e.lo.y),
+            e.hi,
+            Vec2::new(e.lo.x, e.hi.y),
+        ];
+        let dash = if e.known {
+            "none".to_string()
+        } else {
+            format!("{} {}", num(0.3 * fs), num(0.3 * fs))
+        };
+        g = g.add(
+            Path::new()
+                .set("d", path_data(&[rect], true))
+                .set("fill", "none")
+                .set("stroke", "#8b5a2b")
+                .set("stroke-width", num(lw))
+                .set("stroke-dasharray", dash),
+        );
+    }
+    let arm = 0.8 * fs;
+    let cross = vec![
+        vec![Vec2::new(-arm, 0.0), Vec2::new(arm, 0.0)],
+        vec![Vec2::new(0.0, -arm), Vec2::new(0.0, arm)],
+    ];
+    g.add(
+        Path::new()
+            .set("d", path_data(&cross, false))
+            .set("stroke", "#0050b4")
+            .set("stroke-width", num(1.5 * lw))
+            .set("class", "work-zero"),
+    )
+    .add(text(0.4 * fs, 0.4 * fs - arm, 0.7 * fs, "X0 Y0").set("fill", "#0050b4"))
 }
 
 /// The preview of a finished run as an SVG document (first line: [`svg_marker`]).
@@ -611,6 +657,9 @@ pub fn preview_svg(
                     .set("class", "start"),
             );
     }
+
+    // On top: the stock's edge and the work zero, what the machine is set up by.
+    body = body.add(stock_and_zero(job, out, lw, fs));
 
     // Header: the job and its key figures.
     let t = &report.totals;
