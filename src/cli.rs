@@ -586,13 +586,27 @@ fn summary(job: &Job, out: &RunOutput, target: &Path) -> String {
     s
 }
 
-/// Shows `Progress` events: a bar when stderr is a terminal, plain lines when it
-/// is not, nothing when quiet.
+/// Shows `Progress` events: a bar with an ETA when stderr is a terminal;
+/// otherwise plain lines (a stage's start, then its progress at most every
+/// [`LINE_EVERY`] seconds and at its end, with the time left); nothing when quiet.
 struct Reporter {
     quiet: bool,
     terminal: bool,
     bar: Option<ProgressBar>,
+    stage: Option<Stage>,
 }
+
+/// The stage being shown as plain lines.
+struct Stage {
+    name: String,
+    total: u64,
+    done: u64,
+    started: std::time::Instant,
+    last_line: std::time::Instant,
+}
+
+/// Seconds between plain progress lines.
+const LINE_EVERY: f64 = 5.0;
 
 impl Reporter {
     fn new(quiet: bool) -> Self {
@@ -600,6 +614,7 @@ impl Reporter {
             quiet,
             terminal: std::io::stderr().is_terminal(),
             bar: None,
+            stage: None,
         }
     }
 
@@ -607,25 +622,48 @@ impl Reporter {
         if self.quiet {
             return;
         }
-        match p {
-            Progress::Stage { name, total } => {
-                if !self.terminal {
-                    eprintln!("{name} ({total} steps)");
-                    return;
-                }
+        match (p, self.terminal) {
+            (Progress::Stage { name, total }, true) => {
                 if let Some(b) = self.bar.take() {
                     b.finish_and_clear();
                 }
                 let style = ProgressStyle::with_template(
-                    "{msg:24} [{bar:32}] {pos}/{len} {elapsed_precise}",
+                    "{msg:32} [{bar:32}] {pos}/{len} {elapsed_precise}, about {eta} left",
                 )
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
                 .progress_chars("=> ");
                 self.bar = Some(ProgressBar::new(total).with_style(style).with_message(name));
             }
-            Progress::Step => {
+            (Progress::Step, true) => {
                 if let Some(b) = &self.bar {
                     b.inc(1);
+                }
+            }
+            (Progress::Stage { name, total }, false) => {
+                eprintln!("{name} ({total} steps)");
+                let now = std::time::Instant::now();
+                self.stage = Some(Stage {
+                    name,
+                    total,
+                    done: 0,
+                    started: now,
+                    last_line: now,
+                });
+            }
+            (Progress::Step, false) => {
+                if let Some(st) = &mut self.stage {
+                    st.done += 1;
+                    let now = std::time::Instant::now();
+                    let last = st.done == st.total;
+                    if st.total > 1 && (last || (now - st.last_line).as_secs_f64() >= LINE_EVERY) {
+                        st.last_line = now;
+                        let spent = (now - st.started).as_secs_f64();
+                        let left = spent / st.done as f64 * st.total.saturating_sub(st.done) as f64;
+                        eprintln!(
+                            "{}: {}/{} after {:.0} s, about {:.0} s left",
+                            st.name, st.done, st.total, spent, left
+                        );
+                    }
                 }
             }
         }
@@ -635,6 +673,7 @@ impl Reporter {
         if let Some(b) = self.bar.take() {
             b.finish_and_clear();
         }
+        self.stage = None;
     }
 }
 

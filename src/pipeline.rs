@@ -3,7 +3,7 @@
 use crate::field::{self, Boundary, FieldError, Layout, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape, ShapeSource};
 use crate::job::{Direction, Job, OperationKind};
-use crate::levels::plan::{plan_levels, LevelInfo, LevelJob};
+use crate::levels::plan::{plan_levels_reporting, LevelInfo, LevelJob, LevelProgress};
 use crate::toolpath::arcfit::{self, ArcFitParams};
 use crate::toolpath::gouge::{self, GougeReport};
 use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
@@ -318,7 +318,6 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         .as_ref()
         .ok_or_else(|| PipelineError::Other("a boss or cavity needs a [profile]".into()))?;
     let (solved, shape_report, outer_radius) = solve_shape(&shape, job, flat_tol, progress)?;
-    progress(Progress::Step);
     let glyphs: Vec<Vec<crate::geometry::Vec2>> =
         shape.contours().map(|c| c.flatten(flat_tol)).collect();
     let params = LevelParams {
@@ -346,12 +345,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         outer_radius,
         params,
     };
-    progress(Progress::Stage {
-        name: "solving and tracing the levels".into(),
-        total: 1,
-    });
-    let planned = plan_levels(&lj).map_err(|e| PipelineError::Other(e.to_string()))?;
-    progress(Progress::Step);
+    let planned = plan_with_progress(&lj, progress)?;
     let linked = link_levels(&planned.cuts, &planned.params);
     // Arcs within tol/2 of the traced rings, before the gouge check (as for a profile).
     let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
@@ -403,6 +397,68 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         shape,
         field: solved.solution.field.clone(),
     })
+}
+
+/// Plan the levels (in parallel, on the current rayon pool) while this thread
+/// reports each finished level: a stage of as many steps as there are levels,
+/// announced once the z schedule is known.
+fn plan_with_progress(
+    lj: &LevelJob,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<crate::levels::plan::Planned, PipelineError> {
+    use std::sync::atomic::Ordering;
+    let counter = LevelProgress::default();
+    let result = std::sync::Mutex::new(None);
+    let (mut announced, mut reported) = (false, 0);
+    rayon::in_place_scope(|scope| {
+        scope.spawn(|_| {
+            // A panic must still end the wait below (and is then an error).
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                plan_levels_reporting(lj, &counter)
+            }))
+            .unwrap_or_else(|_| {
+                Err(crate::levels::plan::PlanError::Invalid(
+                    "internal error: the level planner panicked (please report this pfcam bug)"
+                        .into(),
+                ))
+            });
+            *result.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
+        });
+        loop {
+            let finished = result.lock().unwrap_or_else(|e| e.into_inner()).is_some();
+            let total = counter.total.load(Ordering::Relaxed);
+            if total > 0 && !announced {
+                progress(Progress::Stage {
+                    name: "solving and tracing the levels".into(),
+                    total: total as u64,
+                });
+                announced = true;
+            }
+            let done = counter.done.load(Ordering::Relaxed);
+            while announced && reported < done {
+                progress(Progress::Step);
+                reported += 1;
+            }
+            if finished {
+                break;
+            }
+            // On a pool's own thread (a one-thread pool in tests) do the work
+            // here; otherwise wait for the pool.
+            if !matches!(rayon::yield_now(), Some(rayon::Yield::Executed)) {
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+        }
+    });
+    let planned = result
+        .into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+        .ok_or_else(|| {
+            PipelineError::Other(
+                "internal error: the level planner did not finish (please report this pfcam bug)"
+                    .into(),
+            )
+        })?;
+    planned.map_err(|e| PipelineError::Other(e.to_string()))
 }
 
 fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {

@@ -745,3 +745,43 @@ fn a_batch_runs_every_job_and_reports_each() {
     );
     assert!(files_in(&dir.join("dup")).is_empty());
 }
+
+/// Progress: every stage reports exactly as many steps as it announced (no
+/// "2/1"), the levels of a boss are counted one by one, and without a terminal
+/// the lines say how far the levels are and how long is left.
+#[test]
+fn progress_counts_each_level_and_never_overruns() {
+    use pfcam::pipeline::Progress;
+    let boss = "[shape]\ntext = \"I\"\nheight = 30.0\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"boss\"\ndepth = 2.0\n";
+    let job = pfcam::job::parse_job(boss, "boss", Path::new(".")).expect("job");
+    let mut stages: Vec<(String, u64, u64)> = Vec::new();
+    pfcam::pipeline::run(&job, &mut |p| match p {
+        Progress::Stage { name, total } => stages.push((name, total, 0)),
+        Progress::Step => stages.last_mut().expect("a stage first").2 += 1,
+    })
+    .expect("run");
+    for (name, total, steps) in &stages {
+        assert_eq!(steps, total, "{name}: {steps} steps of {total}");
+    }
+    let levels = stages
+        .iter()
+        .find(|s| s.0 == "solving and tracing the levels")
+        .expect("a level stage");
+    assert!(levels.1 > 1, "levels counted one by one: {levels:?}");
+
+    let dir = scratch("progress");
+    fs::write(dir.join("boss.toml"), boss).expect("write");
+    let o = pfcam(&["run", "boss.toml"], &dir);
+    let err = text(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    let n = levels.1;
+    assert!(
+        err.contains(&format!("solving and tracing the levels ({n} steps)")),
+        "{err}"
+    );
+    assert!(
+        err.contains(&format!("solving and tracing the levels: {n}/{n} after")),
+        "{err}"
+    );
+    assert!(err.contains("s left"), "{err}");
+}

@@ -11,6 +11,7 @@ use crate::toolpath::profile::ProfileError;
 use crate::toolpath::zlevel::{boss_paths, LevelCut, LevelParams};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 /// Grid spacing for sampling u, mm: fine enough that marching squares finds every
@@ -152,8 +153,26 @@ pub struct Planned {
     pub t_schedule: f64,
 }
 
+/// How far planning has got, for a progress display on another thread: the
+/// number of levels once the schedule is known, and how many are done.
+#[derive(Debug, Default)]
+pub struct LevelProgress {
+    /// Levels to plan (0 until the z schedule is chosen).
+    pub total: AtomicUsize,
+    /// Levels planned so far.
+    pub done: AtomicUsize,
+}
+
 /// Plan every level.
 pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
+    plan_levels_reporting(job, &LevelProgress::default())
+}
+
+/// [`plan_levels`], counting the levels in `progress` as they finish.
+pub fn plan_levels_reporting(
+    job: &LevelJob,
+    progress: &LevelProgress,
+) -> Result<Planned, PlanError> {
     let f = job.field;
     let (s_lo, _) = job.profile.s_range();
     // One grid for the whole job, grown until Γ(s_lo) closes inside it.
@@ -247,6 +266,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
 
     // Every level below the top, in parallel.
     let levels: Vec<(usize, f64, f64)> = (1..zs.len()).map(|k| (k, zs[k - 1], zs[k])).collect();
+    progress.total.store(levels.len(), Ordering::Relaxed);
     type LevelResult = Result<(LevelCut, LevelInfo, Vec<String>), PlanError>;
     let results: Vec<LevelResult> = levels
         .par_iter()
@@ -353,6 +373,7 @@ pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
                 t_solve,
                 t_paths: t0.elapsed().as_secs_f64() - t_solve,
             };
+            progress.done.fetch_add(1, Ordering::Relaxed);
             Ok((
                 LevelCut {
                     z: job.top + z,
