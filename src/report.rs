@@ -31,6 +31,28 @@ pub struct LevelMoves {
     pub moves: Vec<(Vec3, Move)>,
 }
 
+/// The levels of a run as its G-code header and report count them: for a boss
+/// or cavity one per planned level (a section of the tool path each, whatever
+/// depths its links and ramps pass through); for a profile, [`split_levels`].
+pub fn run_levels(out: &RunOutput) -> Vec<LevelMoves> {
+    if out.levels.is_empty() || out.levels.len() != out.toolpath.sections.len() {
+        return split_levels(&out.toolpath);
+    }
+    let mut at = out.toolpath.start;
+    let mut levels = Vec::with_capacity(out.toolpath.sections.len());
+    for sec in &out.toolpath.sections {
+        let mut moves = Vec::new();
+        for m in &sec.moves {
+            if !matches!(m, Move::Rapid { .. }) {
+                moves.push((at, *m));
+            }
+            at = m.to();
+        }
+        levels.push(LevelMoves { z: sec.z, moves });
+    }
+    levels
+}
+
 /// Split a tool path's feed moves by level, shallowest level first. The levels
 /// are the depths of the horizontal feed moves; a move that changes depth (a
 /// plunge, or a ramp of a boss or cavity) belongs to the level it descends into,

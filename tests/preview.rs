@@ -657,3 +657,27 @@ fn many_levels_get_one_width_and_a_colour_bar() {
         );
     }
 }
+
+/// The preview counts a boss's or cavity's levels as the G-code header and the
+/// report do: one per planned level, whatever depths its ramps pass through.
+#[test]
+fn preview_header_and_report_count_the_same_levels() {
+    let name = "q-mould.toml";
+    let job = load_job(&shipped(name)).expect("job");
+    let out = pipeline::run(&job, &mut |_| {}).expect("run");
+    let report = RunReport::new(&job, &out);
+    let svg = preview_svg(&job, &out, &report, &PreviewOptions::default()).expect("preview");
+    let g = pfcam::gcode::write_gcode(&out.toolpath, &job).expect("gcode");
+    let header: usize = g
+        .lines()
+        .find_map(|l| l.strip_prefix("(levels: "))
+        .and_then(|l| l.split(',').next())
+        .and_then(|n| n.parse().ok())
+        .expect("a levels line");
+    assert_eq!(report.levels.len(), header, "{name}");
+    assert!(
+        svg.contains(&format!("{header} levels")),
+        "{name}: {header}"
+    );
+    assert_eq!(svg.matches("data-z=").count(), header, "{name}");
+}

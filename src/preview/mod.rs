@@ -18,7 +18,7 @@ use crate::field::contour::{material_mask, ContourError, FieldGrid, GridSpec};
 use crate::geometry::{DistanceIndex, Vec2};
 use crate::job::Job;
 use crate::pipeline::RunOutput;
-use crate::report::{split_levels, RunReport};
+use crate::report::{run_levels, RunReport};
 use crate::toolpath::{Move, Vec3};
 use colormap::{auto_exponent, base64, encode_png, field_image, ColourMap, FieldImageSpec};
 use svg::node::element::{
@@ -549,7 +549,7 @@ pub fn preview_svg(
     );
 
     // The cut, one colour per level; deeper levels narrower and on top.
-    let lv = split_levels(&out.toolpath);
+    let lv = run_levels(out);
     let (zmax, zmin) = (
         lv.first().map_or(0.0, |l| l.z),
         lv.last().map_or(0.0, |l| l.z),
@@ -946,7 +946,7 @@ mod tests {
                 moves,
             }],
         };
-        let lv = split_levels(&tp);
+        let lv = crate::report::split_levels(&tp);
         assert_eq!(lv.len(), 1);
         let pls = level_polylines(&lv[0].moves, 0.001);
         assert_eq!(pls.len(), 1, "one continuous track");
