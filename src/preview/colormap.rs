@@ -25,10 +25,12 @@ use rayon::prelude::*;
 /// [`ColourMap::material`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ColourMap {
-    /// The paper's colour figures exactly: R = uⁿ with n by band (5, 50, 100,
-    /// 500, see [`paper_exponent`]), G = B = 1 − R, yellow from u ≥ 0.9999. The
-    /// bands were tuned for the paper's fields; where the boundary error exceeds
-    /// about 1e-4 the yellow and cyan bands near the part show that error.
+    /// The paper's colour figures: R = uⁿ with n by band (5, 50, 100, 500, see
+    /// [`paper_exponent`]), G = B = 1 − R, the material yellow. The paper paints
+    /// every u ≥ 0.9999 yellow, which on its fields is the letter; here yellow is
+    /// kept for the material (a field whose error passes 1e-4 would otherwise
+    /// paint void, e.g. a counter, as material), and void with u ≥ 0.9999 takes
+    /// the colour of u = 0.9999, the reddest band.
     Paper,
     /// The paper's colours with one exponent: R = uⁿ, G = B = 1 − R, the material
     /// yellow. [`auto_exponent`] picks n for the pictured rectangle.
@@ -37,6 +39,9 @@ pub enum ColourMap {
     /// 1 ≤ n ≤ 50 useful); the material white (u = 1).
     Grey(f64),
 }
+
+/// The u from which the paper paints yellow (its letters).
+const PAPER_YELLOW_FROM: f64 = 0.9999;
 
 impl ColourMap {
     /// The colour of u (RGB in [0, 1]) at a point outside the material; u is
@@ -49,9 +54,7 @@ impl ColourMap {
         };
         match self {
             ColourMap::Paper => {
-                if u >= 0.9999 {
-                    return [1.0, 1.0, 0.0];
-                }
+                let u = u.min(PAPER_YELLOW_FROM);
                 let r = u.powf(paper_exponent(u));
                 [r, 1.0 - r, 1.0 - r]
             }
@@ -305,7 +308,12 @@ mod tests {
 
     #[test]
     fn paper_colours() {
-        assert_eq!(ColourMap::Paper.colour(1.0), [1.0, 1.0, 0.0]);
+        // Void never takes the material's yellow, however close u is to 1.
+        let top = ColourMap::Paper.colour(0.9999);
+        assert!(top[0] > 0.95 && top[2] < 0.05, "{top:?}");
+        assert_eq!(ColourMap::Paper.colour(1.0), top);
+        assert_ne!(ColourMap::Paper.colour(1.0), ColourMap::Paper.material());
+        assert_eq!(ColourMap::Paper.material(), [1.0, 1.0, 0.0]);
         assert_eq!(ColourMap::Paper.colour(0.0), [0.0, 1.0, 1.0]);
         let c = ColourMap::Paper.colour(0.5);
         assert!((c[0] - 0.5f64.powi(5)).abs() < 1e-15 && c[1] == 1.0 - c[0]);

@@ -301,13 +301,20 @@ pub const ARROW_TRACKS: usize = 8;
 
 /// Stroke width of the level `above` levels above the deepest of `n` levels:
 /// with few levels each shallower one is wider by three base widths, so passes
-/// over the same track show as bands; with many, all are 1.5 base widths.
-fn band_width(lw: f64, above: usize, n: usize) -> f64 {
-    if n > BAND_LEVELS {
-        1.5 * lw
-    } else {
-        lw * (2.0 + 3.0 * above.min(BAND_LEVELS) as f64)
-    }
+/// over the same track show as bands; with many, all are 1.5 base widths. The
+/// widest band is never wider than the cut itself, the tool diameter `d`
+/// (with a 0.5 mm tool the bands would otherwise cover the neighbouring
+/// tracks), so all are scaled down together when it would be.
+fn band_width(lw: f64, above: usize, n: usize, d: f64) -> f64 {
+    let width = |above: usize| {
+        if n > BAND_LEVELS {
+            1.5 * lw
+        } else {
+            lw * (2.0 + 3.0 * above.min(BAND_LEVELS) as f64)
+        }
+    };
+    let widest = width(n.saturating_sub(1));
+    width(above) * (d / widest).min(1.0)
 }
 
 fn text(x: f64, y: f64, size: f64, content: &str) -> Text {
@@ -570,7 +577,7 @@ pub fn preview_svg(
         .set("class", "toolpath");
     for (k, l) in lv.iter().enumerate() {
         let pls = level_polylines(&l.moves, tol_draw);
-        let width = band_width(lw, n_lv - 1 - k, n_lv);
+        let width = band_width(lw, n_lv - 1 - k, n_lv, job.tool.diameter);
         cut = cut.add(
             Path::new()
                 .set("d", path_data(&pls, false))
@@ -755,7 +762,7 @@ pub fn preview_svg(
         ));
     } else {
         for (k, l) in lv.iter().enumerate() {
-            let width = band_width(lw, n_lv - 1 - k, n_lv);
+            let width = band_width(lw, n_lv - 1 - k, n_lv, job.tool.diameter);
             entries.push((
                 Swatch::Line(depth_colour(depth_t(l.z)), width.max(0.3 * fs), false),
                 format!("z {}", num(l.z)),
@@ -894,6 +901,24 @@ pub fn field_png(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn bands_are_never_wider_than_the_cut() {
+        for d in [0.5, 3.175, 12.0] {
+            for n in 1..10 {
+                let widths: Vec<f64> = (0..n).map(|a| band_width(0.3, a, n, d)).collect();
+                assert!(
+                    widths.iter().all(|&w| w > 0.0 && w <= d + 1e-12),
+                    "{d} {n}: {widths:?}"
+                );
+                // Shallower levels stay wider (or, with many levels, equal).
+                assert!(widths.windows(2).all(|w| w[1] >= w[0]), "{widths:?}");
+            }
+        }
+        // Unscaled when the tool is wide enough.
+        assert_eq!(band_width(0.1, 2, 3, 3.175), 0.1 * 8.0);
+    }
+
     use super::*;
 
     #[test]
