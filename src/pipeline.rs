@@ -105,9 +105,49 @@ pub enum PipelineError {
         /// the tolerance
         tol: f64,
     },
+    /// A cavity level would leave much of its floor uncut.
+    #[error("level {level} (z {z:.3}) would leave {:.1} % of the area the tool can reach uncut (more than {:.0} %): lower tool.stepover or use a smaller tool", 100.0 * share, 100.0 * UNCUT_ERROR)]
+    Uncut {
+        /// the level, from 1 at the top
+        level: usize,
+        /// its z
+        z: f64,
+        /// the uncut share of its reachable area
+        share: f64,
+    },
     /// Anything else.
     #[error("{0}")]
     Other(String),
+}
+
+/// A cavity level leaving more than this share of its reachable area uncut
+/// is a warning (the invariant of docs/architecture.md)...
+pub const UNCUT_WARNING: f64 = 0.001;
+/// ... and more than this an error: the program would not make the part.
+pub const UNCUT_ERROR: f64 = 0.01;
+
+/// The coverage of every cavity level: a warning past [`UNCUT_WARNING`], an
+/// error past [`UNCUT_ERROR`]. A NaN share (the measurement failed) is an error.
+fn check_coverage(info: &[LevelInfo], warnings: &mut Vec<String>) -> Result<(), PipelineError> {
+    for (k, li) in info.iter().enumerate() {
+        let Some(share) = li.uncut else { continue };
+        if share.is_nan() || share > UNCUT_ERROR {
+            return Err(PipelineError::Uncut {
+                level: k + 1,
+                z: li.z,
+                share,
+            });
+        }
+        if share > UNCUT_WARNING {
+            warnings.push(format!(
+                "level {} (z {:.3}) leaves {:.2} % of the area the tool can reach uncut: lower tool.stepover if that matters",
+                k + 1,
+                li.z,
+                100.0 * share
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The field set-up for a shape in mm.
@@ -345,13 +385,13 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         outer_radius,
         params,
     };
-    let planned = plan_with_progress(&lj, progress)?;
+    let mut planned = plan_with_progress(&lj, progress)?;
+    check_coverage(&planned.info, &mut planned.warnings)?;
     let linked = link_levels(&planned.cuts, &planned.params);
     // Arcs within tol/2 of the traced rings, before the gouge check (as for a profile).
     let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
     // Gouge check, level by level, against that level's Γ(s_k) as polygons.
     let mut min_clearance = f64::INFINITY;
-    let mut planned = planned;
     for ((section, cut), info) in toolpath
         .sections
         .iter()
@@ -490,4 +530,47 @@ fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutpu
         shape: plan.shape,
         field: plan.field,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn level(uncut: Option<f64>) -> LevelInfo {
+        LevelInfo {
+            z: -1.0,
+            s: 0.9,
+            n: 10,
+            m: 20,
+            max_error: 1e-6,
+            distance: 1.0,
+            uncut,
+            min_clearance: 0.0,
+            t_solve: 0.0,
+            t_paths: 0.0,
+        }
+    }
+
+    #[test]
+    fn coverage_warns_then_refuses() {
+        let mut w = Vec::new();
+        check_coverage(
+            &[level(None), level(Some(0.0)), level(Some(0.0009))],
+            &mut w,
+        )
+        .unwrap();
+        assert!(w.is_empty(), "{w:?}");
+        check_coverage(&[level(Some(0.005))], &mut w).unwrap();
+        assert_eq!(w.len(), 1);
+        assert!(
+            w[0].starts_with("level 1 (z -1.000) leaves 0.50 %"),
+            "{}",
+            w[0]
+        );
+        for bad in [0.999, f64::NAN] {
+            let e = check_coverage(&[level(Some(0.0)), level(Some(bad))], &mut w).unwrap_err();
+            assert!(matches!(e, PipelineError::Uncut { level: 2, .. }), "{e}");
+            assert!(e.to_string().contains("lower tool.stepover"), "{e}");
+        }
+    }
 }

@@ -228,13 +228,9 @@ pub fn boss_paths<N: Navigator + Sync>(
                     break;
                 }
                 let rk = rj - 0.2 * k as f64 * p.stepover;
+                // Nearer the wall than planned only overlaps the ring
+                // outside it more: no warning, nothing for the user to do.
                 traced = trace(nav, &index, deep, tp(rk));
-                if traced.is_ok() {
-                    warnings.push(format!(
-                        "{label}: ring {j} in hole {} traced at {rk:.3} mm from the wall instead of {rj:.3} mm",
-                        h + 1
-                    ));
-                }
             }
             let t = traced.map_err(|source| ProfileError::Trace {
                 label: format!("{label}: ring {j} in hole {}", h + 1),
@@ -876,20 +872,13 @@ pub fn cavity_paths<N: Navigator + Sync>(
         }
         let mut c = match (best, fallback) {
             (Some(c), _) => c,
-            (None, Some((c, g))) if g <= 1.25 * p.stepover => {
-                warnings.push(format!(
-                    "{label}: a clearing ring is {g:.3} mm from the one outside it (stepover {:.3} mm): the field's rings hug the wall elsewhere",
-                    p.stepover
-                ));
-                c
-            }
-            (None, f) => {
-                warnings.push(format!(
-                    "{label}: clearing rings stop at u = {c_prev:.4}: no safe ring within 1.25 stepovers of the last (closest {})",
-                    f.map_or("none".into(), |f| format!("{:.3} mm", f.1))
-                ));
-                break;
-            }
+            // At most 1.25 stepovers ≤ 1.25 tool radii: a wider cut than
+            // asked, never a slot; nothing the user must act on.
+            (None, Some((c, g))) if g <= 1.25 * p.stepover => c,
+            // The rings stop here; what they leave is cleared by the
+            // spots below and measured by the coverage check, which warns
+            // (or fails the run) if the floor is not cleared.
+            (None, _) => break,
         };
         // The exact ring (vertices on the level by regula falsi) must be safe too;
         // if not, step the value down until it is.
@@ -906,9 +895,6 @@ pub fn cavity_paths<N: Navigator + Sync>(
             c *= 0.98;
         }
         if exact.is_empty() {
-            warnings.push(format!(
-                "{label}: clearing rings stop at u = {c:.4}: the exact ring left the safe region"
-            ));
             break;
         }
         let depth_in = exact
