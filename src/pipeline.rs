@@ -317,6 +317,7 @@ pub fn plan_shape(
         safe_z: job.stock.safe_z,
         feed: job.tool.feed,
         plunge_feed: job.tool.plunge_feed,
+        ramp_angle: job.tool.ramp_angle,
     };
     let mut warnings = Vec::new();
     progress(Progress::Stage {
@@ -370,6 +371,8 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         plunge_feed: job.tool.plunge_feed,
         safe_z: job.stock.safe_z,
         top: job.stock.top,
+        stepdown: job.tool.stepdown,
+        rapid_rate: job.machine.rapid_rate,
         stock_lo: crate::geometry::Vec2::ZERO,
         stock_hi: crate::geometry::Vec2::ZERO,
     };

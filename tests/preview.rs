@@ -146,7 +146,15 @@ fn rendered_preview_shows_the_part_the_path_and_the_start() {
             ))
         })
         .collect();
-    let (from, _) = deepest.moves[0];
+    // Where the first cut begins: the start of the first feed move of the
+    // whole program (later passes ramp in from wherever the tool stands).
+    let mut from = out.toolpath.start;
+    for m in out.toolpath.moves() {
+        if !matches!(m, Move::Rapid { .. }) {
+            break;
+        }
+        from = m.to();
+    }
     let start = Vec2::new(from.x, from.y);
     let (mut hit, mut tried) = (0, 0);
     for (_, m) in deepest.moves.iter() {

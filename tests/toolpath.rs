@@ -277,6 +277,17 @@ fn gouge_check_finds_a_gouge() {
         }
     }
     assert!(gouge::check(&air, &part, 1.5875, 0.0).passes(0.01));
+    // A rapid through the stem below the top is a gouge too.
+    let mut rapid = tp.clone();
+    rapid.sections[0].moves[2] = Move::Rapid {
+        to: Vec3::new(30.0, 25.0, -1.0),
+    };
+    let rep = gouge::check(&rapid, &part, 1.5875, 0.0);
+    assert!(
+        (rep.min_clearance + 1.5875).abs() < 1e-9,
+        "a rapid crossing the part: clearance −r, got {}",
+        rep.min_clearance
+    );
 }
 
 #[test]

@@ -1,7 +1,8 @@
 //! The independent gouge check: plain geometry on the flattened part, never the
-//! field. Every feed move below the stock top is a straight segment in XY (arcs
-//! are checked on their flattening); its smallest distance to the part must be at
-//! least r − tolerance.
+//! field. Every move below the stock top, rapid or feed, is a straight segment
+//! in XY (arcs are checked on their flattening); its smallest distance to the
+//! part must be at least r − tolerance. (Whether a rapid also stays clear of the
+//! material not yet cut is the stock simulation's question, not this one.)
 
 use super::{Move, Toolpath, Vec3};
 use crate::geometry::{DistanceIndex, Vec2};
@@ -9,11 +10,11 @@ use crate::geometry::{DistanceIndex, Vec2};
 /// The result of a gouge check.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GougeReport {
-    /// Smallest (distance to the part − r) over every cutting move, mm.
+    /// Smallest (distance to the part − r) over every move below the top, mm.
     pub min_clearance: f64,
     /// Where it was found (XY of the closest move's nearer end, and its Z).
     pub at: Vec3,
-    /// Number of cutting moves checked.
+    /// Number of moves checked.
     pub moves_checked: usize,
 }
 
@@ -24,8 +25,8 @@ impl GougeReport {
     }
 }
 
-/// Check every feed move below `top` against the part. Moves above `top` are in
-/// air and not checked.
+/// Check every move below `top`, rapids included, against the part. Moves
+/// above `top` are in air and not checked.
 pub fn check(path: &Toolpath, part: &DistanceIndex, radius: f64, top: f64) -> GougeReport {
     let mut rep = GougeReport {
         min_clearance: f64::INFINITY,
@@ -37,7 +38,7 @@ pub fn check(path: &Toolpath, part: &DistanceIndex, radius: f64, top: f64) -> Go
         let to = m.to();
         let below = at.z.min(to.z) < top - 1e-9;
         match *m {
-            Move::Linear { .. } if below => {
+            Move::Linear { .. } | Move::Rapid { .. } if below => {
                 let d = part.segment_distance(
                     Vec2::new(at.x, at.y),
                     Vec2::new(to.x, to.y),
@@ -69,7 +70,14 @@ pub fn check(path: &Toolpath, part: &DistanceIndex, radius: f64, top: f64) -> Go
 }
 
 /// Chords of an XY arc within `tol` of it.
-fn flatten_arc(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, tol: f64) -> Vec<(Vec2, Vec2)> {
+pub(crate) fn flatten_arc(
+    a: Vec3,
+    b: Vec3,
+    cx: f64,
+    cy: f64,
+    ccw: bool,
+    tol: f64,
+) -> Vec<(Vec2, Vec2)> {
     let r = (a.x - cx).hypot(a.y - cy);
     let a0 = (a.y - cy).atan2(a.x - cx);
     let a1 = (b.y - cy).atan2(b.x - cx);

@@ -2,8 +2,10 @@
 //! estimates and the gouge check all read (see `docs/architecture.md`).
 
 pub mod arcfit;
+pub mod entry;
 pub mod gouge;
 pub mod profile;
+pub mod stock;
 pub mod trace;
 pub mod zlevel;
 

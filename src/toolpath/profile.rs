@@ -2,6 +2,8 @@
 //! and inside every counter the tool fits into, cut in passes of at most
 //! `stepdown` from the stock top to the depth.
 
+use super::entry::{enter, ramp_loop, start_near, Entry};
+use super::stock::StockMap;
 use super::trace::{trace, Navigator, TraceError, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
 pub use crate::geometry::deepest_point;
@@ -26,8 +28,24 @@ pub struct ProfileParams {
     pub safe_z: f64,
     /// Cutting feed.
     pub feed: f64,
-    /// Plunge feed.
+    /// Plunge and ramp feed.
     pub plunge_feed: f64,
+    /// Ramp angle for entries into material, degrees.
+    pub ramp_angle: f64,
+}
+
+impl ProfileParams {
+    /// The entry settings of these parameters.
+    pub fn entry(&self) -> Entry {
+        Entry {
+            radius: self.radius,
+            ramp_angle: self.ramp_angle,
+            plunge_feed: self.plunge_feed,
+            feed: self.feed,
+            safe_z: self.safe_z,
+            top: self.top,
+        }
+    }
 }
 
 /// One traced loop.
@@ -129,40 +147,47 @@ pub fn trace_loops<N: Navigator + Sync>(
         .collect()
 }
 
-/// Link the loops into a tool path: for each loop, rapid above its start at safe Z,
-/// rapid down to 1 mm above the stock, plunge to each pass depth at the plunge feed
-/// and cut the loop at the feed (the loop closes at its start, so the next pass
-/// plunges in place), then retract to safe Z.
+/// Link the loops into a tool path. For each loop: rapid above its start at safe
+/// Z and enter it ([`enter`]: a rapid down to a clearance above the material
+/// left, then a ramp along the loop from the material top to the first pass
+/// depth and one full lap); each further pass ramps down along the loop from
+/// the pass above, from where the tool stands, then cuts a full lap; then
+/// retract to safe Z. A model of the sheet ([`StockMap`]) follows the cuts, so a
+/// loop that starts where an earlier one cut is entered from what is left.
 pub fn link(loops: &[Loop], p: &ProfileParams) -> Toolpath {
     let depths = pass_depths(p.top, p.depth, p.stepdown);
     let start = Vec3::new(0.0, 0.0, p.safe_z);
-    let approach = (p.top + 1.0).min(p.safe_z);
+    let e = p.entry();
+    let (lo, hi) = loops_bounds(loops, p.radius);
+    let mut stock = StockMap::new(lo, hi, p.top, p.radius);
+    let mut pos = start;
     let mut sections = Vec::new();
     for lp in loops {
         let s0 = lp.points[0];
-        let mut moves = vec![
-            Move::Rapid {
-                to: Vec3::new(s0.x, s0.y, p.safe_z),
-            },
-            Move::Rapid {
-                to: Vec3::new(s0.x, s0.y, approach),
-            },
-        ];
-        for &z in &depths {
-            moves.push(Move::Linear {
-                to: Vec3::new(s0.x, s0.y, z),
-                feed: p.plunge_feed,
-            });
-            for q in &lp.points[1..] {
-                moves.push(Move::Linear {
-                    to: Vec3::new(q.x, q.y, z),
-                    feed: p.feed,
-                });
-            }
-        }
-        moves.push(Move::Rapid {
+        let mut moves = vec![Move::Rapid {
             to: Vec3::new(s0.x, s0.y, p.safe_z),
+        }];
+        let mut z_prev = None;
+        for &z in &depths {
+            match z_prev {
+                None => enter(&stock, &lp.points, true, z, &e, &mut moves),
+                Some(zp) => {
+                    let at = moves.last().map_or(s0, |m| Vec2::new(m.to().x, m.to().y));
+                    let pts = start_near(&lp.points, at);
+                    moves.push(Move::Linear {
+                        to: Vec3::new(pts[0].x, pts[0].y, zp),
+                        feed: p.feed,
+                    });
+                    ramp_loop(&pts, zp, z, &e, &mut moves);
+                }
+            }
+            z_prev = Some(z);
+        }
+        let end = moves.last().map_or(s0, |m| Vec2::new(m.to().x, m.to().y));
+        moves.push(Move::Rapid {
+            to: Vec3::new(end.x, end.y, p.safe_z),
         });
+        pos = stock.cut_moves(pos, &moves, p.radius);
         sections.push(Section {
             label: lp.label.clone(),
             z: p.top - p.depth,
@@ -170,4 +195,22 @@ pub fn link(loops: &[Loop], p: &ProfileParams) -> Toolpath {
         });
     }
     Toolpath { start, sections }
+}
+
+/// The rectangle the loops' tool disks cover: the sheet the linker models.
+fn loops_bounds(loops: &[Loop], r: f64) -> (Vec2, Vec2) {
+    let pts = loops.iter().flat_map(|l| l.points.iter());
+    let (mut lo, mut hi) = (
+        Vec2::new(f64::INFINITY, f64::INFINITY),
+        -Vec2::new(f64::INFINITY, f64::INFINITY),
+    );
+    for q in pts {
+        lo = Vec2::new(lo.x.min(q.x), lo.y.min(q.y));
+        hi = Vec2::new(hi.x.max(q.x), hi.y.max(q.y));
+    }
+    if lo.x > hi.x {
+        return (Vec2::ZERO, Vec2::ZERO);
+    }
+    let grow = Vec2::new(r, r);
+    (lo - grow, hi + grow)
 }

@@ -1,7 +1,9 @@
 //! Z-level operations (boss and cavity): the paths of one level and the linking of
 //! all levels into a tool path with ramped entries.
 
+use super::entry::{enter, ramp_start, start_near, Entry, CLEARANCE};
 use super::profile::{deepest_point, ProfileError};
+use super::stock::StockMap;
 use super::trace::{trace, Navigator, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
 use crate::geometry::{polygon_winding_number, polygons_bbox, DistanceIndex, Vec2};
@@ -23,14 +25,34 @@ pub struct LevelParams {
     pub feed: f64,
     /// Plunge and ramp feed.
     pub plunge_feed: f64,
+    /// Rate of rapids, mm/min (for choosing between a link at depth and a
+    /// retract).
+    pub rapid_rate: f64,
     /// Safe Z for rapids.
     pub safe_z: f64,
     /// Stock top Z.
     pub top: f64,
+    /// Deepest cut allowed in one move (the tool's stepdown): a sideways link
+    /// at depth may cross material no deeper than this.
+    pub stepdown: f64,
     /// Lower-left corner of the stock rectangle.
     pub stock_lo: Vec2,
     /// Upper-right corner of the stock rectangle.
     pub stock_hi: Vec2,
+}
+
+impl LevelParams {
+    /// The entry settings of these parameters.
+    pub fn entry(&self) -> Entry {
+        Entry {
+            radius: self.radius,
+            ramp_angle: self.ramp_angle,
+            plunge_feed: self.plunge_feed,
+            feed: self.feed,
+            safe_z: self.safe_z,
+            top: self.top,
+        }
+    }
 }
 
 /// One path at a level.
@@ -246,232 +268,58 @@ pub fn boss_paths<N: Navigator + Sync>(
     Ok(paths)
 }
 
-/// Ramp moves from `start` at `z_from` down to `z`, over the points of `seq` in
-/// turn, descending with the distance walked until `ramp_len` is reached (the
-/// last move ends part-way along a segment, at `z`). Returns the points walked
-/// (from `start` to where the ramp ended) and the number of whole segments.
-fn descend(
-    seq: impl Iterator<Item = Vec2>,
-    start: Vec2,
-    z_from: f64,
-    z: f64,
-    ramp_len: f64,
-    plunge_feed: f64,
-    out: &mut Vec<Move>,
-) -> (Vec<Vec2>, usize) {
-    let drop = z_from - z;
-    let mut walked = 0.0;
-    let mut trail = vec![start];
-    let mut at = start;
-    for (steps, next) in seq.enumerate() {
-        let seg = at.dist(next);
-        if walked + seg >= ramp_len {
-            let t = if seg > 0.0 {
-                (ramp_len - walked) / seg
-            } else {
-                1.0
-            };
-            let q = at.lerp(next, t);
-            out.push(Move::Linear {
-                to: Vec3::new(q.x, q.y, z),
-                feed: plunge_feed,
-            });
-            trail.push(q);
-            return (trail, steps);
-        }
-        walked += seg;
-        out.push(Move::Linear {
-            to: Vec3::new(next.x, next.y, z_from - drop * walked / ramp_len),
-            feed: plunge_feed,
-        });
-        trail.push(next);
-        at = next;
-    }
-    let steps = trail.len() - 1;
-    (trail, steps)
-}
-
-/// Moves that enter a closed loop by ramping down along it from `z_from` to `z`
-/// at `angle` degrees (several laps if the loop is short), then cut one full lap
-/// at `z` from where the ramp ended.
-fn ramp_loop(
-    lp: &[Vec2],
-    z_from: f64,
-    z: f64,
-    angle: f64,
-    plunge_feed: f64,
-    feed: f64,
-    out: &mut Vec<Move>,
-) {
-    let n = lp.len() - 1;
-    let drop = (z_from - z).max(0.0);
-    let (mut k, mut at) = (0, lp[0]);
-    if drop > 0.0 {
-        let ramp_len = drop / angle.to_radians().tan();
-        let seq = (1..=1_000_001).map(|i| lp[i % n]);
-        let (trail, steps) = descend(seq, lp[0], z_from, z, ramp_len, plunge_feed, out);
-        k = steps % n;
-        at = *trail.last().unwrap_or(&lp[0]);
-    }
-    // One full lap at z from `at` (which lies on segment k → k+1).
-    for step in 1..=n {
-        let q = lp[(k + step) % n];
-        out.push(Move::Linear {
-            to: Vec3::new(q.x, q.y, z),
-            feed,
-        });
-    }
-    out.push(Move::Linear {
-        to: Vec3::new(at.x, at.y, z),
-        feed,
-    });
-}
-
-/// Moves that enter an open path by ramping from `z_from` to `z` at `angle`
-/// degrees back and forth along its start, ending at its first point at `z`.
-fn ramp_open(
-    pts: &[Vec2],
-    z_from: f64,
-    z: f64,
-    angle: f64,
-    plunge_feed: f64,
-    feed: f64,
-    out: &mut Vec<Move>,
-) {
-    let drop = (z_from - z).max(0.0);
-    if drop <= 0.0 || pts.len() < 2 {
-        out.push(Move::Linear {
-            to: Vec3::new(pts[0].x, pts[0].y, z),
-            feed: plunge_feed,
-        });
-        return;
-    }
-    let ramp_len = drop / angle.to_radians().tan();
-    // Forward and back along the path: indices 1, 2, …, m − 1, m − 2, …, 0, 1, …
-    let period = 2 * (pts.len() - 1);
-    let seq = (1..=1_000_000).map(|i| {
-        let j = i % period;
-        pts[if j < pts.len() { j } else { period - j }]
-    });
-    let (trail, _) = descend(seq, pts[0], z_from, z, ramp_len, plunge_feed, out);
-    // Back to the start at depth, along the trail just ramped.
-    for q in trail.iter().rev().skip(1) {
-        out.push(Move::Linear {
-            to: Vec3::new(q.x, q.y, z),
-            feed,
-        });
-    }
-}
-
-/// Rotate a closed loop (last = first) so it starts at the vertex nearest to `p`.
-fn start_near(lp: &[Vec2], p: Vec2) -> Vec<Vec2> {
-    let n = lp.len() - 1;
-    let k = (0..n)
-        .min_by(|&a, &b| lp[a].dist(p).total_cmp(&lp[b].dist(p)))
-        .unwrap_or(0);
-    let mut out: Vec<Vec2> = (0..n).map(|i| lp[(k + i) % n]).collect();
-    out.push(out[0]);
-    out
-}
-
-/// Link the levels, top down, into a tool path. Between paths of a level the tool
-/// moves sideways at depth when the next path starts within two stepovers and the
-/// straight move keeps clear of the part; otherwise it retracts to safe Z, rapids
-/// over, comes down to 0.5 mm above the level above (already cleared) and enters
-/// by a ramp (closed loops) or a plunge in air (runs that start outside the stock).
+/// Link the levels, top down, into a tool path, keeping a model of the stock
+/// ([`StockMap`]) as the moves cut it. Between paths of a level the tool moves
+/// sideways at depth when the next path starts within two stepovers, the straight
+/// move keeps clear of the part and the material it crosses is no deeper than a
+/// stepdown; otherwise it retracts to safe Z, rapids over and enters the path
+/// ([`enter`]): a rapid down to a clearance above the material actually left
+/// under the tool, then a ramp from that material's top.
 pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
     let start = Vec3::new(0.0, 0.0, p.safe_z);
+    let mut stock = StockMap::new(p.stock_lo, p.stock_hi, p.top, p.radius);
+    let e = p.entry();
+    let mut pos = start;
     let mut sections = Vec::new();
     for lv in levels {
         let index = DistanceIndex::new(&lv.part);
         let mut moves = Vec::new();
         let mut at: Option<Vec2> = None; // XY when the tool is down at this level
-        let above = (lv.z_prev + 0.5).min(p.safe_z);
         for path in &lv.paths {
-            let pts = if path.closed {
-                match at {
-                    Some(a) => start_near(&path.points, a),
-                    None => path.points.clone(),
-                }
-            } else {
-                path.points.clone()
+            let pts = match (path.closed, at) {
+                (true, Some(a)) => start_near(&path.points, a),
+                _ => path.points.clone(),
             };
             let first = pts[0];
-            let sideways = at.filter(|a| {
-                a.dist(first) <= 2.0 * p.stepover + p.tol
-                    && index.segment_distance(*a, first, 2.0 * p.radius) >= p.radius - 0.5 * p.tol
+            let mark = moves.len();
+            let sideways = at.filter(|&a| {
+                let clear_of_part =
+                    index.segment_distance(a, first, 2.0 * p.radius) >= p.radius - 0.5 * p.tol;
+                let over = stock.top_near_segment(a, first, p.radius) - lv.z;
+                let near = a.dist(first) <= 2.0 * p.stepover + p.tol && over <= p.stepdown + 1e-9;
+                let cleared = over <= 1e-6
+                    && a.dist(first) / p.feed
+                        <= reentry_time(&stock, &pts, path.closed, a, lv.z, p);
+                clear_of_part && (near || cleared)
             });
             if sideways.is_some() {
-                moves.push(Move::Linear {
-                    to: Vec3::new(first.x, first.y, lv.z),
-                    feed: p.feed,
-                });
-                for q in &pts[1..] {
+                for q in &pts {
                     moves.push(Move::Linear {
                         to: Vec3::new(q.x, q.y, lv.z),
                         feed: p.feed,
                     });
                 }
             } else {
-                moves.push(Move::Rapid {
-                    to: Vec3::new(
-                        at.map_or(first.x, |a| a.x),
-                        at.map_or(first.y, |a| a.y),
-                        p.safe_z,
-                    ),
-                });
+                if let Some(a) = at {
+                    moves.push(Move::Rapid {
+                        to: Vec3::new(a.x, a.y, p.safe_z),
+                    });
+                }
                 moves.push(Move::Rapid {
                     to: Vec3::new(first.x, first.y, p.safe_z),
                 });
-                moves.push(Move::Rapid {
-                    to: Vec3::new(first.x, first.y, above),
-                });
-                if path.closed {
-                    moves.push(Move::Linear {
-                        to: Vec3::new(first.x, first.y, lv.z_prev),
-                        feed: p.plunge_feed,
-                    });
-                    ramp_loop(
-                        &pts,
-                        lv.z_prev,
-                        lv.z,
-                        p.ramp_angle,
-                        p.plunge_feed,
-                        p.feed,
-                        &mut moves,
-                    );
-                } else {
-                    // An open path (a boss ring clipped to the stock) starts
-                    // outside the stock, in air, and goes straight down. Should
-                    // one start over the stock, it ramps: down to the floor
-                    // above (cleared by the level before), then back and forth
-                    // along its start at the ramp angle, back to its start at
-                    // depth, and along it.
-                    let r = p.radius;
-                    let in_air = first.x < p.stock_lo.x - r
-                        || first.x > p.stock_hi.x + r
-                        || first.y < p.stock_lo.y - r
-                        || first.y > p.stock_hi.y + r;
-                    if in_air {
-                        moves.push(Move::Linear {
-                            to: Vec3::new(first.x, first.y, lv.z),
-                            feed: p.plunge_feed,
-                        });
-                    } else {
-                        moves.push(Move::Linear {
-                            to: Vec3::new(first.x, first.y, lv.z_prev),
-                            feed: p.plunge_feed,
-                        });
-                        ramp_open(
-                            &pts,
-                            lv.z_prev,
-                            lv.z,
-                            p.ramp_angle,
-                            p.plunge_feed,
-                            p.feed,
-                            &mut moves,
-                        );
-                    }
+                enter(&stock, &pts, path.closed, lv.z, &e, &mut moves);
+                if !path.closed {
                     for q in &pts[1..] {
                         moves.push(Move::Linear {
                             to: Vec3::new(q.x, q.y, lv.z),
@@ -480,33 +328,20 @@ pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
                     }
                 }
             }
-            at = moves.last().map(|m| {
-                let t = m.to();
-                Vec2::new(t.x, t.y)
-            });
+            pos = stock.cut_moves(pos, &moves[mark..], p.radius);
+            at = Some(Vec2::new(pos.x, pos.y));
         }
         if let Some(a) = at {
             moves.push(Move::Rapid {
                 to: Vec3::new(a.x, a.y, p.safe_z),
             });
+            pos.z = p.safe_z;
         }
-        // No zero-length moves (a path's repeated point, a link onto the spot
-        // where the tool already is).
-        let mut pos = sections
+        let from = sections
             .last()
             .and_then(|s: &Section| s.moves.last().map(|m| m.to()))
             .unwrap_or(start);
-        moves.retain(|m| {
-            let to = m.to();
-            let keep = !matches!(m, Move::Linear { .. } | Move::Rapid { .. })
-                || (to.x - pos.x).abs() > 1e-9
-                || (to.y - pos.y).abs() > 1e-9
-                || (to.z - pos.z).abs() > 1e-9;
-            if keep {
-                pos = to;
-            }
-            keep
-        });
+        drop_zero_length(from, &mut moves);
         sections.push(Section {
             label: format!("level z {:.3} (s = {:.4})", lv.z, lv.s),
             z: lv.z,
@@ -514,6 +349,69 @@ pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
         });
     }
     Toolpath { start, sections }
+}
+
+/// Minutes the tool takes to leave the level at `a`, rapid over and enter
+/// `pts` at `z` ([`enter`]): what a sideways move at depth through cleared space
+/// must beat.
+fn reentry_time(
+    stock: &StockMap,
+    pts: &[Vec2],
+    closed: bool,
+    a: Vec2,
+    z: f64,
+    p: &LevelParams,
+) -> f64 {
+    let e = p.entry();
+    let z_from = ramp_start(stock, pts, closed, z, &e).max(z);
+    let down_to = (z_from + CLEARANCE).min(p.safe_z);
+    let rapid = (p.safe_z - z) + a.dist(pts[0]) + (p.safe_z - down_to);
+    let ramp = (z_from - z) / p.ramp_angle.to_radians().sin();
+    rapid / p.rapid_rate + (down_to - z_from) / p.plunge_feed + ramp / e.ramp_feed()
+}
+
+/// Remove moves of no length (a path's repeated point, a link onto the spot
+/// where the tool already is), the tool being at `from` before `moves`.
+fn drop_zero_length(from: Vec3, moves: &mut Vec<Move>) {
+    let mut pos = from;
+    moves.retain(|m| {
+        let to = m.to();
+        let keep = !matches!(m, Move::Linear { .. } | Move::Rapid { .. })
+            || (to.x - pos.x).abs() > 1e-9
+            || (to.y - pos.y).abs() > 1e-9
+            || (to.z - pos.z).abs() > 1e-9;
+        if keep {
+            pos = to;
+        }
+        keep
+    });
+}
+
+/// The paths reordered so that each starts as near as possible to where the one
+/// before it starts (greedy, from the first): O(n²), for the few thousand loops
+/// at uncut spots a level may need.
+fn nearest_neighbour_order(mut paths: Vec<CutPath>) -> Vec<CutPath> {
+    let mut out = Vec::with_capacity(paths.len());
+    while !paths.is_empty() {
+        let k = match out.last() {
+            None => 0,
+            Some(last) => {
+                let at: Vec2 = last_point(last);
+                (0..paths.len())
+                    .min_by(|&a, &b| {
+                        at.dist(paths[a].points[0])
+                            .total_cmp(&at.dist(paths[b].points[0]))
+                    })
+                    .unwrap_or(0)
+            }
+        };
+        out.push(paths.swap_remove(k));
+    }
+    out
+}
+
+fn last_point(c: &CutPath) -> Vec2 {
+    c.points[c.points.len() - 1]
 }
 
 /// Gap from a new (inner) set of rings `b` to the set outside it `a`: the largest
@@ -990,6 +888,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     if !left.is_empty() {
         let dab_r = 0.5 * r;
         let mut dabs: Vec<Vec2> = Vec::new();
+        let mut spots: Vec<CutPath> = Vec::new();
         for &q in &left {
             if dabs.iter().any(|d| d.dist(q) <= r + dab_r - 2.0 * hc) {
                 continue;
@@ -1020,15 +919,15 @@ pub fn cavity_paths<N: Navigator + Sync>(
                 })
                 .collect();
             pts.push(pts[0]);
-            paths.insert(
-                0,
-                CutPath {
-                    label: format!("{label}: loop at an uncut spot"),
-                    points: pts,
-                    closed: true,
-                },
-            );
+            spots.push(CutPath {
+                label: format!("{label}: loop at an uncut spot"),
+                points: pts,
+                closed: true,
+            });
         }
+        // Cut first, each next to the last, so the linker can step from one to
+        // the next at depth instead of retracting and ramping in again.
+        paths.splice(0..0, nearest_neighbour_order(spots));
         left = measure(&paths).1;
     }
     let frac = if reach > 0 {
@@ -1037,41 +936,4 @@ pub fn cavity_paths<N: Navigator + Sync>(
         0.0
     };
     Ok((paths, frac))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A ramp into an open path shorter than the ramp goes back and forth along
-    /// it, never straight down, reaches the depth at the ramp angle, and ends at
-    /// the path's start at depth.
-    #[test]
-    fn an_open_path_is_entered_back_and_forth_at_the_ramp_angle() {
-        let pts = [
-            Vec2::new(0.0, 0.0),
-            Vec2::new(3.0, 0.0),
-            Vec2::new(3.0, 2.0),
-        ];
-        let (z_from, z, angle) = (-1.0, -2.0, 3.0);
-        let mut out = Vec::new();
-        ramp_open(&pts, z_from, z, angle, 100.0, 500.0, &mut out);
-        let mut at = Vec3::new(0.0, 0.0, z_from);
-        let mut walked = 0.0;
-        for m in &out {
-            let to = m.to();
-            let d = ((to.x - at.x).powi(2) + (to.y - at.y).powi(2)).sqrt();
-            assert!(d > 1e-9, "a vertical move to {to:?}");
-            assert!(to.z >= z - 1e-12 && to.z <= at.z + 1e-12);
-            if to.z < at.z {
-                walked += d;
-                let slope = (at.z - to.z) / d;
-                assert!((slope - angle.to_radians().tan()).abs() < 1e-9);
-            }
-            at = to;
-        }
-        // 1 mm at 3° is about 19 mm of ramp on a 5 mm path: several passes.
-        assert!((walked - 1.0 / angle.to_radians().tan()).abs() < 1e-9);
-        assert_eq!((at.x, at.y, at.z), (0.0, 0.0, z));
-    }
 }
