@@ -17,6 +17,7 @@ use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 mod batch;
+mod simulate;
 
 /// Exit status: success.
 pub const EXIT_OK: u8 = 0;
@@ -176,6 +177,11 @@ pub enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Dry-run a G-code file on a height-map stock: rapids into material,
+    /// straight plunges, engagement, air cutting and, with --job, gouges and
+    /// material left against the part (docs/simulate.md). Exit 0: clean;
+    /// 1: a collision, plunge, too deep a slot or a gouge; 2: usage; 3: output.
+    Simulate(simulate::SimulateArgs),
 }
 
 /// Run a parsed command line.
@@ -224,6 +230,7 @@ pub fn run(args: Args) -> Result<()> {
             json,
             quiet,
         } => cmd_check(&file, machine.as_deref(), json, quiet),
+        Command::Simulate(a) => simulate::cmd_simulate(&a),
         // Dispatched in main.rs: the streamer has its own exit codes.
         Command::Stream(_) => Ok(()),
     }
