@@ -25,7 +25,7 @@ pub struct SimulateArgs {
         long,
         value_name = "X0,Y0,X1,Y1,TOP",
         value_delimiter = ',',
-        num_args = 5
+        allow_hyphen_values = true
     )]
     stock: Option<Vec<f64>>,
     /// Cell side of the height map, mm.
