@@ -444,3 +444,34 @@ fn the_cli_exits_1_on_a_collision_and_writes_the_png() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--tool-diameter"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// With its job, a sample is simulated on the job's stock and measured
+/// against the job's own part (S2): the model covers the stock, and the cut
+/// lies on it to within a few hundredths (a part placed or scaled wrongly would
+/// be millimetres off).
+#[test]
+fn a_job_measures_the_stock_against_its_part() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let job = pfcam::job::load_job(&root.join("jobs/q-sign.toml")).unwrap();
+    let facts = pfcam::simulate::job_facts(&job, 0.2).unwrap();
+    let text = std::fs::read_to_string(root.join("gcode-samples/q-sign.nc")).unwrap();
+    let s = run(
+        &text,
+        &SimOptions {
+            job: Some(facts),
+            ..SimOptions::default()
+        },
+    );
+    let r = &s.report;
+    assert_eq!(r.stock.source, "job");
+    assert_eq!(r.tool_source, "job");
+    let p = r.part.as_ref().expect("compared with S2");
+    let total = r.stock.cells[0] * r.stock.cells[1];
+    assert!(
+        p.cells as f64 >= 0.99 * total as f64,
+        "{} of {total}",
+        p.cells
+    );
+    assert!(p.max_gouge.value < 0.05, "{p:?}");
+    assert!(p.max_left.value > 0.0 && p.max_left.value < 1.0, "{p:?}");
+}
