@@ -109,6 +109,8 @@ fn square_part() -> PartModel {
     PartModel {
         name: "square".into(),
         triangles,
+        outlines: Vec::new(),
+        outline_z: 0.0,
     }
 }
 
@@ -152,6 +154,30 @@ fn an_arc_that_gouges_is_caught_at_its_line() {
         p.max_left.value > 0.9,
         "the floor between circle and square is left"
     );
+}
+
+/// The same square as a profile's part: an outline (with a counter, the
+/// 14..16 square hole, which the cut never reaches) standing at z 0.
+#[test]
+fn an_outline_part_catches_the_same_gouge() {
+    let square = |a: f64, b: f64| vec![[a, a], [b, a], [b, b], [a, b]];
+    let mut job = square_job();
+    job.part = Some(PartModel {
+        name: "outline".into(),
+        triangles: Vec::new(),
+        outlines: vec![square(10.0, 20.0), square(14.0, 16.0)],
+        outline_z: 0.0,
+    });
+    let o = SimOptions {
+        job: Some(job),
+        ..SimOptions::default()
+    };
+    let s = run(&data("arc-gouge.nc"), &o);
+    assert_eq!(found(&s), vec![(10, Kind::Gouge)]);
+    let p = s.report.part.as_ref().expect("compared");
+    assert!((p.max_gouge.value - 1.0).abs() < 1e-9, "{p:?}");
+    // Cells inside the outline less the hole: 100 − 4 mm² at 0.01 mm² each.
+    assert_eq!(p.cells, 9600);
 }
 
 /// Distance from (x, y) to the segment a–b: clamp the projection, an oracle

@@ -16,13 +16,19 @@ use crate::job::{Job, OperationKind};
 use crate::surface::{job_surface, SurfaceOptions};
 use std::collections::BTreeMap;
 
-/// The part as a height field: triangles whose normal points up (+z).
+/// The part as a height field: triangles whose normal points up (+z), and
+/// closed outlines whose inside (even-odd: outlines less their counters)
+/// stands at `outline_z`. Where neither covers a cell it is not compared.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PartModel {
-    /// What it is, for the report (`surface S2`).
+    /// What it is, for the report (`surface S2`, `glyph outlines`).
     pub name: String,
     /// Triangles (x, y, z corners, mm), each seen from above.
     pub triangles: Vec<[[f64; 3]; 3]>,
+    /// Closed polygons (x, y, mm; the last point joins the first).
+    pub outlines: Vec<Vec<[f64; 2]>>,
+    /// Height of the outlines' inside, mm.
+    pub outline_z: f64,
 }
 
 /// What `--job` tells the simulation.
@@ -58,6 +64,20 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         stepover: job.tool.stepover,
     };
     if job.operation.kind == OperationKind::Profile {
+        // The part of a profile is the shape itself, standing at the stock top
+        // inside its outlines (the walls are vertical).
+        let (shape, _) = crate::pipeline::job_shape(job, &mut |_| {})
+            .map_err(|e| SimError::Part(e.to_string()))?;
+        let tol = job.operation.tolerance * crate::pipeline::FLATTEN_FRACTION;
+        facts.part = Some(PartModel {
+            name: "glyph outlines".into(),
+            triangles: Vec::new(),
+            outlines: shape
+                .contours()
+                .map(|c| c.flatten(tol).iter().map(|p| [p.x, p.y]).collect())
+                .collect(),
+            outline_z: job.stock.top,
+        });
         return Ok(facts);
     }
     let opts = SurfaceOptions {
@@ -78,6 +98,8 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
     facts.part = Some(PartModel {
         name: "surface S2".into(),
         triangles,
+        outlines: Vec::new(),
+        outline_z: job.stock.top,
     });
     Ok(facts)
 }
@@ -127,7 +149,54 @@ pub fn part_heights(map: &HeightMap, part: &PartModel) -> Vec<f64> {
             }
         }
     }
+    fill_outlines(map, &part.outlines, part.outline_z, &mut h);
     h
+}
+
+/// Raises `h` to `z` over the inside of `outlines` (even-odd), row by row: the
+/// crossings of each row's centre line with the edges, sorted, pair up into
+/// the inside spans.
+fn fill_outlines(map: &HeightMap, outlines: &[Vec<[f64; 2]>], z: f64, h: &mut [f64]) {
+    let g = map.grid;
+    let mut xs = Vec::new();
+    for j in 0..g.ny {
+        let y = g.cy(j);
+        xs.clear();
+        for poly in outlines {
+            for (k, a) in poly.iter().enumerate() {
+                let b = poly[(k + 1) % poly.len()];
+                // Half-open in y, so a vertex on the line counts once.
+                if (a[1] <= y) != (b[1] <= y) {
+                    xs.push(a[0] + (y - a[1]) / (b[1] - a[1]) * (b[0] - a[0]));
+                }
+            }
+        }
+        xs.sort_by(f64::total_cmp);
+        for pair in xs.chunks_exact(2) {
+            if let Some((i0, i1)) = g.cols(pair[0], pair[1]) {
+                for v in &mut h[j * g.nx + i0..=j * g.nx + i1] {
+                    *v = v.max(z);
+                }
+            }
+        }
+    }
+}
+
+/// Whether (x, y) lies within `tol` of an edge of the outlines.
+fn near_outline(outlines: &[Vec<[f64; 2]>], x: f64, y: f64, tol: f64) -> bool {
+    outlines.iter().any(|poly| {
+        (0..poly.len()).any(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let l2 = dx * dx + dy * dy;
+            let t = if l2 > 0.0 {
+                (((x - a[0]) * dx + (y - a[1]) * dy) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (a[0] + t * dx - x).hypot(a[1] + t * dy - y) <= tol
+        })
+    })
 }
 
 /// Compares the stock with the part; adds one [`Kind::Gouge`] finding per line
@@ -152,7 +221,19 @@ pub fn compare(
         }
         cells += 1;
         let line = map.last_cut[k];
-        let gouge = p - h;
+        let mut gouge = p - h;
+        // An outline's walls are vertical: a cut into it is measured across,
+        // and one within the tolerance of the wall is no gouge.
+        if gouge > 0.0
+            && near_outline(
+                &part.outlines,
+                g.cx(k % g.nx),
+                g.cy(k / g.nx),
+                job.tolerance,
+            )
+        {
+            gouge = 0.0;
+        }
         max_gouge.take(gouge, line as usize);
         max_left.take(-gouge, line as usize);
         if gouge > job.tolerance {
