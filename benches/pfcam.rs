@@ -167,8 +167,21 @@ fn letter_q(c: &mut Criterion) {
     g.finish();
 }
 
+/// `pfcam simulate` of the largest sample (285 673 lines) at 0.1 mm cells.
+fn simulate_mould(c: &mut Criterion) {
+    let text = std::fs::read_to_string("gcode-samples/mfs-mould.nc").unwrap();
+    let opts = pfcam::simulate::SimOptions::default();
+    let mut g = c.benchmark_group("simulate");
+    g.sample_size(10);
+    g.bench_function("simulate mfs-mould.nc at 0.1 mm", |b| {
+        b.iter(|| pfcam::simulate::simulate(black_box(&text), &opts).unwrap())
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
+    simulate_mould,
     letter_i_solve,
     field_eval,
     profiles,

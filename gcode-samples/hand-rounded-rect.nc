@@ -5,11 +5,11 @@
 (work zero: Z0 on the stock top)
 (operation: profile outside climb, depth 2, stepdown 1, tol 0.01 mm)
 (cut min: X0 Y0 Z-2)
-(cut max: X30 Y20 Z5)
+(cut max: X30 Y20 Z0.5)
 (levels: 2, z -1 -2)
 (moves: 10 lines, 8 arcs of radius <= 1000 mm)
-(length: cut 199.3 mm, rapid 17 mm)
-(estimated time: 19 s, rapids at 1000 mm/min, acceleration ignored)
+(length: cut 230.4 mm, rapid 49 mm)
+(estimated time: 30 s, rapids at 1000 mm/min, acceleration ignored)
 G21 G90 G17 G94
 G0 Z5
 G0 X0 Y0
@@ -17,26 +17,29 @@ M3 S18000
 G4 P2
 (rounded rectangle [1], z -1.000)
 G0 X4
-G1 Z-1 F200
-G1 X26 F800
-G3 X30 Y4 I0 J4
+G0 Z0.5
+G1 X26 Z-1 F200
+G3 X30 Y4 I0 J4 F800
 G1 Y16
 G3 X26 Y20 I-4 J0
 G1 X4
 G3 X0 Y16 I0 J-4
 G1 Y4
 G3 X4 Y0 I4 J0
+G1 X26
 G0 Z5
 (rounded rectangle [2], z -2.000)
-G1 Z-2 F200
-G1 X26 F800
-G3 X30 Y4 I0 J4
+G0 X4
+G0 Z-0.5
+G1 X26 Z-2 F200
+G3 X30 Y4 I0 J4 F800
 G1 Y16
 G3 X26 Y20 I-4 J0
 G1 X4
 G3 X0 Y16 I0 J-4
 G1 Y4
 G3 X4 Y0 I4 J0
+G1 X26
 G0 Z5
 M5
 M2

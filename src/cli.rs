@@ -17,6 +17,7 @@ use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 mod batch;
+mod simulate;
 
 /// Exit status: success.
 pub const EXIT_OK: u8 = 0;
@@ -176,6 +177,11 @@ pub enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Dry-run a G-code file on a height-map stock: rapids into material,
+    /// straight plunges, engagement, air cutting and, with --job, gouges and
+    /// material left against the part (docs/simulate.md). Exit 0: clean;
+    /// 1: a collision, plunge, too deep a slot or a gouge; 2: usage; 3: output.
+    Simulate(simulate::SimulateArgs),
 }
 
 /// Run a parsed command line.
@@ -224,6 +230,7 @@ pub fn run(args: Args) -> Result<()> {
             json,
             quiet,
         } => cmd_check(&file, machine.as_deref(), json, quiet),
+        Command::Simulate(a) => simulate::cmd_simulate(&a),
         // Dispatched in main.rs: the streamer has its own exit codes.
         Command::Stream(_) => Ok(()),
     }
@@ -343,11 +350,26 @@ fn cmd_run(
     };
     let svg = preview_svg(&job, &output, &report, &opts);
     progress.event(Progress::Step);
+    // Everything is in memory: the G-code first, then its companions. Nothing
+    // is written when the program's own simulation finds a collision.
+    let gcode = write_gcode_on(&output.toolpath, &job, output.stock);
+    progress.event(Progress::Stage {
+        name: "simulating the program".into(),
+        total: 1,
+    });
+    let verdict = gcode
+        .as_ref()
+        .ok()
+        .map(|g| pfcam::simulate::verify_program(g, job.tool.diameter, job.tool.stepdown));
+    progress.event(Progress::Step);
     progress.finish();
     let svg = svg.context("drawing the preview")?;
-
-    // Everything is in memory: the G-code first, then its companions.
-    let gcode = write_gcode_on(&output.toolpath, &job, output.stock)?;
+    let gcode = gcode?;
+    if let Some(v) = verdict {
+        v.context("simulating the program")?
+            .map_err(|e| anyhow!(e))
+            .with_context(|| format!("{}: nothing written", path.display()))?;
+    }
     write_atomic(&target, gcode.as_bytes(), force)?;
     write_atomic(&svg_target, svg.as_bytes(), force)?;
     write_atomic(&json_target, report.to_json().as_bytes(), force)?;

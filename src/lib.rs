@@ -15,5 +15,6 @@ pub mod output;
 pub mod pipeline;
 pub mod preview;
 pub mod report;
+pub mod simulate;
 pub mod surface;
 pub mod toolpath;

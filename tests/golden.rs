@@ -57,31 +57,34 @@ fn hand_job() -> Job {
 }
 
 /// A 30 × 20 mm rectangle with 4 mm corner arcs, cut in two passes: the
-/// writer's golden case, independent of the pipeline.
+/// writer's golden case, independent of the pipeline. Each pass comes down by
+/// rapid to 0.5 mm above the floor of the pass before, ramps in along the
+/// front edge (1.5 mm over 22 mm, 3.9°), goes round, and runs the front edge
+/// once more at depth to clear the ramp.
 fn hand_toolpath() -> Toolpath {
     let p = Vec3::new;
     let r = 4.0;
     let (w, h) = (30.0, 20.0);
     let mut sections = Vec::new();
+    let mut floor = 0.0;
     for (k, z) in [-1.0, -2.0].into_iter().enumerate() {
         let mut moves = vec![
             Move::Rapid { to: p(r, 0.0, 5.0) },
+            Move::Rapid {
+                to: p(r, 0.0, floor + 0.5),
+            },
             Move::Linear {
-                to: p(r, 0.0, z),
+                to: p(w - r, 0.0, z),
                 feed: 200.0,
             },
         ];
         let corners = [
-            (p(w - r, 0.0, z), (w - r, r), p(w, r, z)),
-            (p(w, h - r, z), (w - r, h - r), p(w - r, h, z)),
-            (p(r, h, z), (r, h - r), p(0.0, h - r, z)),
-            (p(0.0, r, z), (r, r), p(r, 0.0, z)),
+            ((w - r, r), p(w, r, z), p(w, h - r, z)),
+            ((w - r, h - r), p(w - r, h, z), p(r, h, z)),
+            ((r, h - r), p(0.0, h - r, z), p(0.0, r, z)),
+            ((r, r), p(r, 0.0, z), p(w - r, 0.0, z)),
         ];
-        for (line_to, (cx, cy), arc_to) in corners {
-            moves.push(Move::Linear {
-                to: line_to,
-                feed: 800.0,
-            });
+        for ((cx, cy), arc_to, line_to) in corners {
             moves.push(Move::Arc {
                 to: arc_to,
                 cx,
@@ -89,13 +92,20 @@ fn hand_toolpath() -> Toolpath {
                 ccw: true,
                 feed: 800.0,
             });
+            moves.push(Move::Linear {
+                to: line_to,
+                feed: 800.0,
+            });
         }
-        moves.push(Move::Rapid { to: p(r, 0.0, 5.0) });
+        moves.push(Move::Rapid {
+            to: p(w - r, 0.0, 5.0),
+        });
         sections.push(Section {
             label: format!("rounded rectangle ({}), z {z:.3}", k + 1),
             z,
             moves,
         });
+        floor = z;
     }
     Toolpath {
         start: p(0.0, 0.0, 5.0),

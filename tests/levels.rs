@@ -1,11 +1,10 @@
 //! Boss and cavity jobs: every level gouge-free against its own Γ(s_k), every
-//! entry into uncut material ramped, the cavity's coverage within bound, the
+//! program clean under its own simulation, the cavity's coverage within bound, the
 //! same G-code on any thread count, and bad profiles named.
 
-use pfcam::geometry::Vec2;
 use pfcam::job::{load_job, parse_job, Job};
 use pfcam::pipeline::{self, RunOutput};
-use pfcam::toolpath::Move;
+use pfcam::simulate::verify_program;
 use std::path::Path;
 
 fn run(job: &Job) -> RunOutput {
@@ -38,38 +37,13 @@ s_bottom = 0.97
     .unwrap()
 }
 
-/// No vertical move goes below the floor of the level above except outside the
-/// stock (in air); everything else enters by a ramp.
-fn assert_no_plunge_into_material(out: &RunOutput, top: f64) {
-    let (lo, hi) = out.stock.expect("a boss or cavity has a stock rectangle");
-    let r = 3.175 / 2.0;
-    let mut at = out.toolpath.start;
-    let mut z_prev = top;
-    let mut plunges = 0;
-    let mut ramps = 0;
-    for (sec, lv) in out.toolpath.sections.iter().zip(&out.levels) {
-        for m in &sec.moves {
-            if let Move::Linear { to, .. } = *m {
-                let vertical = (to.x - at.x).abs() < 1e-9 && (to.y - at.y).abs() < 1e-9;
-                if vertical && to.z < z_prev - 1e-9 {
-                    let p = Vec2::new(to.x, to.y);
-                    let outside = p.x < lo.x - r + 1e-6
-                        || p.x > hi.x + r - 1e-6
-                        || p.y < lo.y - r + 1e-6
-                        || p.y > hi.y + r - 1e-6;
-                    assert!(outside, "straight plunge into material at ({:.3}, {:.3}) to z {:.3} (level z {:.3})", p.x, p.y, to.z, lv.z);
-                    plunges += 1;
-                }
-                if !vertical && to.z < at.z - 1e-9 {
-                    ramps += 1;
-                }
-            }
-            at = m.to();
-        }
-        z_prev = lv.z;
-    }
-    assert!(ramps > 0, "no ramped entries at all");
-    let _ = plunges;
+/// The written program, simulated on its stock (`pfcam simulate`'s rules):
+/// no rapid into material, no straight plunge, no full-width cut deeper than
+/// the stepdown.
+fn assert_simulation_clean(job: &Job, out: &RunOutput) {
+    let g = pfcam::gcode::write_gcode_on(&out.toolpath, job, out.stock).unwrap();
+    let v = verify_program(&g, job.tool.diameter, job.tool.stepdown).unwrap();
+    assert!(v.is_ok(), "{v:?}");
 }
 
 #[test]
@@ -105,7 +79,7 @@ fn mfs_sign_boss_levels_are_gouge_free_ramped_and_reported() {
         );
         assert!(l.n > 0 && l.m == 2 * l.n);
     }
-    assert_no_plunge_into_material(&out, 0.0);
+    assert_simulation_clean(&job, &out);
 }
 
 #[test]
@@ -120,7 +94,7 @@ fn mould_covers_every_level_within_a_thousandth() {
     }
     // The floor of the mould is the glyph itself (s = 1).
     assert!((out.levels.last().unwrap().s - 1.0).abs() < 1e-12);
-    assert_no_plunge_into_material(&out, 0.0);
+    assert_simulation_clean(&job, &out);
 }
 
 #[test]

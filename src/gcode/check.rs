@@ -20,11 +20,9 @@
 //! yet known (the first `G0 Z` of a program, or anything after `G28`/`G30`/`G53`)
 //! cannot be measured and is counted in [`Totals::unmeasured_moves`].
 
-use super::parse::{
-    clean_line, has_block_delete, tokenize, FeedMode, ModalState, Motion, Units, Word,
-};
+use super::motion;
+use super::parse::{clean_line, has_block_delete, tokenize, FeedMode, ModalState, Motion, Word};
 use serde::Serialize;
-use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt;
 
 /// GRBL 1.1's line buffer, characters: a block (comments and spaces removed)
@@ -39,8 +37,6 @@ pub const MAX_RAW_LINE: usize = 80;
 /// Slack for the travel comparisons, mm: far below a step, only absorbs the
 /// binary rounding of coordinates read from text.
 const TRAVEL_EPS: f64 = 1e-6;
-
-const MM_PER_INCH: f64 = 25.4;
 
 /// How bad a finding is: errors make `pfcam check` fail, warnings do not.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -363,18 +359,9 @@ impl Checker {
     /// before it, `self.state` after it.
     fn block(&mut self, n: usize, before: &ModalState, words: &[Word]) {
         let value = |c: char| words.iter().find(|w| w.letter == c).map(|w| w.value);
-        let gcodes: Vec<u32> = words
-            .iter()
-            .filter(|w| w.letter == 'G')
-            .map(|w| (w.value * 10.0).round() as u32)
-            .collect();
+        let gcodes = motion::gcodes(words);
         let has_axes = AXES.iter().any(|&c| value(c).is_some());
-        // G10, G28, G30, G53, G92 (and G28.1, G30.1, G92.1), G43.1 and G49 use the
-        // axis words themselves or move to stored positions: no programmed move to
-        // measure.
-        let axis_command = gcodes
-            .iter()
-            .any(|g| matches!(g, 100 | 280 | 281 | 300 | 301 | 431 | 490 | 530 | 920 | 921));
+        let axis_command = motion::is_axis_command(&gcodes);
         for (m, build) in [
             (7.0, "ENABLE_M7"),
             (56.0, "ENABLE_PARKING_OVERRIDE_CONTROL"),
@@ -394,10 +381,7 @@ impl Checker {
             self.report.totals.dwell_s += p;
             self.report.totals.time_s += p;
         }
-        let explicit = gcodes
-            .iter()
-            .copied()
-            .find(|g| matches!(g, 0 | 10 | 20 | 30 | 382..=385 | 800));
+        let explicit = motion::explicit_motion(&gcodes);
         if matches!(explicit, Some(0) | Some(10)) && !has_axes && !axis_command {
             self.warn(
                 n,
@@ -412,26 +396,12 @@ impl Checker {
         if gcodes.iter().any(|g| matches!(g, 280 | 300)) || (gcodes.contains(&530) && has_axes) {
             self.report.totals.unmeasured_moves += 1;
         }
-        if axis_command || !has_axes {
+        let Some(motion) = motion::block_motion(words, before) else {
             return;
-        }
-        let motion = match explicit {
-            Some(0) => Motion::Rapid,
-            Some(10) => Motion::Linear,
-            Some(20) => Motion::ArcCw,
-            Some(30) => Motion::ArcCcw,
-            Some(800) => Motion::None,
-            Some(p) => Motion::Probe(p as u16),
-            None => before.motion,
         };
         let from = before.position;
         let to = self.state.position;
         let after = self.state.clone();
-        let scale = if after.units == Units::Inch {
-            MM_PER_INCH
-        } else {
-            1.0
-        };
 
         let mut extremes: Vec<[Option<f64>; 3]> = vec![to];
         let known = |p: &[Option<f64>; 3]| p.iter().all(Option::is_some);
@@ -449,23 +419,9 @@ impl Checker {
             Motion::ArcCw | Motion::ArcCcw => {
                 let ccw = motion == Motion::ArcCcw;
                 let [a0, a1] = after.plane.axes();
-                let offsets = match a0 {
-                    0 => ['I', 'J'],
-                    2 => ['K', 'I'],
-                    _ => ['J', 'K'],
-                };
                 match (from[a0], from[a1], to[a0], to[a1]) {
                     (Some(s0), Some(s1), Some(t0), Some(t1)) => {
-                        let arc = Arc::new(
-                            [s0, s1],
-                            [t0, t1],
-                            value('R').map(|r| r * scale),
-                            [
-                                value(offsets[0]).unwrap_or(0.0) * scale,
-                                value(offsets[1]).unwrap_or(0.0) * scale,
-                            ],
-                            ccw,
-                        );
+                        let (arc, _) = motion::block_arc(words, &after, [s0, s1], [t0, t1], ccw);
                         for [u, v] in arc.extremes() {
                             let mut p = to;
                             p[a0] = Some(u);
@@ -598,77 +554,10 @@ impl Checker {
     }
 }
 
-/// A circular arc in its plane's (first axis, second axis) coordinates, mm.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Arc {
-    centre: [f64; 2],
-    r: f64,
-    /// Start angle, rad.
-    a0: f64,
-    /// Angle travelled, rad, in (0, 2π]; a start equal to the end is a full circle.
-    sweep: f64,
-    ccw: bool,
-}
-
-impl Arc {
-    /// From start `s`, end `t`, and either a radius `r` (negative: the long way
-    /// round, as in GRBL) or the centre's `offset` from the start.
-    fn new(s: [f64; 2], t: [f64; 2], r: Option<f64>, offset: [f64; 2], ccw: bool) -> Arc {
-        let centre = match r {
-            Some(r) => {
-                // GRBL's construction: the centre is on the perpendicular
-                // bisector of start-end, on the side that makes the arc short for
-                // R > 0 and long for R < 0.
-                let (x, y) = (t[0] - s[0], t[1] - s[1]);
-                let d = x.hypot(y);
-                let mut h = -(4.0 * r * r - x * x - y * y).max(0.0).sqrt() / d;
-                if ccw {
-                    h = -h;
-                }
-                if r < 0.0 {
-                    h = -h;
-                }
-                [s[0] + 0.5 * (x - y * h), s[1] + 0.5 * (y + x * h)]
-            }
-            None => [s[0] + offset[0], s[1] + offset[1]],
-        };
-        let r = (s[0] - centre[0]).hypot(s[1] - centre[1]);
-        let a0 = (s[1] - centre[1]).atan2(s[0] - centre[0]);
-        let a1 = (t[1] - centre[1]).atan2(t[0] - centre[0]);
-        let mut sweep = if ccw { a1 - a0 } else { a0 - a1 }.rem_euclid(TAU);
-        // GRBL's own rule for a full circle: end and start the same (to its float
-        // precision), so a sweep of almost nothing is a whole turn.
-        if sweep <= 1e-9 {
-            sweep += TAU;
-        }
-        Arc {
-            centre,
-            r,
-            a0,
-            sweep,
-            ccw,
-        }
-    }
-
-    /// The points where the arc crosses the quadrant angles (0, 90°, 180°, 270°),
-    /// which with its ends bound it.
-    fn extremes(&self) -> Vec<[f64; 2]> {
-        (0..4)
-            .filter_map(|k| {
-                let a = k as f64 * FRAC_PI_2;
-                let d = if self.ccw { a - self.a0 } else { self.a0 - a }.rem_euclid(TAU);
-                (d <= self.sweep).then(|| {
-                    let (s, c) = a.sin_cos();
-                    [self.centre[0] + self.r * c, self.centre[1] + self.r * s]
-                })
-            })
-            .collect()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::{FRAC_PI_2, TAU};
 
     fn check(text: &str) -> Report {
         check_gcode(text, &CheckOptions::default())

@@ -8,6 +8,7 @@
 
 pub mod check;
 pub mod compare;
+pub mod motion;
 pub mod parse;
 pub mod writer;
 

@@ -3,7 +3,7 @@
 //! `stepdown` from the stock top to the depth.
 
 use super::entry::{enter, ramp_loop, start_near, Entry};
-use super::stock::StockMap;
+use super::stock::{model_radius, StockMap};
 use super::trace::{trace, Navigator, TraceError, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
 pub use crate::geometry::deepest_point;
@@ -187,7 +187,7 @@ pub fn link(loops: &[Loop], p: &ProfileParams) -> Toolpath {
         moves.push(Move::Rapid {
             to: Vec3::new(end.x, end.y, p.safe_z),
         });
-        pos = stock.cut_moves(pos, &moves, p.radius);
+        pos = stock.cut_moves(pos, &moves, model_radius(p.radius, p.tol));
         sections.push(Section {
             label: lp.label.clone(),
             z: p.top - p.depth,

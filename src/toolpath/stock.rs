@@ -27,6 +27,19 @@ pub const MAX_CELLS: usize = 16_000_000;
 /// Finest and coarsest cell side, mm, before [`MAX_CELLS`] forces coarser.
 const CELL_RANGE: (f64, f64) = (0.02, 0.1);
 
+/// Written G-code is not the linker's path: it is fitted with arcs (within
+/// half the tolerance) and rounded to 1 µm. The linker cuts its map with a
+/// disk this much (plus the tolerance) narrower than the tool, so that it never
+/// counts on a cut the written program may miss by a hair: an entry next to
+/// such a rim ramps from the material there instead of plunging onto it.
+pub const ROUNDING_SLACK: f64 = 0.001;
+
+/// The radius the linker cuts its map with for a tool of `radius` and a job of
+/// tolerance `tol` (see [`ROUNDING_SLACK`]); never below half the tool.
+pub fn model_radius(radius: f64, tol: f64) -> f64 {
+    (radius - tol.max(0.0) - ROUNDING_SLACK).max(0.5 * radius)
+}
+
 /// A height map of the stock over a rectangle; outside it there is no material.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StockMap {

@@ -3,7 +3,7 @@
 
 use super::entry::{enter, ramp_start, start_near, Entry, CLEARANCE};
 use super::profile::{deepest_point, ProfileError};
-use super::stock::StockMap;
+use super::stock::{model_radius, StockMap};
 use super::trace::{trace, Navigator, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
 use crate::geometry::{polygon_winding_number, polygons_bbox, DistanceIndex, Vec2};
@@ -328,7 +328,7 @@ pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
                     }
                 }
             }
-            pos = stock.cut_moves(pos, &moves[mark..], p.radius);
+            pos = stock.cut_moves(pos, &moves[mark..], model_radius(p.radius, p.tol));
             at = Some(Vec2::new(pos.x, pos.y));
         }
         if let Some(a) = at {

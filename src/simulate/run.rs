@@ -1,0 +1,454 @@
+//! The walk: every move, in program order, lowers the cells under the tool
+//! ([`Segment::bottom_over`]) and is measured as it goes: how much material
+//! it removed (axial engagement), across how much of the tool's width
+//! (radial engagement), whether a rapid touched material, whether a feed move
+//! went straight down into it, and how much feed length cut only air.
+
+use super::moves::Move;
+use super::report::{Finding, Kind, Worst};
+use super::stock::{Grid, HeightMap};
+use super::tool::Segment;
+use super::{AIR_DEPTH, PLUNGE_ANGLE_DEG, PLUNGE_DEPTH, RAPID_DEPTH, SLOT_SHARE, SLOT_SLACK};
+use rayon::prelude::*;
+
+/// What one move did to the stock (within one band of rows, or merged).
+#[derive(Clone, Copy, Debug)]
+struct MoveCut {
+    /// Deepest removal, mm, and where: (piece number, row, column), the first
+    /// in program and scan order among equal depths.
+    depth: f64,
+    key: (u32, usize, usize),
+    /// Smallest and largest signed offset (mm, from each piece's axis) of a
+    /// cell where more than [`AIR_DEPTH`] was removed.
+    off_lo: f64,
+    off_hi: f64,
+    /// The same, over cells where more than the slot depth (the stepdown
+    /// plus [`SLOT_SLACK`]) was removed: how wide the cut is at depth.
+    deep_lo: f64,
+    deep_hi: f64,
+}
+
+impl Default for MoveCut {
+    fn default() -> Self {
+        MoveCut {
+            depth: 0.0,
+            key: (0, 0, 0),
+            off_lo: f64::INFINITY,
+            off_hi: f64::NEG_INFINITY,
+            deep_lo: f64::INFINITY,
+            deep_hi: f64::NEG_INFINITY,
+        }
+    }
+}
+
+impl MoveCut {
+    /// Whether (depth, key) beats the deepest so far.
+    fn deeper(&self, depth: f64, key: (u32, usize, usize)) -> bool {
+        depth > self.depth || (depth == self.depth && depth > 0.0 && key < self.key)
+    }
+
+    /// Both bands' figures in one.
+    fn merge(&mut self, o: &MoveCut) {
+        if self.deeper(o.depth, o.key) {
+            self.depth = o.depth;
+            self.key = o.key;
+        }
+        self.off_lo = self.off_lo.min(o.off_lo);
+        self.off_hi = self.off_hi.max(o.off_hi);
+        self.deep_lo = self.deep_lo.min(o.deep_lo);
+        self.deep_hi = self.deep_hi.max(o.deep_hi);
+    }
+
+    /// Share of the tool's width `2r` between `lo` and `hi` (0 when empty).
+    fn share(lo: f64, hi: f64, r: f64) -> f64 {
+        if hi >= lo {
+            ((hi - lo) / (2.0 * r)).min(1.0)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The walk's running figures.
+#[derive(Clone, Debug, Default)]
+pub struct Walk {
+    /// Collisions and errors.
+    pub findings: Vec<Finding>,
+    /// Rapids that removed more than [`RAPID_DEPTH`].
+    pub rapids_into_material: usize,
+    /// Deepest rapid removal.
+    pub worst_rapid: Worst,
+    /// Straight plunges.
+    pub straight_plunges: usize,
+    /// Steepest entry, degrees.
+    pub steepest_entry: Worst,
+    /// Largest axial engagement, mm.
+    pub max_axial: Worst,
+    /// Largest radial share.
+    pub max_radial: Worst,
+    /// Full-width cuts deeper than the stepdown.
+    pub deep_slots: usize,
+    /// Feed length, mm.
+    pub feed_length: f64,
+    /// Feed length in air, mm.
+    pub air_length: f64,
+}
+
+/// At most this many bands of rows are cut at once (rayon, one per thread),
+/// each band running every move over its own rows: cells are independent and
+/// ties are broken by program and scan order, so the result is the same as
+/// one pass in program order, on any number of threads.
+pub const MAX_BANDS: usize = 8;
+
+/// Runs `moves` over `map` with a flat end mill of radius `r`; arcs are cut
+/// into chords within `chord_tol` mm; `stepdown` (mm) enables the slot check.
+pub fn walk(
+    map: &mut HeightMap,
+    moves: &[Move],
+    r: f64,
+    chord_tol: f64,
+    stepdown: Option<f64>,
+) -> Walk {
+    let g = map.grid;
+    let top = map.top;
+    let slot_depth = stepdown.map_or(f64::INFINITY, |sd| sd + SLOT_SLACK);
+    let bands = rayon::current_num_threads().clamp(1, MAX_BANDS);
+    let rows_per = g.ny.div_ceil(bands).max(1);
+    let chunk = rows_per * g.nx;
+    let bands: Vec<BandResult> = map
+        .h
+        .par_chunks_mut(chunk)
+        .zip(map.last_cut.par_chunks_mut(chunk))
+        .enumerate()
+        .map(|(b, (h, last_cut))| {
+            let j0 = b * rows_per;
+            let mut band = Band {
+                grid: g,
+                j0,
+                j1: (j0 + rows_per).min(g.ny) - 1,
+                top,
+                slot_depth,
+                h,
+                last_cut,
+            };
+            band.walk(moves, r, chord_tol)
+        })
+        .collect();
+    let mut cuts = vec![MoveCut::default(); moves.len()];
+    let mut pieces_cutting = Vec::new();
+    for band in &bands {
+        for (m, c) in &band.cuts {
+            cuts[*m].merge(c);
+        }
+        if pieces_cutting.len() < band.cutting.len() {
+            pieces_cutting.resize(band.cutting.len(), false);
+        }
+        for (k, &c) in band.cutting.iter().enumerate() {
+            pieces_cutting[k] |= c;
+        }
+    }
+    let mut w = Walk::default();
+    let mut piece = 0;
+    for (mv, cut) in moves.iter().zip(&cuts) {
+        let mut air = 0.0;
+        for s in mv.pieces(chord_tol) {
+            if !pieces_cutting.get(piece).copied().unwrap_or(false) {
+                air += s.len();
+            }
+            piece += 1;
+        }
+        let (_, j, i) = cut.key;
+        let at = [g.cx(i), g.cy(j)];
+        w.record(mv, cut, at, air, r, stepdown);
+    }
+    w
+}
+
+/// What one band found: the moves that removed material in it, and for every
+/// piece whether it removed more than [`AIR_DEPTH`] there.
+struct BandResult {
+    cuts: Vec<(usize, MoveCut)>,
+    cutting: Vec<bool>,
+}
+
+/// Rows `j0..=j1` of the stock.
+struct Band<'a> {
+    grid: Grid,
+    j0: usize,
+    j1: usize,
+    top: f64,
+    /// Removal deeper than this (mm) counts toward a slot's width.
+    slot_depth: f64,
+    /// Heights of rows j0..=j1.
+    h: &'a mut [f64],
+    /// Lines that last cut them.
+    last_cut: &'a mut [u32],
+}
+
+impl Band<'_> {
+    fn walk(&mut self, moves: &[Move], r: f64, chord_tol: f64) -> BandResult {
+        let mut out = BandResult {
+            cuts: Vec::new(),
+            cutting: Vec::new(),
+        };
+        // Where the last piece ended: every cell within r of it is at or below
+        // its z.
+        let mut last_end: Option<[f64; 3]> = None;
+        for (m, mv) in moves.iter().enumerate() {
+            let mut cut = MoveCut::default();
+            for s in mv.pieces(chord_tol) {
+                // A piece that starts where the last one ended and does not
+                // descend cannot lower the cells within r of its start (the
+                // last piece left them at or below its start z, and z(t) is not
+                // lower): only the rest of its sweep is visited.
+                let skip_start = last_end == Some(s.a) && s.b[2] >= s.a[2];
+                let piece = out.cutting.len() as u32;
+                let removed = self.cut_segment(&s, r, mv.line, skip_start, piece, &mut cut);
+                out.cutting.push(removed > AIR_DEPTH);
+                last_end = Some(s.b);
+            }
+            if cut.depth > 0.0 {
+                out.cuts.push((m, cut));
+            }
+        }
+        out
+    }
+
+    /// Lowers every cell of the band under the tool along `s`, adds to `cut`
+    /// and returns the most it removed from one cell.
+    fn cut_segment(
+        &mut self,
+        s: &Segment,
+        r: f64,
+        line: usize,
+        skip_start: bool,
+        piece: u32,
+        cut: &mut MoveCut,
+    ) -> f64 {
+        let zmin = s.z_min();
+        // Heights never rise above the top: a piece entirely above it cuts nothing.
+        if zmin >= self.top {
+            return 0.0;
+        }
+        let g = self.grid;
+        let (ylo, yhi) = (s.a[1].min(s.b[1]) - r, s.a[1].max(s.b[1]) + r);
+        let Some((j0, j1)) = g.rows(ylo, yhi) else {
+            return 0.0;
+        };
+        let (j0, j1) = (j0.max(self.j0), j1.min(self.j1));
+        if j0 > j1 {
+            return 0.0;
+        }
+        let axis = Axis::new(s);
+        let mut removed = 0.0f64;
+        for j in j0..=j1 {
+            let cy = g.cy(j);
+            let row = (j - self.j0) * g.nx;
+            for (i0, i1) in row_ranges(&g, s, cy, r, skip_start).into_iter().flatten() {
+                for i in i0..=i1 {
+                    let k = row + i;
+                    // No point of the piece is lower than the cell: nothing to
+                    // cut (the common case where pieces overlap).
+                    if self.h[k] <= zmin {
+                        continue;
+                    }
+                    let cx = g.cx(i);
+                    let Some(zb) = s.bottom_over(cx, cy, r) else {
+                        continue;
+                    };
+                    let d = self.h[k] - zb;
+                    if d <= 0.0 {
+                        continue;
+                    }
+                    self.h[k] = zb;
+                    self.last_cut[k] = line as u32;
+                    removed = removed.max(d);
+                    if cut.deeper(d, (piece, j, i)) {
+                        cut.depth = d;
+                        cut.key = (piece, j, i);
+                    }
+                    if d > AIR_DEPTH {
+                        let o = axis.offset(cx, cy);
+                        cut.off_lo = cut.off_lo.min(o);
+                        cut.off_hi = cut.off_hi.max(o);
+                        if d > self.slot_depth {
+                            cut.deep_lo = cut.deep_lo.min(o);
+                            cut.deep_hi = cut.deep_hi.max(o);
+                        }
+                    }
+                }
+            }
+        }
+        removed
+    }
+}
+
+/// Slack (mm) by which the skipped start disk is shrunk, so that a cell centre
+/// on its rim, which rounding may have kept out of the last piece, is visited.
+const RIM: f64 = 1e-9;
+
+/// The columns of row `cy` under the piece, as up to two ranges: the piece's
+/// span, less the start disk's interval when `skip_start`.
+fn row_ranges(
+    g: &Grid,
+    s: &Segment,
+    cy: f64,
+    r: f64,
+    skip_start: bool,
+) -> [Option<(usize, usize)>; 2] {
+    let Some((xa, xb)) = s.span_at(cy, r) else {
+        return [None, None];
+    };
+    let dy = cy - s.a[1];
+    let rr = r - RIM;
+    if !skip_start || dy.abs() >= rr {
+        return [g.cols(xa, xb), None];
+    }
+    let w = (rr * rr - dy * dy).sqrt();
+    let (da, db) = (s.a[0] - w, s.a[0] + w);
+    // Columns strictly outside [da, db]: centres below da or above db.
+    let left = g.cols(xa, da).and_then(|(i0, i1)| {
+        if g.cx(i1) >= da {
+            i1.checked_sub(1).map(|e| (i0, e))
+        } else {
+            Some((i0, i1))
+        }
+    });
+    let right = g.cols(db, xb).map(|(i0, i1)| {
+        if g.cx(i0) <= db {
+            (i0 + 1, i1)
+        } else {
+            (i0, i1)
+        }
+    });
+    let valid = |x: Option<(usize, usize)>| x.filter(|&(a, b)| a <= b);
+    [valid(left), valid(right)]
+}
+
+impl Walk {
+    fn push(&mut self, mv: &Move, kind: Kind, depth: f64, at: [f64; 2], message: String) {
+        self.findings.push(Finding {
+            line: mv.line,
+            kind,
+            depth,
+            x: at[0],
+            y: at[1],
+            message,
+        });
+    }
+
+    /// The findings and figures of one move.
+    fn record(
+        &mut self,
+        mv: &Move,
+        cut: &MoveCut,
+        at: [f64; 2],
+        air: f64,
+        r: f64,
+        stepdown: Option<f64>,
+    ) {
+        if mv.rapid {
+            if cut.depth > RAPID_DEPTH {
+                self.rapids_into_material += 1;
+                self.worst_rapid.take(cut.depth, mv.line);
+                let msg = format!(
+                    "rapid (G0) into material: removes {:.3} mm at X{:.3} Y{:.3}",
+                    cut.depth, at[0], at[1]
+                );
+                self.push(mv, Kind::RapidIntoMaterial, cut.depth, at, msg);
+            }
+            return;
+        }
+        let len = mv_length(mv);
+        self.feed_length += len;
+        self.air_length += air.min(len);
+        self.max_axial.take(cut.depth, mv.line);
+        let radial = MoveCut::share(cut.off_lo, cut.off_hi, r);
+        self.max_radial.take(radial, mv.line);
+        let angle = entry_angle_deg(mv);
+        if cut.depth > PLUNGE_DEPTH {
+            self.steepest_entry.take(angle, mv.line);
+            if angle > PLUNGE_ANGLE_DEG {
+                self.straight_plunges += 1;
+                let msg = format!(
+                    "straight plunge: enters {:.3} mm of material at {:.0} deg from horizontal (more than {PLUNGE_ANGLE_DEG} deg) at X{:.3} Y{:.3}",
+                    cut.depth, angle, at[0], at[1]
+                );
+                self.push(mv, Kind::StraightPlunge, cut.depth, at, msg);
+            }
+        }
+        if let Some(sd) = stepdown {
+            // Full width at depth: more than the stepdown removed across
+            // SLOT_SHARE of the tool (a sliver at the rim deeper than the
+            // stepdown, left by rounding, is not a slot).
+            let deep = MoveCut::share(cut.deep_lo, cut.deep_hi, r);
+            if deep >= SLOT_SHARE && cut.depth > sd + SLOT_SLACK {
+                self.deep_slots += 1;
+                let msg = format!(
+                    "full-width cut ({:.0} % of the tool deeper than the stepdown {sd} mm), {:.3} mm deep",
+                    100.0 * deep,
+                    cut.depth
+                );
+                self.push(mv, Kind::SlotDeeperThanStepdown, cut.depth, at, msg);
+            }
+        }
+    }
+}
+
+/// The move's true length, mm (an arc by its helix length).
+fn mv_length(mv: &Move) -> f64 {
+    match mv.arc {
+        Some((arc, [a0, a1])) => {
+            let lin = 3 - a0 - a1;
+            (arc.r * arc.sweep).hypot(mv.to[lin] - mv.from[lin])
+        }
+        None => Segment {
+            a: mv.from,
+            b: mv.to,
+        }
+        .len(),
+    }
+}
+
+/// How steeply a move descends, degrees from horizontal: atan(−Δz / XY length)
+/// (an arc's XY length is r·sweep); 0 for a move that does not descend, 90 for
+/// a vertical one.
+pub fn entry_angle_deg(mv: &Move) -> f64 {
+    let dz = mv.from[2] - mv.to[2];
+    if dz <= 0.0 {
+        return 0.0;
+    }
+    let xy = match mv.arc {
+        Some((arc, [a0, a1])) if 3 - a0 - a1 == 2 => arc.r * arc.sweep,
+        _ => (mv.to[0] - mv.from[0]).hypot(mv.to[1] - mv.from[1]),
+    };
+    dz.atan2(xy).to_degrees()
+}
+
+/// A piece's XY direction, for the signed offset of a cell from its axis.
+struct Axis {
+    a: [f64; 2],
+    /// Unit direction (0 for a move without XY length).
+    u: [f64; 2],
+}
+
+impl Axis {
+    fn new(s: &Segment) -> Axis {
+        let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
+        let l = (dx * dx + dy * dy).sqrt();
+        let u = if l < 1e-9 {
+            [0.0, 0.0]
+        } else {
+            [dx / l, dy / l]
+        };
+        Axis {
+            a: [s.a[0], s.a[1]],
+            u,
+        }
+    }
+
+    /// Signed distance of (x, y) from the axis line, left positive.
+    fn offset(&self, x: f64, y: f64) -> f64 {
+        self.u[0] * (y - self.a[1]) - self.u[1] * (x - self.a[0])
+    }
+}

@@ -1,0 +1,72 @@
+//! The check `pfcam run` makes of the program it is about to write: its own
+//! simulation, on the stock the header names, must find no rapid into
+//! material, no straight plunge and no full-width cut deeper than the
+//! stepdown. The simulation reads the G-code text, not the tool path, so it
+//! catches what the writer (arc fitting, rounding) changed as well as what the
+//! linker planned.
+
+use super::{simulate, Finding, SimError, SimOptions};
+
+/// A program its own simulation finds unsafe: how many findings, and the
+/// first (by line).
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "the program's own simulation finds {count} collision(s); the first, line {}: {}",
+    first.line,
+    first.message
+)]
+pub struct UnsafeProgram {
+    /// Number of findings.
+    pub count: usize,
+    /// The first finding, by line.
+    pub first: Finding,
+}
+
+/// Simulates `text` with a flat end mill of `tool_diameter` mm and the slot
+/// check at `stepdown` mm, on the stock its header names (else the extent of
+/// its feed moves): `Ok` when clean, else the findings as [`UnsafeProgram`].
+pub fn verify_program(
+    text: &str,
+    tool_diameter: f64,
+    stepdown: f64,
+) -> Result<Result<(), UnsafeProgram>, SimError> {
+    let opts = SimOptions {
+        tool_diameter: Some(tool_diameter),
+        stepdown: Some(stepdown),
+        ..SimOptions::default()
+    };
+    let sim = simulate(text, &opts)?;
+    let findings = sim.report.findings;
+    Ok(match findings.first() {
+        None => Ok(()),
+        Some(first) => Err(UnsafeProgram {
+            count: findings.len(),
+            first: first.clone(),
+        }),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const HEAD: &str = "(stock: X0..30 Y0..30, top 0, safe z 5 mm)\nG21 G90\nG0 Z5\nG0 X15 Y15\n";
+
+    #[test]
+    fn a_straight_plunge_is_refused_at_its_line_and_a_ramp_is_not() {
+        let plunge = format!("{HEAD}G1 Z-1 F100\nG1 X20\nM2\n");
+        let e = verify_program(&plunge, 3.0, 1.0).unwrap().unwrap_err();
+        assert_eq!((e.count, e.first.line), (1, 5));
+        assert!(e.to_string().contains("line 5: straight plunge"), "{e}");
+        let ramp = format!("{HEAD}G0 Z0.5\nG1 X25 Z-1 F100\nG1 X15\nM2\n");
+        assert!(verify_program(&ramp, 3.0, 1.0).unwrap().is_ok());
+    }
+
+    #[test]
+    fn a_rapid_into_the_stock_is_refused() {
+        let rapid = format!("{HEAD}G0 Z-0.5\nM2\n");
+        let e = verify_program(&rapid, 3.0, 1.0).unwrap().unwrap_err();
+        assert_eq!(e.first.line, 5);
+        assert!(e.to_string().contains("rapid (G0) into material"), "{e}");
+    }
+}

@@ -1,0 +1,8 @@
+(hand-made: a rapid into uncut stock; simulate with --tool-diameter 3 --stock 0,0,30,30,0)
+G21 G90
+G0 Z5
+G0 X10 Y10
+G0 Z-1
+G1 X20 F300
+G0 Z5
+M2

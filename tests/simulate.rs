@@ -1,0 +1,522 @@
+//! `pfcam simulate`: hand-made programs caught at the right line, the height
+//! map checked against an independent distance oracle, I/J against R arcs,
+//! invariance under translation, and every shipped sample run through it.
+
+use pfcam::gcode::check::{check_gcode, CheckOptions};
+use pfcam::simulate::{simulate, JobFacts, Kind, PartModel, SimOptions, Simulation, StockBox};
+use std::path::Path;
+use std::process::Command;
+
+const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
+
+fn data(name: &str) -> String {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/simulate")
+        .join(name);
+    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+fn stock30() -> Option<StockBox> {
+    Some(StockBox {
+        lo: [0.0, 0.0],
+        hi: [30.0, 30.0],
+        top: 0.0,
+    })
+}
+
+fn opts(d: f64) -> SimOptions {
+    SimOptions {
+        tool_diameter: Some(d),
+        stock: stock30(),
+        ..SimOptions::default()
+    }
+}
+
+fn run(text: &str, o: &SimOptions) -> Simulation {
+    simulate(text, o).expect("simulates")
+}
+
+/// Both stocks have the same cells at the same heights (to 1e-9 mm).
+fn assert_same_stock(a: &Simulation, b: &Simulation) {
+    assert_eq!(a.map.h.len(), b.map.h.len());
+    let differ = a
+        .map
+        .h
+        .iter()
+        .zip(&b.map.h)
+        .filter(|(x, y)| (*x - *y).abs() > 1e-9)
+        .count();
+    assert_eq!(differ, 0, "cells at different heights");
+}
+
+/// (line, kind) of every finding.
+fn found(s: &Simulation) -> Vec<(usize, Kind)> {
+    s.report.findings.iter().map(|f| (f.line, f.kind)).collect()
+}
+
+#[test]
+fn a_rapid_into_stock_is_caught_at_its_line() {
+    let s = run(&data("rapid-into-stock.nc"), &opts(3.0));
+    assert_eq!(found(&s), vec![(5, Kind::RapidIntoMaterial)]);
+    let f = &s.report.findings[0];
+    assert!((f.depth - 1.0).abs() < 1e-9, "{f:?}");
+    assert!((f.x - 10.0).hypot(f.y - 10.0) <= 1.5, "{f:?}");
+    assert_eq!(s.report.rapids_into_material, 1);
+    assert_eq!(s.report.worst_rapid.line, 5);
+}
+
+#[test]
+fn a_straight_plunge_is_caught_and_a_ramp_is_not() {
+    let s = run(&data("straight-plunge.nc"), &opts(3.0));
+    assert_eq!(found(&s), vec![(6, Kind::StraightPlunge)]);
+    assert!((s.report.findings[0].depth - 1.0).abs() < 1e-9);
+    assert_eq!(s.report.steepest_entry_deg.value, 90.0);
+    // The same depth entered along a 10 mm ramp (8.5 degrees) is clean.
+    let ramp = "G21 G90\nG0 Z5\nG0 X10 Y10\nG0 Z0.5\nG1 X20 Z-1 F100\nG1 X10\nM2\n";
+    let s = run(ramp, &opts(3.0));
+    assert!(s.report.is_clean(), "{:?}", s.report.findings);
+    let want = (1.5f64 / 10.0).atan().to_degrees();
+    assert!((s.report.steepest_entry_deg.value - want).abs() < 1e-9);
+    assert_eq!(s.report.steepest_entry_deg.line, 5);
+}
+
+#[test]
+fn a_slot_deeper_than_the_stepdown_is_caught() {
+    let o = SimOptions {
+        stepdown: Some(1.0),
+        ..opts(3.0)
+    };
+    let s = run(&data("deep-slot.nc"), &o);
+    assert_eq!(found(&s), vec![(8, Kind::SlotDeeperThanStepdown)]);
+    assert!((s.report.findings[0].depth - 1.5).abs() < 1e-9);
+    assert!(s.report.max_radial.value > 0.95);
+    assert!((s.report.max_axial.value - 1.5).abs() < 1e-9);
+    assert_eq!(s.report.max_axial.line, 8);
+    // Without a stepdown the slot is not judged.
+    assert!(run(&data("deep-slot.nc"), &opts(3.0)).report.is_clean());
+}
+
+/// The square 10..20 × 10..20 standing 1 mm above a floor at z = −1.
+fn square_part() -> PartModel {
+    let quad = |x0: f64, y0: f64, x1: f64, y1: f64, z: f64| {
+        [
+            [[x0, y0, z], [x1, y0, z], [x1, y1, z]],
+            [[x0, y0, z], [x1, y1, z], [x0, y1, z]],
+        ]
+    };
+    let mut triangles = quad(0.0, 0.0, 30.0, 30.0, -1.0).to_vec();
+    triangles.extend(quad(10.0, 10.0, 20.0, 20.0, 0.0));
+    PartModel {
+        name: "square".into(),
+        triangles,
+        outlines: Vec::new(),
+        outline_z: 0.0,
+    }
+}
+
+fn square_job() -> JobFacts {
+    JobFacts {
+        tool_diameter: 3.0,
+        stepdown: 1.0,
+        stock: stock30(),
+        part: Some(square_part()),
+        tolerance: 0.01,
+        scallop: 0.1,
+        stepover: 1.0,
+    }
+}
+
+#[test]
+fn an_arc_that_gouges_is_caught_at_its_line() {
+    let o = SimOptions {
+        job: Some(square_job()),
+        ..SimOptions::default()
+    };
+    let s = run(&data("arc-gouge.nc"), &o);
+    assert_eq!(found(&s), vec![(10, Kind::Gouge)]);
+    let p = s.report.part.as_ref().expect("compared");
+    // The tool's edge passes 6.5 mm from the centre, inside the corners
+    // (7.07 mm): it cuts the corners down to the floor, 1 mm below the part.
+    assert!((p.max_gouge.value - 1.0).abs() < 1e-9, "{p:?}");
+    assert_eq!(p.max_gouge.line, 10);
+    // The first circle alone leaves the square whole: a corner cell nearest
+    // the circle is 7.5 − 7.07 mm away from the tool.
+    let first: String = data("arc-gouge.nc")
+        .lines()
+        .filter(|l| !l.starts_with("G1 X23") && !l.starts_with("G2 X23"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let s = run(&first, &o);
+    assert!(s.report.is_clean(), "{:?}", s.report.findings);
+    let p = s.report.part.as_ref().expect("compared");
+    assert!(p.max_gouge.value < 1e-9, "{p:?}");
+    assert!(
+        p.max_left.value > 0.9,
+        "the floor between circle and square is left"
+    );
+}
+
+/// The same square as a profile's part: an outline (with a counter, the
+/// 14..16 square hole, which the cut never reaches) standing at z 0.
+#[test]
+fn an_outline_part_catches_the_same_gouge() {
+    let square = |a: f64, b: f64| vec![[a, a], [b, a], [b, b], [a, b]];
+    let mut job = square_job();
+    job.part = Some(PartModel {
+        name: "outline".into(),
+        triangles: Vec::new(),
+        outlines: vec![square(10.0, 20.0), square(14.0, 16.0)],
+        outline_z: 0.0,
+    });
+    let o = SimOptions {
+        job: Some(job),
+        ..SimOptions::default()
+    };
+    let s = run(&data("arc-gouge.nc"), &o);
+    assert_eq!(found(&s), vec![(10, Kind::Gouge)]);
+    let p = s.report.part.as_ref().expect("compared");
+    assert!((p.max_gouge.value - 1.0).abs() < 1e-9, "{p:?}");
+    // Cells inside the outline less the hole: 100 − 4 mm² at 0.01 mm² each.
+    assert_eq!(p.cells, 9600);
+}
+
+/// A wall at 60°: the plane z = −√3·(x − 10) over 10..30 × 0..30. A flat end
+/// mill of 3 mm at X15 cuts the cells out to x = 13.55 (the leftmost centre
+/// within 1.5 mm); `below` mm under the part there is `below`·cos 60° along
+/// the wall's normal, which is what a gouge is measured by.
+fn wall_gouge(below: f64) -> (f64, Vec<(usize, Kind)>) {
+    let k = 3f64.sqrt();
+    let z = |x: f64| -k * (x - 10.0);
+    let (a, b) = ([10.0, 0.0, z(10.0)], [30.0, 0.0, z(30.0)]);
+    let (c, d) = ([30.0, 30.0, z(30.0)], [10.0, 30.0, z(10.0)]);
+    let mut job = square_job();
+    job.part = Some(PartModel {
+        name: "wall".into(),
+        triangles: vec![[a, b, c], [a, c, d]],
+        outlines: Vec::new(),
+        outline_z: 0.0,
+    });
+    let o = SimOptions {
+        job: Some(job),
+        ..SimOptions::default()
+    };
+    let zt = z(13.55) - below;
+    let prog = format!("G21 G90\nG0 Z5\nG0 X15 Y5\nG1 Z{zt:.6} F100\nG1 Y25\nM2\n");
+    let s = run(&prog, &o);
+    let gouges = found(&s)
+        .into_iter()
+        .filter(|f| f.1 == Kind::Gouge)
+        .collect();
+    (s.report.part.expect("compared").max_gouge.value, gouges)
+}
+
+#[test]
+fn a_gouge_into_a_wall_is_measured_along_its_normal() {
+    // 0.016 mm below vertically is 0.008 mm into the wall: within 0.01.
+    let (g, found) = wall_gouge(0.016);
+    assert!((g - 0.008).abs() < 1e-5, "{g}");
+    assert!(found.is_empty(), "{found:?}");
+    // 0.03 mm below vertically is 0.015 mm into it: a gouge, at the lines
+    // that cut there (the plunge and the pass).
+    let (g, found) = wall_gouge(0.03);
+    assert!((g - 0.015).abs() < 1e-5, "{g}");
+    assert_eq!(found, vec![(4, Kind::Gouge), (5, Kind::Gouge)]);
+}
+
+/// Distance from (x, y) to the segment a–b: clamp the projection, an oracle
+/// independent of the simulator's quadratic.
+fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a[0] + t * dx - p[0]).hypot(a[1] + t * dy - p[1])
+}
+
+/// A square loop of tool centres 5..15 at z −1, entered by a plunge at (5, 5),
+/// shifted by (ox, oy).
+fn square_loop(ox: f64, oy: f64) -> String {
+    let p = |x: f64, y: f64| format!("X{} Y{}", x + ox, y + oy);
+    format!(
+        "G21 G90\nG0 Z5\nG0 {}\nG1 Z-1 F100\nG1 {}\nG1 {}\nG1 {}\nG1 {}\nM2\n",
+        p(5.0, 5.0),
+        p(15.0, 5.0),
+        p(15.0, 15.0),
+        p(5.0, 15.0),
+        p(5.0, 5.0)
+    )
+}
+
+#[test]
+fn a_square_loop_gives_exactly_the_expected_heights() {
+    let s = run(
+        &square_loop(0.0, 0.0),
+        &SimOptions {
+            stock: Some(StockBox {
+                lo: [0.0, 0.0],
+                hi: [20.0, 20.0],
+                top: 0.0,
+            }),
+            ..opts(2.0)
+        },
+    );
+    let g = s.map.grid;
+    assert_eq!((g.nx, g.ny), (200, 200));
+    let corners = [
+        [5.0, 5.0],
+        [15.0, 5.0],
+        [15.0, 15.0],
+        [5.0, 15.0],
+        [5.0, 5.0],
+    ];
+    let (mut cut, mut uncut) = (0, 0);
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let c = [g.cx(i), g.cy(j)];
+            let d = corners
+                .windows(2)
+                .map(|w| seg_dist(c, w[0], w[1]))
+                .fold(f64::INFINITY, f64::min);
+            let want = if d <= 1.0 { -1.0 } else { 0.0 };
+            assert_eq!(
+                s.map.at(i, j),
+                want,
+                "cell ({i}, {j}) at {c:?}, {d} from the path"
+            );
+            if want < 0.0 {
+                cut += 1;
+            } else {
+                uncut += 1;
+            }
+        }
+    }
+    // The 12 mm square with corners rounded to r = 1, less the 8 mm hole.
+    let area = cut as f64 * 0.01;
+    let exact = 144.0 - (4.0 - std::f64::consts::PI) - 64.0;
+    assert!((area - exact).abs() < 0.3, "{area} vs {exact}");
+    assert!(uncut > 0);
+    // The plunge at the start is the only finding.
+    assert_eq!(found(&s), vec![(4, Kind::StraightPlunge)]);
+}
+
+/// The same circle cut as two G2 halves with I/J and with R, and the same
+/// ramps: identical stock.
+#[test]
+fn ij_and_r_arcs_give_the_same_stock() {
+    let head = "G21 G90\nG0 Z5\nG0 X24 Y15\nG0 Z0\n";
+    let ij =
+        format!("{head}G2 X6 Y15 Z-0.5 I-9 J0 F300\nG2 X24 Y15 Z-1 I9 J0\nG3 X15 Y6 I-9 J0\nM2\n");
+    let r = format!("{head}G2 X6 Y15 Z-0.5 R9 F300\nG2 X24 Y15 Z-1 R9\nG3 X15 Y6 R-9\nM2\n");
+    let a = run(&ij, &opts(3.0));
+    let b = run(&r, &opts(3.0));
+    assert_same_stock(&a, &b);
+    assert!(a.map.min() < -0.99, "the helix reaches z -1");
+    assert_eq!(found(&a), found(&b));
+    assert_eq!(a.report.max_axial.line, b.report.max_axial.line);
+}
+
+/// Shifting the program and the stock by whole cells shifts the stock: the
+/// same heights and the same figures.
+#[test]
+fn translating_the_program_translates_the_stock() {
+    let arcs = "G2 X12 Y10 I-3 J0\nG3 X18 Y10 R3\nG1 X10 Y10 Z-1.5\n";
+    let base = |ox: f64, oy: f64| {
+        let mut t = square_loop(ox, oy).replace("M2\n", "");
+        for l in arcs.lines() {
+            let mut l = l.to_string();
+            for (axis, o) in [('X', ox), ('Y', oy)] {
+                if let Some(p) = l.find(axis) {
+                    let end = l[p + 1..].find(' ').map_or(l.len(), |e| p + 1 + e);
+                    let v: f64 = l[p + 1..end].parse().unwrap();
+                    l.replace_range(p + 1..end, &format!("{}", v + o));
+                }
+            }
+            t += &l;
+            t.push('\n');
+        }
+        t
+    };
+    let (ox, oy) = (37.0, -12.5);
+    let at = |ox: f64, oy: f64| SimOptions {
+        stock: Some(StockBox {
+            lo: [ox, oy],
+            hi: [20.0 + ox, 20.0 + oy],
+            top: 0.0,
+        }),
+        ..opts(2.0)
+    };
+    let a = run(&base(0.0, 0.0), &at(0.0, 0.0));
+    let b = run(&base(ox, oy), &at(ox, oy));
+    assert_same_stock(&a, &b);
+    assert_eq!(found(&a), found(&b));
+    let (ra, rb) = (&a.report, &b.report);
+    assert!((ra.feed_length - rb.feed_length).abs() < 1e-9);
+    assert!((ra.air_length - rb.air_length).abs() < 1e-9);
+    assert!((ra.max_radial.value - rb.max_radial.value).abs() < 1e-9);
+    assert_eq!(ra.max_axial.line, rb.max_axial.line);
+}
+
+fn samples() -> Vec<std::path::PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("gcode-samples");
+    let mut v: Vec<_> = std::fs::read_dir(dir)
+        .expect("gcode-samples")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "nc"))
+        .collect();
+    v.sort();
+    v
+}
+
+/// Every sample simulates, its feed length agrees with `pfcam check`'s own
+/// measure of the file, and its figures are printed (`--nocapture`).
+#[test]
+fn every_sample_simulates() {
+    for p in samples() {
+        let text = std::fs::read_to_string(&p).unwrap();
+        let s = run(&text, &SimOptions::default());
+        let r = &s.report;
+        let want = check_gcode(&text, &CheckOptions::default())
+            .totals
+            .cut_length;
+        assert!(
+            (r.feed_length - want).abs() <= 1e-6 * want.max(1.0),
+            "{}: {} vs {want}",
+            p.display(),
+            r.feed_length
+        );
+        assert!(r.moves > 0 && r.stock.cells[0] > 0);
+        eprintln!(
+            "{}: rapids into material {} (worst {:.3} mm, line {}), straight plunges {}, steepest entry {:.1} deg, axial {:.3} mm, radial {:.0} %, deep slots {}, air {:.1} %",
+            p.file_name().unwrap().to_string_lossy(),
+            r.rapids_into_material,
+            r.worst_rapid.value,
+            r.worst_rapid.line,
+            r.straight_plunges,
+            r.steepest_entry_deg.value,
+            r.max_axial.value,
+            100.0 * r.max_radial.value,
+            r.deep_slots,
+            100.0 * r.air_share
+        );
+    }
+}
+
+/// Issue 11's "done when": no golden sample rapids into material or plunges
+/// straight into it (the crash `G0 Z-0.625` at X1.78 Y26.4 of the old
+/// q-mould sample is the kind of finding this catches; its pattern is kept in
+/// `tests/data/simulate/rapid-into-stock.nc`).
+#[test]
+fn every_sample_is_clean() {
+    for p in samples() {
+        let text = std::fs::read_to_string(&p).unwrap();
+        let s = run(&text, &SimOptions::default());
+        assert!(
+            s.report.is_clean(),
+            "{}: {:?}",
+            p.display(),
+            s.report.findings.first()
+        );
+    }
+}
+
+#[test]
+fn the_cli_exits_1_on_a_collision_and_writes_the_png() {
+    let dir = std::env::temp_dir().join(format!("pfcam-simulate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/simulate/rapid-into-stock.nc");
+    let png = dir.join("stock.png");
+    let out = Command::new(PFCAM)
+        .args(["simulate", file.to_str().unwrap(), "--tool-diameter", "3"])
+        .args(["--stock", "0,0,30,30,0", "--png", png.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout.contains("rapid-into-stock.nc:5: error: rapid (G0) into material"),
+        "{stdout}"
+    );
+    let bytes = std::fs::read(&png).unwrap();
+    assert!(pfcam::output::is_pfcam_file(
+        &bytes[..bytes.len().min(4096)]
+    ));
+    // A file pfcam did not write is not replaced without --force (exit 3).
+    std::fs::write(&png, b"mine").unwrap();
+    let out = Command::new(PFCAM)
+        .args([
+            "simulate",
+            file.to_str().unwrap(),
+            "--tool-diameter",
+            "3",
+            "--png",
+        ])
+        .arg(&png)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(3));
+    assert_eq!(std::fs::read(&png).unwrap(), b"mine");
+    // A clean program: exit 0, and --json parses.
+    let clean = dir.join("clean.nc");
+    std::fs::write(
+        &clean,
+        "G21 G90\nG0 Z5\nG0 X10 Y10\nG0 Z0.5\nG1 X20 Z-1 F100\nM2\n",
+    )
+    .unwrap();
+    let out = Command::new(PFCAM)
+        .args([
+            "simulate",
+            clean.to_str().unwrap(),
+            "--tool-diameter",
+            "3",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["clean"], true);
+    assert_eq!(v["report"]["straight_plunges"], 0);
+    // No tool anywhere: an error naming the flag.
+    let out = Command::new(PFCAM)
+        .args(["simulate", clean.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--tool-diameter"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// With its job, a sample is simulated on the job's stock and measured
+/// against the job's own part (S2): the model covers the stock, and the cut
+/// lies on it to within a few hundredths (a part placed or scaled wrongly would
+/// be millimetres off).
+#[test]
+fn a_job_measures_the_stock_against_its_part() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let job = pfcam::job::load_job(&root.join("jobs/q-sign.toml")).unwrap();
+    let facts = pfcam::simulate::job_facts(&job, 0.2).unwrap();
+    let text = std::fs::read_to_string(root.join("gcode-samples/q-sign.nc")).unwrap();
+    let s = run(
+        &text,
+        &SimOptions {
+            job: Some(facts),
+            ..SimOptions::default()
+        },
+    );
+    let r = &s.report;
+    assert_eq!(r.stock.source, "job");
+    assert_eq!(r.tool_source, "job");
+    let p = r.part.as_ref().expect("compared with S2");
+    let total = r.stock.cells[0] * r.stock.cells[1];
+    assert!(
+        p.cells as f64 >= 0.99 * total as f64,
+        "{} of {total}",
+        p.cells
+    );
+    assert!(p.max_gouge.value < 0.05, "{p:?}");
+    assert!(p.max_left.value > 0.0 && p.max_left.value < 1.0, "{p:?}");
+}
