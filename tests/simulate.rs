@@ -520,3 +520,44 @@ fn a_job_measures_the_stock_against_its_part() {
     assert!(p.max_gouge.value < 0.05, "{p:?}");
     assert!(p.max_left.value > 0.0 && p.max_left.value < 1.0, "{p:?}");
 }
+
+/// Issue 11's "done when" with the jobs: every shipped job's sample, simulated
+/// on the job's stock at 0.1 mm and measured against the job's own part (S2 for
+/// a boss or cavity, the glyph outlines for a profile), cuts no cell into the
+/// part by more than the job's tolerance and leaves no cell more than the
+/// stated scallop (plus the tolerance) above it.
+#[test]
+fn every_job_sample_is_within_its_part() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut jobs: Vec<_> = std::fs::read_dir(root.join("jobs"))
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    jobs.sort();
+    assert!(jobs.len() >= 7, "{jobs:?}");
+    for path in jobs {
+        let job = pfcam::job::load_job(&path).unwrap();
+        let sample = root.join(format!("gcode-samples/{}.nc", job.name));
+        let text = std::fs::read_to_string(&sample).unwrap();
+        let facts = pfcam::simulate::job_facts(&job, 0.1).unwrap();
+        let s = run(
+            &text,
+            &SimOptions {
+                job: Some(facts),
+                ..SimOptions::default()
+            },
+        );
+        let r = &s.report;
+        let p = r.part.as_ref().expect("compared with the part");
+        eprintln!("{}: {}", job.name, r.summary().lines().last().unwrap_or(""));
+        assert!(r.is_clean(), "{}: {:?}", job.name, r.findings.first());
+        assert_eq!(p.gouged_cells, 0, "{}: {p:?}", job.name);
+        assert!(
+            p.max_gouge.value <= job.operation.tolerance,
+            "{}: {p:?}",
+            job.name
+        );
+        assert_eq!(p.left_share_over_scallop, 0.0, "{}: {p:?}", job.name);
+    }
+}
