@@ -11,6 +11,7 @@ pub mod geometry;
 pub mod grbl;
 pub mod job;
 pub mod levels;
+pub mod num;
 pub mod output;
 pub mod pipeline;
 pub mod preview;

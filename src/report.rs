@@ -357,7 +357,8 @@ impl RunReport {
                 .solves
                 .iter()
                 .map(|r| r.max_error)
-                .fold(f64::NAN, f64::max),
+                .reduce(crate::num::max_or_nan)
+                .unwrap_or(f64::NAN),
             fallbacks: out.fallbacks,
         };
         RunReport {

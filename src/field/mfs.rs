@@ -183,6 +183,11 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
         coef,
     };
     let max_error = max_error(&field, &problem.checks);
+    if max_error.is_nan() {
+        return Err(FieldError::Invalid(
+            "the field is not a number at a check point (a check point on a singularity?)".into(),
+        ));
+    }
     Ok(Solution {
         field,
         max_error,
@@ -197,5 +202,5 @@ pub fn max_error(field: &Field, checks: &[Condition]) -> f64 {
         .par_iter()
         .with_min_len(256)
         .map(|c| (field.value(c.p) - c.value).abs())
-        .reduce(|| 0.0, f64::max)
+        .reduce(|| 0.0, crate::num::max_or_nan)
 }
