@@ -218,3 +218,41 @@ fn kernel_is_the_fundamental_solution() {
     let p = Vec2::new(3.0, 4.0);
     assert!((mfs::kernel(p, Vec2::ZERO) + 5f64.ln() / std::f64::consts::TAU).abs() < 1e-15);
 }
+
+/// The shape field of a profile job with `svg_path` at `origin`.
+fn shape_error(svg_path: &str, origin: [f64; 2]) -> f64 {
+    let text = format!(
+        "[shape]\nsvg_path = \"{svg_path}\"\norigin = [{}, {}]\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 1.0\n",
+        origin[0], origin[1]
+    );
+    let job = pfcam::job::parse_job(&text, "shape", std::path::Path::new(".")).unwrap();
+    let (shape, _) = pfcam::pipeline::job_shape(&job, &mut |_| {}).unwrap();
+    let tol = job.operation.tolerance * pfcam::pipeline::FLATTEN_FRACTION;
+    let (_, report, _) = pfcam::pipeline::solve_shape(&shape, &job, tol, &mut |_| {})
+        .unwrap_or_else(|e| panic!("{svg_path} at {origin:?}: {e}"));
+    report.max_error
+}
+
+/// Issue 12: a plain rectangle and an L shape were refused as ill-conditioned
+/// ("condition number inf"), and whether a rectangle was refused depended on
+/// where it sat. They solve, wherever they sit, with the same error.
+#[test]
+fn rectangles_and_l_shapes_solve_wherever_they_sit() {
+    for path in [
+        "M0 0 L10 0 L10 40 L0 40 Z",
+        "M0 0 L10.1 0 L10.1 40 L0 40 Z",
+        "M0 0 L9.9 0 L9.9 40 L0 40 Z",
+        "M0 0 L30 0 L30 10 L10 10 L10 40 L0 40 Z",
+    ] {
+        let here = shape_error(path, [0.0, 0.0]);
+        let there = shape_error(path, [13.7, -5.3]);
+        assert!(
+            here < 1e-3 && there < 1e-3,
+            "{path}: {here:.2e}, {there:.2e}"
+        );
+        assert!(
+            there <= 2.0 * here && here <= 2.0 * there,
+            "{path}: {here:.2e} at the origin, {there:.2e} moved"
+        );
+    }
+}

@@ -10,12 +10,20 @@ use faer::Mat;
 const INV_2PI: f64 = 1.0 / std::f64::consts::TAU;
 
 /// Estimated condition number (ratio of the largest to smallest |Rᵢᵢ| of the
-/// Householder QR of the column-scaled matrix, a lower bound of the true one) above which the solve is refused.
-/// Exponentially clustered corner charges make the matrix ill-conditioned by design
-/// (as in the "lightning" solvers), and least squares still gives a small residual
-/// up to ~1e15; past that the coefficients are noise and the boundary error check
-/// would be the only guard, so we stop with a typed error first.
+/// Householder QR of the column-scaled matrix, a lower bound of the true one)
+/// up to which the plain least-squares solution is used. Past it (or with a
+/// non-finite column: a charge on a collocation point) the solve does not
+/// refuse: it falls back to a rank-revealing QR truncated at [`RANK_CUTOFF`]
+/// and marks the solution as not well-conditioned, which the distance and
+/// layout searches take only when nothing better is found. The measured
+/// boundary error on the check points is the guard, never this estimate.
 pub const MAX_CONDITION: f64 = 1e15;
+
+/// Relative cut-off of the fallback's column-pivoted QR: columns whose |Rₖₖ|
+/// falls below this fraction of |R₀₀| are left out of the fit (coefficient 0):
+/// what they would add is already in the span of the others to working
+/// precision, and solving for them would turn rounding into huge coefficients.
+pub const RANK_CUTOFF: f64 = 1e-15;
 
 /// The fundamental solution k(P, Q) = −(1/2π) log|P − Q| (paper (2.3)).
 #[inline]
@@ -60,6 +68,21 @@ pub struct Solution {
     pub max_error: f64,
     /// The estimated condition number of the scaled system.
     pub condition: f64,
+    /// Whether the plain least-squares solution was used (condition below
+    /// [`MAX_CONDITION`]); false for the truncated fallback.
+    pub well_conditioned: bool,
+}
+
+impl Solution {
+    /// Whether `self` is a better fit than `other`: a well-conditioned solution
+    /// before one from the fallback, then the smaller max boundary error.
+    pub fn better_than(&self, other: &Solution) -> bool {
+        match (self.well_conditioned, other.well_conditioned) {
+            (true, false) => true,
+            (false, true) => false,
+            _ => self.max_error < other.max_error,
+        }
+    }
 }
 
 impl Field {
@@ -147,10 +170,16 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     let mut scale = vec![0.0; n];
     for (j, s) in scale.iter_mut().enumerate() {
         let norm = a.col(j).norm_l2();
-        *s = if norm > 0.0 { 1.0 / norm } else { 1.0 };
+        // A charge on a collocation point has an infinite column: it is
+        // zeroed, which sends the solve to the fallback that leaves it out.
+        *s = if norm.is_finite() && norm > 0.0 {
+            1.0 / norm
+        } else {
+            0.0
+        };
         let sj = *s;
         for i in 0..m {
-            a[(i, j)] *= sj;
+            a[(i, j)] = if sj > 0.0 { a[(i, j)] * sj } else { 0.0 };
         }
     }
     // Sequential QR: the result must not depend on the thread count (same job,
@@ -169,14 +198,25 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     } else {
         f64::INFINITY
     };
-    if condition.is_nan() || condition >= MAX_CONDITION {
-        return Err(FieldError::IllConditioned { cond: condition });
-    }
     let rhs = Mat::<f64>::from_fn(m, 1, |i, _| problem.colloc[i].value);
-    let x = qr.solve_lstsq(&rhs);
-    let coef: Vec<f64> = (0..n).map(|j| x[(j, 0)] * scale[j]).collect();
+    let plain = (condition < MAX_CONDITION)
+        .then(|| {
+            let x = qr.solve_lstsq(&rhs);
+            (0..n).map(|j| x[(j, 0)] * scale[j]).collect::<Vec<f64>>()
+        })
+        .filter(|c| c.iter().all(|c| c.is_finite()));
+    let well_conditioned = plain.is_some();
+    let (coef, condition) = match plain {
+        Some(c) => (c, condition),
+        None => {
+            let (x, _, cond) = truncated_lstsq(&a, rhs);
+            ((0..n).map(|j| x[j] * scale[j]).collect(), cond)
+        }
+    };
     if coef.iter().any(|c| !c.is_finite()) {
-        return Err(FieldError::IllConditioned { cond: condition });
+        return Err(FieldError::Invalid(
+            "the MFS solve gave coefficients that are not numbers".into(),
+        ));
     }
     let field = Field {
         charges: problem.charges.clone(),
@@ -192,7 +232,62 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
         field,
         max_error,
         condition,
+        well_conditioned,
     })
+}
+
+/// The basic least-squares solution of `a` x ≈ `rhs` from a column-pivoted QR
+/// truncated at [`RANK_CUTOFF`]: x over the kept columns solves Rₖₖ xₖ = (Qᵀb)ₖ,
+/// the rest are 0. Returns x (in the original column order), the rank kept and
+/// |R₀₀| / |R_kk| over the kept columns.
+fn truncated_lstsq(a: &Mat<f64>, mut rhs: Mat<f64>) -> (Vec<f64>, usize, f64) {
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::linalg::householder;
+    // Sequential QR: the result must not depend on the thread count (same job,
+    // same G-code); pfcam parallelises over whole solves and loops instead.
+    faer::set_global_parallelism(faer::Par::Seq);
+    let n = a.ncols();
+    let qr = a.col_piv_qr();
+    let r = qr.R();
+    let r00 = r[(0, 0)].abs();
+    let rank = (0..n)
+        .take_while(|&k| r[(k, k)].abs() > RANK_CUTOFF * r00 && r[(k, k)].is_finite())
+        .count();
+    let condition = if rank > 0 {
+        r00 / r[(rank - 1, rank - 1)].abs()
+    } else {
+        f64::INFINITY
+    };
+    let (basis, coeff) = (qr.Q_basis(), qr.Q_coeff());
+    let mut buf =
+        MemBuffer::new(
+            householder::apply_block_householder_sequence_transpose_on_the_left_in_place_scratch::<
+                f64,
+            >(basis.nrows(), coeff.nrows(), 1),
+        );
+    householder::apply_block_householder_sequence_transpose_on_the_left_in_place_with_conj(
+        basis,
+        coeff,
+        faer::Conj::No,
+        rhs.as_mut(),
+        faer::Par::Seq,
+        MemStack::new(&mut buf),
+    );
+    // Back substitution on the leading rank × rank block of R.
+    let mut y = vec![0.0; n];
+    for k in (0..rank).rev() {
+        let mut s = rhs[(k, 0)];
+        for (j, yj) in y.iter().enumerate().take(rank).skip(k + 1) {
+            s -= r[(k, j)] * yj;
+        }
+        y[k] = s / r[(k, k)];
+    }
+    let (forward, _) = qr.P().arrays();
+    let mut x = vec![0.0; n];
+    for (k, &col) in forward.iter().enumerate() {
+        x[col] = y[k];
+    }
+    (x, rank, condition)
 }
 
 /// max |u(P) − g(P)| over the given points.
@@ -203,4 +298,70 @@ pub fn max_error(field: &Field, checks: &[Condition]) -> f64 {
         .with_min_len(256)
         .map(|c| (field.value(c.p) - c.value).abs())
         .reduce(|| 0.0, crate::num::max_or_nan)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::linalg::solvers::SolveLstsq;
+
+    fn pseudo_random(m: usize, n: usize) -> Mat<f64> {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        Mat::from_fn(m, n, |_, _| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        })
+    }
+
+    /// On a well-conditioned matrix the truncated solve keeps every column and
+    /// gives the ordinary least-squares solution.
+    #[test]
+    fn full_rank_matches_the_plain_least_squares_solution() {
+        let a = pseudo_random(40, 12);
+        let b = pseudo_random(40, 1);
+        let (x, rank, _) = truncated_lstsq(&a, b.clone());
+        let plain = a.qr().solve_lstsq(&b);
+        assert_eq!(rank, 12);
+        for (j, xj) in x.iter().enumerate() {
+            assert!(
+                (xj - plain[(j, 0)]).abs() < 1e-12,
+                "x[{j}] {xj} vs {}",
+                plain[(j, 0)]
+            );
+        }
+    }
+
+    /// A repeated column (two charges in one place) is dropped, and the fit is
+    /// as good as without it.
+    #[test]
+    fn a_repeated_column_is_dropped_without_losing_the_fit() {
+        let a = pseudo_random(40, 12);
+        let mut twice = Mat::<f64>::zeros(40, 13);
+        for i in 0..40 {
+            for j in 0..12 {
+                twice[(i, j)] = a[(i, j)];
+            }
+            twice[(i, 12)] = a[(i, 3)];
+        }
+        let b = pseudo_random(40, 1);
+        let (x, rank, _) = truncated_lstsq(&twice, b.clone());
+        assert_eq!(rank, 12);
+        let plain = a.qr().solve_lstsq(&b);
+        let residual = |y: &dyn Fn(usize) -> f64, m: &Mat<f64>| {
+            (0..40)
+                .map(|i| {
+                    let r: f64 = (0..m.ncols()).map(|j| m[(i, j)] * y(j)).sum::<f64>() - b[(i, 0)];
+                    r * r
+                })
+                .sum::<f64>()
+        };
+        let r_trunc = residual(&|j| x[j], &twice);
+        let r_plain = residual(&|j| plain[(j, 0)], &a);
+        assert!(
+            (r_trunc - r_plain).abs() < 1e-12 * r_plain.max(1.0),
+            "{r_trunc} vs {r_plain}"
+        );
+    }
 }

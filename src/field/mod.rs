@@ -84,7 +84,7 @@ pub fn solve_best(prep: &Prepared, n_total: usize) -> Result<Solved, FieldError>
                 solves += s.solves;
                 if best
                     .as_ref()
-                    .is_none_or(|b| s.solution.max_error < b.solution.max_error)
+                    .is_none_or(|b| s.solution.better_than(&b.solution))
                 {
                     best = Some(s);
                 }
@@ -143,7 +143,7 @@ pub fn solve_with(
         match r {
             Ok((e, sol, m)) => {
                 errors[i] = e;
-                if best.as_ref().is_none_or(|b| e < b.0) {
+                if best.as_ref().is_none_or(|b| sol.better_than(&b.2)) {
                     best = Some((e, xs[i], sol, m));
                 }
             }
@@ -155,14 +155,21 @@ pub fn solve_with(
     let Some(mut best) = best else {
         return Err(first_err.unwrap_or(FieldError::Invalid("no distance could be solved".into())));
     };
+    // The refinement stays among well-conditioned solutions when the best is one
+    // (those from the fallback count as not solved, as when they were refused).
+    let wc = best.2.well_conditioned;
+    let key = |r: Result<(f64, Solution, usize), FieldError>| match r {
+        Ok((e, sol, _)) if !wc || sol.well_conditioned => e,
+        _ => f64::INFINITY,
+    };
     let ib = xs.iter().position(|&x| x == best.1).unwrap_or(0);
     let (mut a, mut b) = (xs[ib.saturating_sub(1)], xs[(ib + 1).min(xs.len() - 1)]);
     let g = (5f64.sqrt() - 1.0) / 2.0;
     let mut solves = DISTANCE_SCAN;
     let mut c = b - g * (b - a);
     let mut d = a + g * (b - a);
-    let mut fc = eval(c).map(|r| r.0).unwrap_or(f64::INFINITY);
-    let mut fd = eval(d).map(|r| r.0).unwrap_or(f64::INFINITY);
+    let mut fc = key(eval(c));
+    let mut fd = key(eval(d));
     solves += 2;
     for _ in 2..DISTANCE_REFINE {
         if fc < fd {
@@ -170,13 +177,13 @@ pub fn solve_with(
             d = c;
             fd = fc;
             c = b - g * (b - a);
-            fc = eval(c).map(|r| r.0).unwrap_or(f64::INFINITY);
+            fc = key(eval(c));
         } else {
             a = c;
             c = d;
             fc = fd;
             d = a + g * (b - a);
-            fd = eval(d).map(|r| r.0).unwrap_or(f64::INFINITY);
+            fd = key(eval(d));
         }
         solves += 1;
     }
@@ -184,7 +191,9 @@ pub fn solve_with(
     if fc.min(fd) < best.0 {
         if let Ok((e, sol, m)) = eval(x) {
             solves += 1;
-            best = (e, x, sol, m);
+            if sol.better_than(&best.2) {
+                best = (e, x, sol, m);
+            }
         }
     }
     Ok(Solved {
@@ -221,7 +230,7 @@ pub fn solve_quick(prep: &Prepared, base: Layout) -> Result<Solved, FieldError> 
     for r in res {
         match r {
             Ok(t) => {
-                if best.as_ref().is_none_or(|b| t.0.max_error < b.0.max_error) {
+                if best.as_ref().is_none_or(|b| t.0.better_than(&b.0)) {
                     best = Some(t);
                 }
             }
@@ -292,12 +301,6 @@ pub fn inside(poly: &[Vec2], p: Vec2) -> bool {
 /// What can go wrong building or solving a field.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum FieldError {
-    /// The least-squares system is too ill-conditioned to trust.
-    #[error("the MFS system is ill-conditioned (estimated condition number {cond:.2e}); try fewer singularities or a larger pseudo-boundary distance")]
-    IllConditioned {
-        /// estimated condition number
-        cond: f64,
-    },
     /// A glyph name or shape the field cannot be built for.
     #[error("{0}")]
     Invalid(String),
