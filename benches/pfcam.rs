@@ -13,6 +13,7 @@ fn letter_i_solve(c: &mut Criterion) {
         distance: 5.0,
         corner_clusters: true,
         corner_fraction: field::DEFAULT_CORNER_FRACTION,
+        pairs: false,
     };
     c.bench_function("letter I: one MFS solve, N = 516, M = 1032", |b| {
         b.iter(|| field::solve_layout(&prep, black_box(&layout)).unwrap())
@@ -55,6 +56,7 @@ fn field_eval(c: &mut Criterion) {
         distance: 8.0,
         corner_clusters: true,
         corner_fraction: field::DEFAULT_CORNER_FRACTION,
+        pairs: false,
     };
     let (sol, _) = field::solve_layout(&prep, &layout).unwrap();
     let f = sol.field;

@@ -13,6 +13,7 @@ fn main() {
             distance: 1.0,
             corner_clusters: frac > 0.0,
             corner_fraction: frac,
+            pairs: false,
         };
         match pfcam::field::solve_with(&prep, base, None) {
             Ok(s) => println!(

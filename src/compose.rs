@@ -294,6 +294,7 @@ fn solve_boundary(
         distance: 1.0,
         corner_clusters: true,
         corner_fraction: field::DEFAULT_CORNER_FRACTION,
+        pairs: false,
     };
     let solved = field::solve_with(&prep, base, None).map_err(|e| field_err(name, e))?;
     let groups = prep

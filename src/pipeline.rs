@@ -208,6 +208,7 @@ pub fn solve_shape(
         distance: 1.0,
         corner_clusters: true,
         corner_fraction: field::DEFAULT_CORNER_FRACTION,
+        pairs: false,
     };
     let solved = field::solve_with(&prep, base, job.field.pseudo_boundary)?;
     progress(Progress::Step);

@@ -62,13 +62,14 @@ pub fn solve_auto(
         distance: 1.0,
         corner_clusters,
         corner_fraction: DEFAULT_CORNER_FRACTION,
+        pairs: false,
     };
     solve_with(prep, base, distance)
 }
 
 /// As `solve_auto` with the distance chosen, trying each of `CORNER_FRACTIONS` and
 /// keeping the layout with the smallest max boundary error.
-pub fn solve_best(prep: &Prepared, n_total: usize) -> Result<Solved, FieldError> {
+pub fn solve_best(prep: &Prepared, n_total: usize, pairs: bool) -> Result<Solved, FieldError> {
     let mut best: Option<Solved> = None;
     let mut last_err = None;
     let mut solves = 0;
@@ -78,6 +79,7 @@ pub fn solve_best(prep: &Prepared, n_total: usize) -> Result<Solved, FieldError>
             distance: 1.0,
             corner_clusters: true,
             corner_fraction: f,
+            pairs,
         };
         match solve_with(prep, base, None) {
             Ok(s) => {
@@ -326,7 +328,7 @@ pub fn convergence_table(glyph: char, ns: &[usize]) -> Result<Vec<ConvergenceRow
     let prep = Prepared::new(paper_boundary(glyph)?)?;
     ns.iter()
         .map(|&n| {
-            let s = solve_best(&prep, n)?;
+            let s = solve_best(&prep, n, true)?;
             Ok(ConvergenceRow {
                 n,
                 m: s.m,

@@ -24,6 +24,36 @@ pub const OUTER_CHARGE_FACTOR: f64 = 3.0;
 /// is a monopole plus multipoles decaying like (glyph size / R)^k, so few suffice.
 pub const OUTER_CHARGES: usize = 8;
 
+/// Fewest and most singularities on the outer circle of a paired layout
+/// (`Layout::pairs`): a ring of n charges at 3R leaves an aliasing error near
+/// 3⁻ⁿ; 8 left a floor of 4.7e-6 on a 10 × 40 rectangle, 16 leave 2e-8. The ring
+/// takes one charge in 32 of N within these bounds.
+pub const PAIRED_OUTER_CHARGES: (usize, usize) = (8, 16);
+
+/// Singularities inside each counter's sink circle in a paired layout: the
+/// ring's aliasing term, about (1/4)ⁿ/n, left a floor of 9.0e-4 on the paper's
+/// letter A with 6 (the same figure from N = 396 to 1 000); with 12 the term
+/// is (1/4)¹²/12 ≈ 4e-9 and A reaches 9.3e-6 at N = 1 000.
+pub const PAIRED_SINK_CHARGES: usize = 12;
+
+/// Corner charges of a paired layout sit in pairs at ± this angle (radians)
+/// about the corner's bisector. Near a convex corner
+/// u − 1 = Σₖ aₖ r^(kπ/α) sin(kπθ/α): the odd terms are symmetric about the
+/// bisector, the even ones antisymmetric, and charges on the bisector alone can
+/// make only the symmetric ones, which stalls the fit near 1e-4
+/// (../shared/design/FIELD-NOTES.md). Halved for a corner whose material wedge
+/// is narrower than twice this.
+pub const PAIR_ANGLE: f64 = 0.3;
+
+/// Fewest charges per corner laid out in pairs; below it they go on the
+/// bisector (with one or two per corner, pairs doubled the error of the letter
+/// I: the symmetric terms, which carry most of the field, got half the charges).
+pub const PAIR_MIN: usize = 6;
+
+/// Check points between neighbouring collocation points: 4 in the plain layout,
+/// 10 in the paired one (the "at least 10 per collocation interval").
+pub const CHECKS_PER_INTERVAL: (usize, usize) = (4, 10);
+
 /// Number of singularities inside each counter's sink circle.
 pub const SINK_CHARGES: usize = 6;
 
@@ -65,6 +95,10 @@ pub struct Layout {
     pub corner_clusters: bool,
     /// Fraction of the free singularities (after outer and sinks) given to corner clusters.
     pub corner_fraction: f64,
+    /// The accurate layout: corner charges in pairs about the bisector
+    /// (`PAIR_ANGLE`), a larger outer ring (`PAIRED_OUTER_CHARGES`) and
+    /// `CHECKS_PER_INTERVAL.1` check points per interval.
+    pub pairs: bool,
 }
 
 /// A sink inside a counter: u = 0 on the circle (centre, radius).
@@ -84,8 +118,8 @@ pub struct Prepared {
     polys: Vec<Vec<Vec2>>,
     index: DistanceIndex,
     lengths: Vec<f64>,
-    /// Convex corners of the material, (contour, arc length, point, bisector into material, max depth).
-    corners: Vec<(usize, f64, Vec2, Vec2, f64)>,
+    /// Convex corners of the material.
+    corners: Vec<Corner>,
     /// All corners (for check points and charges at corners): (contour, arc
     /// length, tangent in, tangent out).
     all_corners: Vec<(usize, f64, Vec2, Vec2)>,
@@ -95,6 +129,23 @@ pub struct Prepared {
     /// true for the direct problem, false for the inverse problem of Section 4,
     /// whose only zero boundaries are the sinks inside the shape.
     pub outer: bool,
+}
+
+/// A convex corner of the material, where u − 1 ~ r^(π/α) with α > π.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Corner {
+    /// Contour index.
+    ci: usize,
+    /// Arc length of the corner on its contour.
+    s: f64,
+    /// The corner.
+    p: Vec2,
+    /// Unit bisector into the material.
+    bisector: Vec2,
+    /// Largest charge distance from the corner along the bisector.
+    depth: f64,
+    /// Half the material's wedge angle, (π − turn)/2.
+    half_wedge: f64,
 }
 
 /// A problem's points by role (the paper's sets of Section 4): the material's
@@ -171,7 +222,14 @@ impl Prepared {
                     let b = (k.t_out - k.t_in).normalized();
                     let b = if b.norm2() > 0.5 { b } else { k.t_in.perp() };
                     let depth = ray_cast(&polys, k.p, b, 1e-9 * boundary.radius);
-                    corners.push((ci, k.s, k.p, b, 0.5 * depth.min(lengths[ci] / 4.0)));
+                    corners.push(Corner {
+                        ci,
+                        s: k.s,
+                        p: k.p,
+                        bisector: b,
+                        depth: 0.5 * depth.min(lengths[ci] / 4.0),
+                        half_wedge: 0.5 * (std::f64::consts::PI - k.turn),
+                    });
                 }
             }
         }
@@ -180,16 +238,17 @@ impl Prepared {
         // share a charge and make the system singular: stop both short of it.
         for i in 0..corners.len() {
             for j in 0..i {
-                let (pi, bi, pj, bj) = (corners[i].2, corners[i].3, corners[j].2, corners[j].3);
+                let (pi, bi) = (corners[i].p, corners[i].bisector);
+                let (pj, bj) = (corners[j].p, corners[j].bisector);
                 let den = bi.cross(bj);
                 if den.abs() < 1e-12 {
                     continue;
                 }
                 let ti = (pj - pi).cross(bj) / den;
                 let tj = (pj - pi).cross(bi) / den;
-                if ti > 0.0 && tj > 0.0 && ti <= corners[i].4 && tj <= corners[j].4 {
-                    corners[i].4 = corners[i].4.min(0.8 * ti);
-                    corners[j].4 = corners[j].4.min(0.8 * tj);
+                if ti > 0.0 && tj > 0.0 && ti <= corners[i].depth && tj <= corners[j].depth {
+                    corners[i].depth = corners[i].depth.min(0.8 * ti);
+                    corners[j].depth = corners[j].depth.min(0.8 * tj);
                 }
             }
         }
@@ -241,9 +300,17 @@ impl Prepared {
     /// Point `d` inside the material from sample `s` on contour `ci`, pulled back
     /// where the material is thin so the charge stays at most 45 % of the way
     /// across it and at least half its depth away from every other boundary part.
-    fn inward_charge(&self, s: &Sample, d: f64) -> Vec2 {
+    fn inward_charge(&self, s: &Sample, d: f64, pairs: bool) -> Vec2 {
         let n = s.t.perp();
-        let across = ray_cast(&self.polys, s.p, n, 1e-9 * self.boundary.radius);
+        // The sample is on the curve, the polygons within flat_tol of it: a
+        // crossing closer than that is the sample's own chord, not the far side
+        // (the plain layout keeps its old skip, which the golden samples use).
+        let skip = if pairs {
+            (4.0 * self.boundary.flat_tol).max(1e-9 * self.boundary.radius)
+        } else {
+            1e-9 * self.boundary.radius
+        };
+        let across = ray_cast(&self.polys, s.p, n, skip);
         let mut depth = d.min(0.45 * across);
         for _ in 0..12 {
             let q = s.p + n * depth;
@@ -275,8 +342,24 @@ impl Prepared {
     /// The problem for a layout, its points kept apart by role.
     pub fn groups(&self, layout: &Layout) -> Result<Groups, FieldError> {
         let b = &self.boundary;
-        let n_sinks = self.sinks.len() * SINK_CHARGES;
-        let n_outer = if self.outer { OUTER_CHARGES } else { 0 };
+        let sink_charges = if layout.pairs {
+            PAIRED_SINK_CHARGES
+        } else {
+            SINK_CHARGES
+        };
+        let n_sinks = self.sinks.len() * sink_charges;
+        let n_outer = match (self.outer, layout.pairs) {
+            (false, _) => 0,
+            (true, false) => OUTER_CHARGES,
+            (true, true) => {
+                (layout.n_total / 32).clamp(PAIRED_OUTER_CHARGES.0, PAIRED_OUTER_CHARGES.1)
+            }
+        };
+        let checks = if layout.pairs {
+            CHECKS_PER_INTERVAL.1
+        } else {
+            CHECKS_PER_INTERVAL.0
+        };
         let fixed = n_outer + n_sinks;
         if layout.n_total < fixed + 4 * b.contours.len() {
             return Err(FieldError::Invalid(format!(
@@ -291,7 +374,14 @@ impl Prepared {
         } else {
             0
         };
-        let n_corner_total = n_corner_each * self.corners.len();
+        // Charges per corner: in pairs about the bisector once there are enough
+        // for pairs to pay, else on the bisector.
+        let (n_pairs, n_single) = if layout.pairs && n_corner_each >= PAIR_MIN {
+            (n_corner_each / 2, 0)
+        } else {
+            (0, n_corner_each)
+        };
+        let n_corner_total = (2 * n_pairs + n_single) * self.corners.len();
         let n_pb = free - n_corner_total;
 
         let mut pr = Problem::default();
@@ -338,7 +428,8 @@ impl Prepared {
                         s.t = Vec2::new(n.y, -n.x);
                     }
                 }
-                pr.charges.push(self.inward_charge(&s, layout.distance));
+                pr.charges
+                    .push(self.inward_charge(&s, layout.distance, layout.pairs));
             }
             let cum = c.cumulative_lengths();
             for j in 0..2 * nc {
@@ -350,29 +441,46 @@ impl Prepared {
                 colloc_s[ci].push(s);
             }
         }
-        // Corner clusters: charges along the bisector, two collocation points per
-        // charge, one on each side of the corner at the same distance.
-        if n_corner_each > 0 {
-            for &(ci, s0, p, dir, dmax) in &self.corners {
-                let c = &b.contours[ci];
-                let cum = c.cumulative_lengths();
-                let nn = n_corner_each as f64;
-                for j in 1..=n_corner_each {
-                    let delta = dmax * (-CLUSTER_SIGMA * (nn.sqrt() - (j as f64).sqrt())).exp();
-                    pr.charges.push(p + dir * delta);
+        // Corner clusters at tapered distances: on the bisector, two collocation
+        // points per charge, one each side of the corner at the charge's
+        // distance; or in pairs about the bisector, four collocation points per
+        // pair, two each side, at the pair's distance and halfway (geometrically)
+        // to the next pair out.
+        for k in &self.corners {
+            if n_pairs + n_single == 0 {
+                break;
+            }
+            let c = &b.contours[k.ci];
+            let cum = c.cumulative_lengths();
+            let deltas = cluster_distances(k.depth, n_pairs.max(n_single));
+            let angle = PAIR_ANGLE.min(0.5 * k.half_wedge);
+            for (j, &delta) in deltas.iter().enumerate() {
+                let outer = deltas.get(j + 1).copied().unwrap_or(2.0 * delta);
+                let pair = [delta, (delta * outer).sqrt()];
+                let alongs: &[f64] = if n_pairs > 0 {
                     for side in [-1.0, 1.0] {
-                        let s = (s0 + side * delta).rem_euclid(self.lengths[ci]);
+                        pr.charges
+                            .push(k.p + rotate(k.bisector, side * angle) * delta);
+                    }
+                    &pair
+                } else {
+                    pr.charges.push(k.p + k.bisector * delta);
+                    &pair[..1]
+                };
+                for &along in alongs {
+                    for side in [-1.0, 1.0] {
+                        let s = (k.s + side * along).rem_euclid(self.lengths[k.ci]);
                         pr.colloc.push(Condition {
                             p: c.sample_at(&cum, s).p,
                             value: 1.0,
                         });
-                        colloc_s[ci].push(s);
+                        colloc_s[k.ci].push(s);
                     }
                 }
             }
         }
-        // Check points: 4 between every pair of neighbouring collocation points on
-        // each contour, plus every corner.
+        // Check points: `checks` between every pair of neighbouring collocation
+        // points on each contour, plus every corner.
         for (ci, c) in b.contours.iter().enumerate() {
             let cum = c.cumulative_lengths();
             let mut ss = colloc_s[ci].clone();
@@ -385,8 +493,8 @@ impl Prepared {
                 } else {
                     ss[0] + l
                 };
-                for q in 1..=4 {
-                    let s = a + (bnext - a) * q as f64 / 5.0;
+                for q in 1..=checks {
+                    let s = a + (bnext - a) * q as f64 / (checks + 1) as f64;
                     pr.checks.push(Condition {
                         p: c.sample_at(&cum, s).p,
                         value: 1.0,
@@ -416,8 +524,8 @@ impl Prepared {
                     p: centre + Vec2::new(a.cos(), a.sin()) * radius,
                     value: 0.0,
                 });
-                for q in 1..=4 {
-                    let a = TAU * (j as f64 + q as f64 / 5.0) / (2 * n) as f64;
+                for q in 1..=checks {
+                    let a = TAU * (j as f64 + q as f64 / (checks + 1) as f64) / (2 * n) as f64;
                     pr.checks.push(Condition {
                         p: centre + Vec2::new(a.cos(), a.sin()) * radius,
                         value: 0.0,
@@ -437,7 +545,7 @@ impl Prepared {
                     sink.centre,
                     sink.radius,
                     sink.radius * SINK_CHARGE_FACTOR,
-                    SINK_CHARGES,
+                    sink_charges,
                 );
                 (*sink, g)
             })
@@ -448,6 +556,21 @@ impl Prepared {
             sinks,
         })
     }
+}
+
+/// Tapered exponential distances δⱼ = δ_max·exp(−σ(√n − √j)), j = 1..n, from
+/// the corner out (Gopal and Trefethen's spacing).
+fn cluster_distances(depth: f64, n: usize) -> Vec<f64> {
+    let nn = (n as f64).sqrt();
+    (1..=n)
+        .map(|j| depth * (-CLUSTER_SIGMA * (nn - (j as f64).sqrt())).exp())
+        .collect()
+}
+
+/// `v` turned counter-clockwise by `angle` radians.
+fn rotate(v: Vec2, angle: f64) -> Vec2 {
+    let (s, c) = angle.sin_cos();
+    Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
 }
 
 /// A sink for a counter: centred at the point of the counter farthest from its

@@ -316,6 +316,7 @@ pub fn plan_levels_reporting(
                 distance: 1.0,
                 corner_clusters: true,
                 corner_fraction: 0.2,
+                pairs: false,
             };
             let t0 = std::time::Instant::now();
             let solved = field::solve_quick(&prep, base)?;

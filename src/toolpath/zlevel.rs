@@ -696,6 +696,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
             distance: 1.0,
             corner_clusters: false,
             corner_fraction: 0.0,
+            pairs: false,
         },
     )?;
     let inv = &solved.solution.field;
