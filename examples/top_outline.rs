@@ -52,8 +52,23 @@ fn main() {
     let (lo, hi) = shape.bbox().unwrap();
     let pad = Vec2::new(5.0, 5.0);
     let grid = Grid::sample(&solved.solution.field, lo - pad, hi + pad, 0.1, &polys);
-    for s in ss {
+    let svg_out = args.next();
+    let mut svg = String::new();
+    let path_of = |loops: &[Vec<Vec2>], colour: &str| {
+        let mut d = String::new();
+        for l in loops {
+            for (k, p) in l.iter().enumerate() {
+                d += &format!("{}{:.3} {:.3} ", if k == 0 { "M" } else { "L" }, p.x, -p.y);
+            }
+            d += "Z ";
+        }
+        format!("<path d=\"{d}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"0.15\"/>\n")
+    };
+    svg += &path_of(&polys, "black");
+    let colours = ["red", "orange", "green", "blue", "purple", "grey"];
+    for (i, s) in ss.into_iter().enumerate() {
         let loops = isolines(&grid, s, &solved.solution.field, &polys);
+        svg += &path_of(&loops, colours[i % colours.len()]);
         let outlines = loops.iter().filter(|l| polygon_area(l) > 0.0).count();
         let (out, at_out) = one_way(&loops, &polys);
         let (inn, at_in) = one_way(&polys, &loops);
@@ -64,5 +79,13 @@ fn main() {
             out.max(inn),
             at_out.x, at_out.y, at_in.x, at_in.y
         );
+    }
+    if let Some(f) = svg_out {
+        let (a, b) = (lo - pad, hi + pad);
+        let doc = format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{} {} {} {}\" width=\"{}mm\" height=\"{}mm\">\n<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"white\"/>\n{svg}</svg>\n",
+            a.x, -b.y, b.x - a.x, b.y - a.y, b.x - a.x, b.y - a.y, a.x, -b.y, b.x - a.x, b.y - a.y
+        );
+        std::fs::write(f, doc).expect("write the SVG");
     }
 }

@@ -1,6 +1,6 @@
 //! The whole run: job → shape → field → tool path, with the gouge check.
 
-use crate::field::{self, Boundary, FieldError, Layout, Prepared};
+use crate::field::{self, Boundary, FieldError, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape, ShapeSource};
 use crate::job::{Direction, Job, OperationKind};
 use crate::levels::plan::{plan_levels_reporting, LevelInfo, LevelJob, LevelProgress};
@@ -181,10 +181,40 @@ pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineEr
     })
 }
 
-/// The shape's field: problem (2.5) with u = 1 on every contour, N from
-/// `field.singularities` or `AUTO_N_PER_REGION` per region plus the outer ring
-/// and the counters' sinks, the distance given or chosen. Returns the solve, its
-/// report and the outer radius.
+/// The loosest max boundary error asked of a shape's field (a profile job, or a
+/// boss or cavity whose top edge is far from s = 1).
+pub const FIELD_TARGET_LOOSEST: f64 = 1e-3;
+
+/// The tightest max boundary error asked of a shape's field (a profile whose
+/// top is at s = 1 or within 1e-4 of it).
+pub const FIELD_TARGET_TIGHTEST: f64 = 1e-6;
+
+/// The largest N an automatic shape solve grows to (the dense least squares
+/// holds 2N² numbers: 256 MB at this N).
+pub const FIELD_N_MAX: usize = 4000;
+
+/// The max boundary error the shape's field must reach: s_bottom (1 − s_top)/100
+/// for a boss or cavity (the level rule of issue 12: a level's error at most a
+/// hundredth of its distance from s = 1, so that Γ(s) is where s says), within
+/// [`FIELD_TARGET_TIGHTEST`, `FIELD_TARGET_LOOSEST`].
+pub fn field_target(job: &Job) -> f64 {
+    let range = match job.operation.kind {
+        OperationKind::Profile => None,
+        OperationKind::Boss | OperationKind::Cavity => job.profile.as_ref().map(|p| p.s_range()),
+    };
+    // Times s_bottom: a boss level's field is u/s, whose error is the shape's
+    // over s, and that must stay under the level's bound too.
+    range.map_or(FIELD_TARGET_LOOSEST, |(lo, hi)| {
+        (lo * (1.0 - hi) / 100.0).clamp(FIELD_TARGET_TIGHTEST, FIELD_TARGET_LOOSEST)
+    })
+}
+
+/// The shape's field: problem (2.5) with u = 1 on every contour, in the paired
+/// layout (docs/method.md §3a), N from `field.singularities` or grown from
+/// `AUTO_N_PER_REGION` per region until the max boundary error reaches
+/// [`field_target`] (at most [`FIELD_N_MAX`]); a boss or cavity whose field
+/// cannot reach it is an error naming the profile. Returns the solve, its report
+/// and the outer radius.
 pub fn solve_shape(
     shape: &Shape,
     job: &Job,
@@ -198,20 +228,31 @@ pub fn solve_shape(
         total: 1,
     });
     let prep = Prepared::new(boundary)?;
-    let n_total = job.field.singularities.unwrap_or(
-        AUTO_N_PER_REGION * shape.regions.len()
-            + field::setup::OUTER_CHARGES
-            + prep.sinks.len() * field::setup::SINK_CHARGES,
-    );
-    let base = Layout {
-        n_total,
-        distance: 1.0,
-        corner_clusters: true,
-        corner_fraction: field::DEFAULT_CORNER_FRACTION,
-        pairs: false,
+    let n_start = AUTO_N_PER_REGION * shape.regions.len()
+        + field::setup::PAIRED_OUTER_CHARGES.0
+        + prep.sinks.len() * field::setup::PAIRED_SINK_CHARGES;
+    let max_error = field_target(job);
+    let target = field::adaptive::Target {
+        max_error,
+        n_start: job.field.singularities.unwrap_or(n_start),
+        n_max: job.field.singularities.unwrap_or(FIELD_N_MAX.max(n_start)),
+        distance: job.field.pseudo_boundary,
     };
-    let solved = field::solve_with(&prep, base, job.field.pseudo_boundary)?;
+    let solved = field::adaptive::solve_to(&prep, &target)?;
     progress(Progress::Step);
+    let reached = solved.solution.max_error;
+    if job.operation.kind != OperationKind::Profile && (reached > max_error || reached.is_nan()) {
+        return Err(PipelineError::Other(format!(
+            "profile: its top edge s = {:.6} needs the shape's field to err by at most {max_error:.1e} (a hundredth of 1 − s, times the bottom s), but it reaches only {reached:.2e} at N = {}: lower the profile's top s (profile.s1, or the last profile point){}",
+            job.profile.as_ref().map_or(1.0, |p| p.s_range().1),
+            solved.layout.n_total,
+            if job.field.singularities.is_some() {
+                ", or raise or remove field.singularities"
+            } else {
+                ""
+            }
+        )));
+    }
     let report = SolveReport {
         label: shape
             .regions
@@ -222,7 +263,7 @@ pub fn solve_shape(
         n: solved.layout.n_total,
         m: solved.m,
         distance: solved.layout.distance,
-        max_error: solved.solution.max_error,
+        max_error: reached,
     };
     Ok((solved, report, outer_radius))
 }
@@ -387,6 +428,11 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         max_scallop: job.operation.max_scallop,
         margin: job.stock.margin,
         outer_radius,
+        field_figures: crate::levels::plan::FieldFigures {
+            m: solved.m,
+            distance: solved.layout.distance,
+            max_error: solved.solution.max_error,
+        },
         params,
     };
     let mut planned = plan_with_progress(&lj, progress)?;

@@ -91,6 +91,14 @@ impl Field {
         Field { charges, coef }
     }
 
+    /// The field times `k` (the same charges, every coefficient times k).
+    pub fn scaled(&self, k: f64) -> Field {
+        Field {
+            charges: self.charges.clone(),
+            coef: self.coef.iter().map(|c| c * k).collect(),
+        }
+    }
+
     /// Number of singularities N.
     pub fn n(&self) -> usize {
         self.charges.len()

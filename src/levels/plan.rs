@@ -69,8 +69,28 @@ pub struct LevelJob<'a> {
     pub margin: f64,
     /// Outer radius for the level problems.
     pub outer_radius: f64,
+    /// The shape field's collocation count, pseudo-boundary distance (mm) and
+    /// max boundary error, reported for the boss levels that use it.
+    pub field_figures: FieldFigures,
     /// Path settings (the stock rectangle is filled in by the planner).
     pub params: LevelParams,
+}
+
+/// One solve's figures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldFigures {
+    /// Collocation points M.
+    pub m: usize,
+    /// Pseudo-boundary distance, mm.
+    pub distance: f64,
+    /// Max boundary error over the check points.
+    pub max_error: f64,
+}
+
+/// The largest error a level's field may have: a hundredth of 1 − s (issue
+/// 12), so that the field places Γ(s) where s says.
+pub fn level_error_bound(s: f64) -> f64 {
+    (1.0 - s) / 100.0
 }
 
 /// Newton's method along ∇u from `p` to Γ(s) (a few steps; `None` if it wanders).
@@ -289,40 +309,22 @@ pub fn plan_levels_reporting(
             } else {
                 polys.clone()
             };
-            let contours: Vec<Contour> = oriented
-                .iter()
-                .filter_map(|p| Contour::polygon(p).ok())
-                .collect();
-            let is_counter: Vec<bool> = oriented.iter().map(|p| polygon_area(p) < 0.0).collect();
-            let loops = oriented
-                .iter()
-                .filter(|p| polygon_area(p) > 0.0)
-                .count()
-                .max(1);
-            let centre = field::centroid(&contours, tol);
-            let b = Boundary {
-                contours,
-                is_counter,
-                centre,
-                radius: job.outer_radius,
-                flat_tol: tol,
-            };
-            let prep = Prepared::new(b)?;
-            let n_total = LEVEL_N_PER_LOOP * loops
-                + field::setup::OUTER_CHARGES
-                + prep.sinks.len() * (field::setup::SINK_CHARGES + LEVEL_N_PER_LOOP);
-            let base = Layout {
-                n_total,
-                distance: 1.0,
-                corner_clusters: true,
-                corner_fraction: 0.2,
-                pairs: false,
-            };
             let t0 = std::time::Instant::now();
-            let solved = field::solve_quick(&prep, base)?;
-            let t_solve = t0.elapsed().as_secs_f64();
-            let mut warnings = Vec::new();
             let label = format!("level {k} (z {:.3})", job.top + z);
+            let mut warnings = Vec::new();
+            let level = if job.cavity {
+                cavity_level_field(&oriented, tol, job.outer_radius, s, &label, &mut warnings)?
+            } else {
+                let l = boss_level_field(f, s, &job.field_figures);
+                let (e, bound) = (l.figures.max_error, level_error_bound(s));
+                if e > bound || e.is_nan() {
+                    warnings.push(format!(
+                        "{label}, s = {s:.6}: its field (the shape's u/s) errs by {e:.2e}, above {bound:.1e} (a hundredth of 1 − s): lower profile.s1 (the top edge)"
+                    ));
+                }
+                l
+            };
+            let t_solve = t0.elapsed().as_secs_f64();
             // A level added for the scallop bound clears only the band out to the
             // contour of the next stepdown level below (wider for a boss, narrower
             // for a cavity): the largest distance between the two.
@@ -342,7 +344,7 @@ pub fn plan_levels_reporting(
             let (paths, uncut) = if job.cavity {
                 let (p, f) = crate::toolpath::zlevel::cavity_paths(
                     &oriented,
-                    &solved.solution.field,
+                    &level.field,
                     &params,
                     &label,
                     &mut warnings,
@@ -353,7 +355,7 @@ pub fn plan_levels_reporting(
                 (
                     boss_paths(
                         &oriented,
-                        &solved.solution.field,
+                        &level.field,
                         &params,
                         &label,
                         &mut warnings,
@@ -365,10 +367,10 @@ pub fn plan_levels_reporting(
             let info = LevelInfo {
                 z: job.top + z,
                 s,
-                n: solved.layout.n_total,
-                m: solved.m,
-                max_error: solved.solution.max_error,
-                distance: solved.layout.distance,
+                n: level.field.n(),
+                m: level.figures.m,
+                max_error: level.figures.max_error,
+                distance: level.figures.distance,
                 uncut,
                 min_clearance: f64::NAN,
                 t_solve,
@@ -403,6 +405,89 @@ pub fn plan_levels_reporting(
         warnings,
         params,
         t_schedule,
+    })
+}
+
+/// A level's field and its figures.
+struct LevelField {
+    field: Field,
+    figures: FieldFigures,
+}
+
+/// A boss level's field: u/s, with u the shape's field. Outside Γ(s) it is
+/// harmonic, 1 on Γ(s) and 0 on the outer circle and the sinks, so by
+/// uniqueness it is the solution of the level's own problem (the paper
+/// solves that problem again by MFS; its answer is known exactly), with the
+/// boundary error of the shape's field divided by s
+/// (../shared/design/FIELD-NOTES.md). A fresh MFS solve on Γ(s) near s = 1,
+/// where Γ(s) has near-corners of tiny radius, erred by far more.
+fn boss_level_field(f: &Field, s: f64, shape: &FieldFigures) -> LevelField {
+    LevelField {
+        field: f.scaled(1.0 / s),
+        figures: FieldFigures {
+            max_error: shape.max_error / s,
+            ..*shape
+        },
+    }
+}
+
+/// A cavity level's field: the mould is outside Γ(s), so the level's problem
+/// is not the shape's and is solved by MFS on Γ(s) (the paper's Section 7).
+/// An error above `level_error_bound` is a warning that names the level
+/// (doubling N twice did not move it: the limit is the level's polygon, whose
+/// vertices are kinks the smooth Γ(s) does not have).
+fn cavity_level_field(
+    oriented: &[Vec<Vec2>],
+    tol: f64,
+    outer_radius: f64,
+    s: f64,
+    label: &str,
+    warnings: &mut Vec<String>,
+) -> Result<LevelField, PlanError> {
+    let contours: Vec<Contour> = oriented
+        .iter()
+        .filter_map(|p| Contour::polygon(p).ok())
+        .collect();
+    let is_counter: Vec<bool> = oriented.iter().map(|p| polygon_area(p) < 0.0).collect();
+    let loops = oriented
+        .iter()
+        .filter(|p| polygon_area(p) > 0.0)
+        .count()
+        .max(1);
+    let centre = field::centroid(&contours, tol);
+    let b = Boundary {
+        contours,
+        is_counter,
+        centre,
+        radius: outer_radius,
+        flat_tol: tol,
+    };
+    let prep = Prepared::new(b)?;
+    let n_total = LEVEL_N_PER_LOOP * loops
+        + field::setup::OUTER_CHARGES
+        + prep.sinks.len() * (field::setup::SINK_CHARGES + LEVEL_N_PER_LOOP);
+    let base = Layout {
+        n_total,
+        distance: 1.0,
+        corner_clusters: true,
+        corner_fraction: 0.2,
+        pairs: false,
+    };
+    let solved = field::solve_quick(&prep, base)?;
+    let e = solved.solution.max_error;
+    let bound = level_error_bound(s);
+    if e > bound || e.is_nan() {
+        warnings.push(format!(
+            "{label}, s = {s:.6}: its field errs by {e:.2e}, above {bound:.1e} (a hundredth of 1 − s); the cut follows the level's polygon, checked by geometry, but the clearing rings may be uneven there"
+        ));
+    }
+    Ok(LevelField {
+        field: solved.solution.field,
+        figures: FieldFigures {
+            m: solved.m,
+            distance: solved.layout.distance,
+            max_error: e,
+        },
     })
 }
 

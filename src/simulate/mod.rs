@@ -16,8 +16,9 @@
 //!   tool; radial engagement: the spread, across the move's direction, of the
 //!   cells where it removes more than [`AIR_DEPTH`], over the tool diameter;
 //!   a move whose cells cut deeper than stepdown + [`SLOT_SLACK`] span at
-//!   least [`SLOT_SHARE`] of the tool width is a full-width cut deeper than
-//!   the stepdown;
+//!   least [`SLOT_SHARE`] of the tool width, and reach within [`SLOT_MIDDLE`]
+//!   of the radius from its axis, is a full-width cut deeper than the
+//!   stepdown;
 //! - feed length in air: pieces that remove at most [`AIR_DEPTH`];
 //! - with a job: cells cut below the part's own model by more than the
 //!   tolerance are gouges ([`part`]).
@@ -59,6 +60,11 @@ pub const SLOT_SHARE: f64 = 0.9;
 /// Slack over the stepdown (mm) before a full-width cut is too deep (the
 /// stepdown is reached exactly by design).
 pub const SLOT_SLACK: f64 = 0.01;
+
+/// A full-width cut must also be deeper than the slot depth within this share
+/// of the radius from the tool's axis (a slot is deep under the middle of the
+/// tool; rim slivers are not).
+pub const SLOT_MIDDLE: f64 = 0.5;
 /// Chords of arcs stay within this fraction of the resolution of the arc.
 pub const CHORD_FRACTION: f64 = 0.05;
 /// Default cell side, mm.

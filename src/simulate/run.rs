@@ -8,7 +8,9 @@ use super::moves::Move;
 use super::report::{Finding, Kind, Worst};
 use super::stock::{Grid, HeightMap};
 use super::tool::Segment;
-use super::{AIR_DEPTH, PLUNGE_ANGLE_DEG, PLUNGE_DEPTH, RAPID_DEPTH, SLOT_SHARE, SLOT_SLACK};
+use super::{
+    AIR_DEPTH, PLUNGE_ANGLE_DEG, PLUNGE_DEPTH, RAPID_DEPTH, SLOT_MIDDLE, SLOT_SHARE, SLOT_SLACK,
+};
 use rayon::prelude::*;
 
 /// What one move did to the stock (within one band of rows, or merged).
@@ -26,6 +28,11 @@ struct MoveCut {
     /// plus [`SLOT_SLACK`]) was removed: how wide the cut is at depth.
     deep_lo: f64,
     deep_hi: f64,
+    /// Smallest |offset| of such a cell: a slot is deep under the tool's
+    /// middle, while slivers left at the rim by rounding (on one side here,
+    /// on the other a little further, as a straight move crosses the arcs an
+    /// earlier pass cut) span the width without ever reaching the middle.
+    deep_mid: f64,
 }
 
 impl Default for MoveCut {
@@ -37,6 +44,7 @@ impl Default for MoveCut {
             off_hi: f64::NEG_INFINITY,
             deep_lo: f64::INFINITY,
             deep_hi: f64::NEG_INFINITY,
+            deep_mid: f64::INFINITY,
         }
     }
 }
@@ -57,6 +65,7 @@ impl MoveCut {
         self.off_hi = self.off_hi.max(o.off_hi);
         self.deep_lo = self.deep_lo.min(o.deep_lo);
         self.deep_hi = self.deep_hi.max(o.deep_hi);
+        self.deep_mid = self.deep_mid.min(o.deep_mid);
     }
 
     /// Share of the tool's width `2r` between `lo` and `hi` (0 when empty).
@@ -274,6 +283,7 @@ impl Band<'_> {
                         if d > self.slot_depth {
                             cut.deep_lo = cut.deep_lo.min(o);
                             cut.deep_hi = cut.deep_hi.max(o);
+                            cut.deep_mid = cut.deep_mid.min(o.abs());
                         }
                     }
                 }
@@ -382,7 +392,8 @@ impl Walk {
             // SLOT_SHARE of the tool (a sliver at the rim deeper than the
             // stepdown, left by rounding, is not a slot).
             let deep = MoveCut::share(cut.deep_lo, cut.deep_hi, r);
-            if deep >= SLOT_SHARE && cut.depth > sd + SLOT_SLACK {
+            if deep >= SLOT_SHARE && cut.deep_mid <= SLOT_MIDDLE * r && cut.depth > sd + SLOT_SLACK
+            {
                 self.deep_slots += 1;
                 let msg = format!(
                     "full-width cut ({:.0} % of the tool deeper than the stepdown {sd} mm), {:.3} mm deep",
