@@ -726,6 +726,45 @@ fn controller_that_hangs_is_detected_and_stopped() {
 }
 
 #[test]
+fn lost_ok_is_detected_as_a_stall_not_a_hang() {
+    // GRBL runs every line but one `ok` never arrives: it ends idle with empty
+    // buffers (`Bf:15,128`) while the sender still counts a line in flight, and
+    // its status reports keep coming.
+    let emu = Emulator::start(Config {
+        drop_ok: Some(120),
+        ..Config::default()
+    });
+    let file = job_file("stall", &zigzag(300));
+    let mut a = args(&emu, &file);
+    a.response_timeout = 0.5;
+    let (_op, _events, done) = spawn(a.clone());
+    let err = outcome(&done).expect_err("stall detected");
+    let GrblError::Stalled {
+        unacked,
+        seconds,
+        last_acked,
+        resume_from,
+    } = &err
+    else {
+        panic!("unexpected {err:?}");
+    };
+    assert_eq!(*unacked, 1);
+    assert!(*seconds >= 0.5 && *seconds < 2.0, "{seconds}");
+    let total = file_blocks(&a).len();
+    // Every line ran; the sender can only know all but the last were answered.
+    assert_eq!(emu.lines().len(), total);
+    assert_eq!(emu.shared().dropped_oks, 1);
+    let last = last_acked.expect("acked");
+    assert_eq!(*resume_from, Some(last + 1));
+    assert!(err.to_string().contains("never acknowledged"), "{err}");
+    assert_eq!(ExitStatus::of(&Err(err)), ExitStatus::LinkLost);
+    let s = emu.shared();
+    let rt: Vec<u8> = s.realtime.iter().map(|r| r.0).collect();
+    assert!(rt.ends_with(&[FEED_HOLD, SOFT_RESET]), "{rt:?}");
+    assert!(!s.spindle_on);
+}
+
+#[test]
 fn controller_reset_mid_job_stops_the_stream() {
     let emu = Emulator::start(Config {
         reboot_after: Some(150),

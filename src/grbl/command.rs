@@ -131,7 +131,8 @@ pub enum ExitStatus {
     Alarm = 5,
     /// 6: the operator aborted.
     Aborted = 6,
-    /// 7: the link died mid-job (port gone, GRBL silent, GRBL reset itself).
+    /// 7: the link died mid-job (port gone, GRBL silent, GRBL reset itself,
+    /// acknowledgements lost).
     LinkLost = 7,
 }
 
@@ -151,6 +152,7 @@ impl ExitStatus {
                 GrblError::Aborted { .. } => ExitStatus::Aborted,
                 GrblError::LinkLost { .. }
                 | GrblError::Unresponsive { .. }
+                | GrblError::Stalled { .. }
                 | GrblError::UnexpectedReset { .. } => ExitStatus::LinkLost,
             },
         }

@@ -46,7 +46,10 @@ pub struct Settings {
     pub stop_on_error: bool,
     /// How long to wait for the banner, before and after the soft reset.
     pub banner_timeout: Duration,
-    /// Silence (no line at all, status reports included) that means GRBL is gone.
+    /// Silence (no line at all, status reports included) that means GRBL is gone;
+    /// also how long GRBL may sit idle with empty buffers while lines are still
+    /// unacknowledged (lost `ok`s) before the stream stops (plus any `G4` dwell
+    /// among those lines).
     pub response_timeout: Duration,
     /// How long a feed hold may take to come to a stop before pfcam resets anyway.
     pub hold_timeout: Duration,
@@ -199,6 +202,9 @@ pub struct Streamer {
     version: String,
     status: Option<StatusReport>,
     wco: Option<[f64; 3]>,
+    /// Most free planner blocks and receive-buffer bytes GRBL has reported (`Bf:`):
+    /// what it says when both are empty.
+    empty_buffers: Option<(u32, u32)>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -223,6 +229,9 @@ struct Run<'a> {
     resume_pending: bool,
     /// `~` sent; status reports still saying Hold were asked before it.
     awaiting_run: bool,
+    /// Since when GRBL has been idle with empty buffers while lines are
+    /// outstanding (see [`Streamer::looks_stalled`]).
+    stall_since: Option<Instant>,
     fill_integral: f64,
     fill_time: f64,
     last_change: Instant,
@@ -245,6 +254,7 @@ impl Streamer {
             version: String::new(),
             status: None,
             wco: None,
+            empty_buffers: None,
         };
         let mut heard = String::new();
         let mut alarm_hint = false;
@@ -374,6 +384,10 @@ impl Streamer {
         if r.wco.is_some() {
             self.wco = r.wco;
         }
+        if let Some((planner, rx)) = r.buffer {
+            let (p, x) = self.empty_buffers.unwrap_or((0, 0));
+            self.empty_buffers = Some((p.max(planner), x.max(rx)));
+        }
         self.status = Some(r.clone());
     }
 
@@ -476,6 +490,7 @@ impl Streamer {
             hold_announced: false,
             resume_pending: false,
             awaiting_run: false,
+            stall_since: None,
             fill_integral: 0.0,
             fill_time: 0.0,
             last_change: Instant::now(),
@@ -642,6 +657,14 @@ impl Streamer {
                 Response::Status(report) => {
                     self.note_status(&report);
                     reports += 1;
+                    if self.looks_stalled(&r, &report) {
+                        let since = *r.stall_since.get_or_insert_with(Instant::now);
+                        if since.elapsed() > self.settings.response_timeout + pending_dwell(&r) {
+                            return Err(self.stalled(&mut r, since, obs));
+                        }
+                    } else {
+                        r.stall_since = None;
+                    }
                     if !matches!(report.state, MachineState::Hold(_)) {
                         r.awaiting_run = false;
                     }
@@ -684,6 +707,38 @@ impl Streamer {
         resume_point(r, used)
     }
 
+    /// GRBL idle, its planner and receive buffer empty (as empty as it has ever
+    /// reported them; without `Bf:` the state alone), yet lines are unacknowledged:
+    /// their `ok`s can only have been lost. Status reports keep coming in this
+    /// state, so only this check ends it.
+    fn looks_stalled(&self, r: &Run<'_>, report: &StatusReport) -> bool {
+        !r.pending.is_empty()
+            && report.state == MachineState::Idle
+            && match (report.buffer, self.empty_buffers) {
+                (Some(now), Some(empty)) => now == empty,
+                _ => true,
+            }
+    }
+
+    /// Ends a stall: hold and reset (the spindle may be running), then the error.
+    fn stalled(&mut self, r: &mut Run<'_>, since: Instant, obs: &mut dyn Observer) -> GrblError {
+        let seconds = since.elapsed().as_secs_f64();
+        let unacked = r.pending.len();
+        obs.event(Event::Stopping(
+            "GRBL is idle with empty buffers but lines are unacknowledged",
+        ));
+        if let Err(e) = self.stop_machine(r, obs) {
+            return e;
+        }
+        GrblError::Stalled {
+            seconds,
+            unacked,
+            last_acked: r.last_acked,
+            // Idle with an empty planner: every acknowledged line has run.
+            resume_from: resume_point(r, 0),
+        }
+    }
+
     fn in_hold(&self) -> bool {
         matches!(
             self.status.as_ref().map(|s| &s.state),
@@ -710,6 +765,7 @@ impl Streamer {
         r.account();
         r.in_flight -= len;
         r.acked += 1;
+        r.stall_since = None;
         let block = &r.blocks[index];
         let fault = error.map(|code| Fault {
             line: block.line,
@@ -872,6 +928,39 @@ fn resume_point(r: &Run<'_>, planner_used: usize) -> Option<usize> {
     r.acked_motion
         .get(r.acked_motion.len() - planner_used)
         .copied()
+}
+
+/// Seconds of `G4 P` dwell in the unacknowledged lines: GRBL is idle while it
+/// dwells, so a stall is declared only after them (each capped at an hour).
+fn pending_dwell(r: &Run<'_>) -> Duration {
+    let secs: f64 = r
+        .pending
+        .iter()
+        .map(|&(i, _)| dwell_seconds(&r.blocks[i].text))
+        .sum();
+    Duration::from_secs_f64(secs)
+}
+
+/// The `P` of a block with a `G4` word (cleaned, upper-case text), else 0.
+fn dwell_seconds(block: &str) -> f64 {
+    let mut words = Vec::new();
+    let mut rest = block;
+    while let Some(c) = rest.chars().next() {
+        let tail = &rest[c.len_utf8()..];
+        let end = tail
+            .find(|ch: char| ch.is_ascii_alphabetic())
+            .unwrap_or(tail.len());
+        words.push((c, tail[..end].parse::<f64>().ok()));
+        rest = &tail[end..];
+    }
+    let dwell = words.iter().any(|&(c, v)| c == 'G' && v == Some(4.0));
+    let p = words
+        .iter()
+        .find_map(|&(c, v)| (c == 'P').then_some(v).flatten());
+    match p {
+        Some(p) if dwell && p.is_finite() && p > 0.0 => p.min(3600.0),
+        _ => 0.0,
+    }
 }
 
 fn truncate(s: &str, n: usize) -> String {
@@ -1080,6 +1169,15 @@ mod tests {
         assert_eq!(s.spindle, expected.spindle);
         assert_eq!(s.feed, expected.feed);
         assert_eq!(s.flood, expected.flood);
+    }
+
+    #[test]
+    fn dwell_is_read_from_g4_only() {
+        assert_eq!(dwell_seconds("G4P2.5"), 2.5);
+        assert_eq!(dwell_seconds("P3G4"), 3.0);
+        assert_eq!(dwell_seconds("G40P2"), 0.0);
+        assert_eq!(dwell_seconds("G1X1F100"), 0.0);
+        assert_eq!(dwell_seconds("G4P99999"), 3600.0);
     }
 
     #[test]

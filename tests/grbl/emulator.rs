@@ -18,7 +18,8 @@
 //!   as GRBL does), 0x18 soft reset (ALARM:3 if in motion or hold, as GRBL does);
 //! - alarm state (G-code gets `error:9`; `$X` / `$H` unlock), `$C` check mode
 //!   (leaving it resets), an injectable `ALARM:N` after the k-th line, a link that
-//!   dies after the k-th line, and personalities that are not GRBL (silent, noise).
+//!   dies after the k-th line, an `ok` lost on the way (`drop_ok`), and
+//!   personalities that are not GRBL (silent, noise).
 
 use std::collections::VecDeque;
 use std::io::{Read, Write};
@@ -62,6 +63,9 @@ pub struct Config {
     pub reboot_after: Option<usize>,
     /// A startup line echoed after the banner (`>G54:ok`).
     pub startup_echo: bool,
+    /// The `ok` of this G-code line (1-based count) is lost on the way, as on a
+    /// noisy cable: the line runs, the sender never hears about it.
+    pub drop_ok: Option<usize>,
 }
 
 impl Default for Config {
@@ -78,6 +82,7 @@ impl Default for Config {
             freeze_after: None,
             reboot_after: None,
             startup_echo: false,
+            drop_ok: None,
         }
     }
 }
@@ -112,6 +117,8 @@ pub struct Shared {
     pub dead: bool,
     /// Lines received when the emulator rebooted (`reboot_after`).
     pub rebooted_at: Option<usize>,
+    /// `ok`s swallowed (`drop_ok`).
+    pub dropped_oks: usize,
 }
 
 pub struct Emulator {
@@ -576,8 +583,10 @@ impl Machine {
             self.say("[MSG:Pgm End]");
             self.modal.ended = false;
         }
+        let lost = !text.starts_with('$') && self.cfg.drop_ok == Some(self.lines);
         match error {
             Some(n) => self.say(&format!("error:{n}")),
+            None if extra_ok && lost => self.shared().dropped_oks += 1,
             None if extra_ok => self.say("ok"),
             None => {}
         }
