@@ -279,6 +279,64 @@ fn error_stops_the_stream_with_hold_and_reset() {
 }
 
 #[test]
+fn rejected_line_is_named_with_a_resume_line_that_skips_no_move() {
+    let emu = Emulator::start(Config::default());
+    let text = with_errors();
+    let file = job_file("error-advice", &text);
+    let a = args(&emu, &file);
+    let (r, _) = run(&a);
+    let err = r.expect_err("error stops");
+    let GrblError::Rejected {
+        fault,
+        last_acked,
+        resume_from,
+    } = &err
+    else {
+        panic!("unexpected {err:?}");
+    };
+    assert_eq!(fault.line, 50);
+    assert!(
+        last_acked.is_some_and(|l| l > 50),
+        "lines after it were acked"
+    );
+    // The moves the reset threw away: those before line 50 must all be re-run, so
+    // the resume line is the oldest of them, exactly.
+    let program = Program::parse(&text);
+    let file_line = |t: &String| {
+        program
+            .lines
+            .iter()
+            .position(|l| &l.block == t)
+            .map(|i| i + 1)
+            .expect("a file line")
+    };
+    let flushed_before: Vec<usize> = emu
+        .shared()
+        .flushed
+        .iter()
+        .map(file_line)
+        .filter(|&l| l < 50)
+        .collect();
+    let resume = resume_from.expect("a resume line");
+    assert_eq!(
+        Some(resume),
+        flushed_before.iter().copied().min().or(Some(50)),
+        "flushed before the fault: {flushed_before:?}"
+    );
+    let advice = pfcam::grbl::command::stop_advice(&err, &a, Some(&program)).join("\n");
+    assert!(
+        advice.contains("rejected: line 50: `G41 X10 (cutter comp: GRBL has none)`"),
+        "{advice}"
+    );
+    assert!(
+        advice.contains(&format!("--from-line {resume}")),
+        "{advice}"
+    );
+    // The last acknowledged line follows the rejected one: not offered as news.
+    assert!(!advice.contains("last line acknowledged"), "{advice}");
+}
+
+#[test]
 fn continue_on_error_lists_rejected_lines() {
     let emu = Emulator::start(Config::default());
     let file = job_file("continue", &with_errors());

@@ -634,13 +634,11 @@ impl Streamer {
                         if mode == Mode::Run && self.settings.stop_on_error {
                             obs.event(Event::Stopping("GRBL rejected a line"));
                             self.stop_machine(&mut r, obs)?;
-                            let resume = self
-                                .resume_point(&r, false)
-                                .map_or(fault.line, |l| l.min(fault.line));
+                            let resume_from = self.rejected_resume(&r, fault.line);
                             return Err(GrblError::Rejected {
                                 fault,
                                 last_acked: r.last_acked,
-                                resume_from: Some(resume),
+                                resume_from,
                             });
                         }
                         obs.event(Event::Rejected(&fault));
@@ -700,11 +698,44 @@ impl Streamer {
     /// Resume point from the planner fill in the last status report (`Bf:`), or
     /// assuming a full planner when `worst_case` or when GRBL did not report it.
     fn resume_point(&self, r: &Run<'_>, worst_case: bool) -> Option<usize> {
-        let used = match self.status.as_ref().and_then(|s| s.buffer) {
-            Some((free, _)) if !worst_case => PLANNER_BLOCKS.saturating_sub(free as usize),
-            _ => PLANNER_BLOCKS,
-        };
-        resume_point(r, used)
+        resume_point(r, self.planner_used(worst_case))
+    }
+
+    /// Planner blocks in use at the last status report: its capacity (the most free
+    /// blocks GRBL ever reported, else GRBL 1.1's 15) less the free ones, or the
+    /// whole capacity when `worst_case` or without `Bf:`.
+    fn planner_used(&self, worst_case: bool) -> usize {
+        let capacity = self
+            .empty_buffers
+            .map_or(PLANNER_BLOCKS, |(p, _)| p as usize);
+        match self.status.as_ref().and_then(|s| s.buffer) {
+            Some((free, _)) if !worst_case => capacity.saturating_sub(free as usize),
+            _ => capacity,
+        }
+    }
+
+    /// Where to resume after GRBL rejected file line `fault` and the machine was
+    /// stopped (hold, reset: the planner is discarded). The planner held the newest
+    /// acknowledged moves; those after the rejected line take their share, the rest
+    /// are moves before it that never ran. Resume at the oldest of those, or at the
+    /// rejected line itself when none was left. `None`: from the start.
+    fn rejected_resume(&self, r: &Run<'_>, fault: usize) -> Option<usize> {
+        if fault == 0 {
+            // pfcam's own resume preamble was rejected: resume where it was for.
+            return r.blocks.iter().find(|b| b.line != 0).map(|b| b.line);
+        }
+        let after = r.acked_motion.iter().filter(|&&l| l > fault).count();
+        let before: Vec<usize> = r
+            .acked_motion
+            .iter()
+            .copied()
+            .filter(|&l| l < fault)
+            .collect();
+        match self.planner_used(false).saturating_sub(after) {
+            0 => Some(fault),
+            k if k <= before.len() => Some(before[before.len() - k]),
+            _ => None,
+        }
     }
 
     /// GRBL idle, its planner and receive buffer empty (as empty as it has ever

@@ -117,6 +117,9 @@ pub struct Shared {
     pub dead: bool,
     /// Lines received when the emulator rebooted (`reboot_after`).
     pub rebooted_at: Option<usize>,
+    /// Lines whose moves were still in the planner (not or not fully run) when a
+    /// soft reset discarded them.
+    pub flushed: Vec<String>,
     /// `ok`s swallowed (`drop_ok`).
     pub dropped_oks: usize,
 }
@@ -200,6 +203,8 @@ enum State {
 }
 
 struct Block {
+    /// The line that planned it.
+    text: String,
     from: [f64; 3],
     to: [f64; 3],
     /// Simulated seconds.
@@ -221,6 +226,8 @@ struct Machine {
     out: Vec<u8>,
     reports: usize,
     lines: usize,
+    /// The line being executed (for the planner blocks it makes).
+    current: String,
     last: Instant,
     noise_at: Instant,
 }
@@ -249,6 +256,7 @@ impl Machine {
             out: Vec::new(),
             reports: 0,
             lines: 0,
+            current: String::new(),
             last: Instant::now(),
             noise_at: Instant::now(),
         }
@@ -404,7 +412,8 @@ impl Machine {
         if let Some(b) = self.planner.front() {
             self.position = interpolate(b);
         }
-        self.planner.clear();
+        let flushed: Vec<String> = self.planner.drain(..).map(|b| b.text).collect();
+        self.shared().flushed.extend(flushed);
         self.modal = ModalState::default();
         self.modal.position = self.position.map(Some);
         self.hold_until = None;
@@ -516,6 +525,7 @@ impl Machine {
     }
 
     fn line(&mut self, text: String) {
+        self.current = text.clone();
         let before = self.modal.clone();
         let check = self.state == State::Check;
         let mut error = None;
@@ -618,6 +628,7 @@ impl Machine {
             _ => self.modal.feed_mm_per_min().unwrap_or(RAPID_MM_PER_MIN),
         };
         self.planner.push_back(Block {
+            text: self.current.clone(),
             from,
             to,
             duration: dist / (rate / 60.0),
