@@ -662,6 +662,44 @@ fn from_line_restores_the_modal_state() {
 }
 
 #[test]
+fn from_line_plunges_at_the_programs_plunge_feed() {
+    // zigzag: `G1 Z-0.500 F300` plunges, the cuts run at F800.
+    let emu = Emulator::start(Config::default());
+    let file = job_file("resume-plunge", &zigzag(100));
+    let mut a = args(&emu, &file);
+    let resume_at = 60;
+    a.from_line = Some(resume_at);
+    let (r, _) = run(&a);
+    r.expect("resumed job completes");
+    let program = Program::parse(&zigzag(100));
+    let s = emu.shared();
+    let at = s
+        .received
+        .iter()
+        .position(|r| r.text == program.lines[resume_at - 1].block)
+        .expect("resume line sent");
+    // The preamble's move down to the resume point: the last Z-only feed move.
+    let plunge = s.received[..at]
+        .iter()
+        .rposition(|r| r.text.starts_with("G1Z"))
+        .expect("a plunge in the preamble");
+    let feed_after = |i: usize| s.received[i + 1].state_before.feed;
+    assert_eq!(
+        feed_after(plunge),
+        Some(300.0),
+        "{}",
+        s.received[plunge].text
+    );
+    assert!(
+        s.received[plunge].state_before.position[2]
+            > s.received[plunge + 1].state_before.position[2],
+        "it goes down"
+    );
+    // ... and the program continues at its cutting feed.
+    assert_eq!(s.received[at].state_before.feed, Some(800.0));
+}
+
+#[test]
 fn from_line_refuses_when_the_position_is_unknown() {
     let file = job_file("resume-bad", "G0 Z5\nG28\nG1 X1 F100\n");
     let mut a = StreamArgs::new(file, "/nonexistent/port");

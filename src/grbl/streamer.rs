@@ -998,6 +998,34 @@ fn truncate(s: &str, n: usize) -> String {
     s.chars().take(n).collect()
 }
 
+/// What the program did before line `n`: the highest Z it reached and the feed
+/// (mm/min) of its last plunge, a `G1` in units per minute that moves Z down and
+/// neither X nor Y.
+fn history_before(program: &Program, n: usize) -> (Option<f64>, Option<f64>) {
+    let mut highest_z: Option<f64> = None;
+    let mut plunge_feed = None;
+    let mut s = ModalState::default();
+    for l in program.blocks().take_while(|l| l.number < n) {
+        let before = s.position;
+        if s.execute(&l.block).is_err() {
+            continue;
+        }
+        let after = s.position;
+        if let Some(z) = after[2] {
+            highest_z = Some(highest_z.map_or(z, |h: f64| h.max(z)));
+        }
+        let down = matches!((before[2], after[2]), (Some(a), Some(b)) if b < a);
+        if down
+            && s.motion == Motion::Linear
+            && s.feed_mode == FeedMode::UnitsPerMinute
+            && before[..2] == after[..2]
+        {
+            plunge_feed = s.feed.or(plunge_feed);
+        }
+    }
+    (highest_z, plunge_feed)
+}
+
 /// Options for resuming a job from a line.
 #[derive(Clone, Debug)]
 pub struct Resume {
@@ -1030,17 +1058,7 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
     let state = program
         .state_before(n)
         .map_err(|e| GrblError::Input(format!("--from-line {n}: cannot compute the state: {e}")))?;
-    let mut highest_z: Option<f64> = None;
-    {
-        let mut s = ModalState::default();
-        for l in program.blocks().take_while(|l| l.number < n) {
-            if s.execute(&l.block).is_ok() {
-                if let Some(z) = s.position[2] {
-                    highest_z = Some(highest_z.map_or(z, |h: f64| h.max(z)));
-                }
-            }
-        }
-    }
+    let (highest_z, plunge_feed) = history_before(program, n);
     let safe_z = resume.safe_z.or(highest_z).ok_or_else(|| {
         GrblError::Input(format!(
             "--from-line {n}: no Z move before this line; give --safe-z"
@@ -1125,12 +1143,17 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
         num(to_units(pos[0])),
         num(to_units(pos[1]))
     ));
+    // Down at the program's own plunge feed, then its cutting feed is restored.
+    let plunge = plunge_feed.unwrap_or(feed);
     out.push(format!(
         "G1Z{}F{}",
         num(to_units(pos[2])),
-        num(to_units(feed))
+        num(to_units(plunge))
     ));
     let mut modes = String::new();
+    if plunge != feed {
+        modes.push_str(&format!("F{}", num(to_units(feed))));
+    }
     if state.distance == Distance::Incremental {
         modes.push_str("G91");
     }
