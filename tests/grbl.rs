@@ -515,8 +515,8 @@ fn hold_then_abort_resets_and_reports_last_line() {
     assert!(!s.spindle_on, "soft reset stops the spindle");
     assert_eq!(s.realtime.last().map(|r| r.0), Some(SOFT_RESET));
     assert_eq!(
-        s.state, "Alarm",
-        "GRBL flags ALARM:3 after a reset from a hold"
+        s.state, "Idle",
+        "GRBL 1.1h resets from Hold:0 to Idle, without an alarm"
     );
     drop(s);
     assert_eq!(
@@ -526,6 +526,44 @@ fn hold_then_abort_resets_and_reports_last_line() {
         })),
         ExitStatus::Aborted
     );
+}
+
+#[test]
+fn reset_before_the_hold_completes_raises_alarm_3_and_is_reported() {
+    // A hold that takes longer than pfcam waits: the reset comes while GRBL is
+    // still decelerating (Hold:1), which GRBL 1.1h flags with ALARM:3.
+    let emu = Emulator::start(Config {
+        speedup: 20.0,
+        decel: Duration::from_secs(3),
+        ..Config::default()
+    });
+    let file = job_file("abort-decel", &zigzag(500));
+    let a = args(&emu, &file);
+    let (_, blocks) = job_blocks(&a).expect("job");
+    let link = Link::open(&emu.path, 115200).expect("open");
+    let settings = Settings {
+        hold_timeout: Duration::from_millis(200),
+        banner_timeout: Duration::from_millis(300),
+        ..a.settings()
+    };
+    let (op, rx) = mpsc::channel();
+    let (ev_tx, events) = mpsc::channel();
+    let worker = std::thread::spawn(move || {
+        let mut rec = Recorder {
+            events: Vec::new(),
+            tx: Some(ev_tx),
+        };
+        let mut s = Streamer::connect(link, settings, &mut rec)?;
+        s.stream(&blocks, &rx, &mut rec)
+    });
+    emu.wait_for("100 lines", |s| s.received.len() >= 100);
+    op.send(OperatorCommand::Abort).expect("send");
+    wait_event(&events, "ALARM:3");
+    let r = worker.join().expect("streamer thread");
+    assert!(matches!(r, Err(GrblError::Aborted { .. })), "{r:?}");
+    let s = emu.shared();
+    assert_eq!(s.state, "Alarm", "reset while decelerating");
+    assert!(!s.spindle_on);
 }
 
 #[test]

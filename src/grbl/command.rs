@@ -293,9 +293,10 @@ pub fn stop_advice(e: &GrblError, args: &StreamArgs, program: Option<&Program>) 
     }
     if matches!(e, GrblError::Rejected { .. } | GrblError::Aborted { .. }) {
         out.push(
-            "the machine was stopped with a feed hold and a soft reset: spindle and \
-             coolant are off. GRBL may report ALARM:3 after a reset from a hold; the \
-             stop was controlled, so `$X` unlocks (home with `$H` if in doubt)"
+            "the machine was stopped with a feed hold and, once the hold was complete \
+             (Hold:0), a soft reset: spindle and coolant are off, GRBL is idle and keeps \
+             its position (GRBL 1.1 raises ALARM:3 only when reset while still moving, \
+             i.e. if the hold did not complete within 10 s: then home with `$H`)"
                 .into(),
         );
     }

@@ -16,7 +16,9 @@
 //! # Stopping
 //! A rejected line (by default) and an operator abort stop the machine the same way:
 //! feed hold `!`, wait until the hold is complete (`Hold:0`, bounded), soft reset
-//! (spindle and coolant off, buffers flushed), wait for the banner. An `ALARM:N`
+//! (spindle and coolant off, buffers flushed), wait for the banner. GRBL 1.1h
+//! resets from `Hold:0` to `Idle` with no alarm and keeps its position; only a
+//! reset while still moving (the hold not complete in time) raises `ALARM:3`. An `ALARM:N`
 //! needs no stop (GRBL has already stopped); pfcam sends nothing more.
 
 use std::collections::VecDeque;
@@ -894,6 +896,14 @@ impl Streamer {
                 last_acked: r.last_acked,
                 resume_from: self.resume_point(r, true),
             });
+        }
+        if alarm {
+            // GRBL 1.1 resets from a completed hold (Hold:0) without an alarm; an
+            // alarm here means the hold had not completed within `hold_timeout`.
+            obs.event(Event::Message(
+                "ALARM:3: the reset came before the hold had stopped the machine; \
+                 position may be lost: home ($H) before continuing",
+            ));
         }
         Ok(())
     }

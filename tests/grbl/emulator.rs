@@ -15,7 +15,8 @@
 //!   3000 mm/min), so positions in status reports advance;
 //! - `?` status reports (state, MPos, Bf, FS, WCO now and then), `!` feed hold
 //!   (Hold:1 while decelerating, then Hold:0), `~` resume (ignored before Hold:0,
-//!   as GRBL does), 0x18 soft reset (ALARM:3 if in motion or hold, as GRBL does);
+//!   as GRBL does), 0x18 soft reset (ALARM:3 if in motion or still decelerating
+//!   in Hold:1; from Hold:0 straight to Idle, as GRBL 1.1h does);
 //! - alarm state (G-code gets `error:9`; `$X` / `$H` unlock), `$C` check mode
 //!   (leaving it resets), an injectable `ALARM:N` after the k-th line, a link that
 //!   dies after the k-th line, an `ok` lost on the way (`drop_ok`), and
@@ -407,7 +408,9 @@ impl Machine {
     }
 
     fn reset(&mut self) {
-        let moving = matches!(self.state, State::Run | State::Hold(_));
+        // GRBL 1.1h `mc_reset`: ALARM:3 only when steppers are moving (a cycle, or a
+        // hold still decelerating); a completed hold (Hold:0) resets to Idle.
+        let moving = matches!(self.state, State::Run | State::Hold(1));
         self.rx.clear();
         if let Some(b) = self.planner.front() {
             self.position = interpolate(b);
@@ -419,7 +422,7 @@ impl Machine {
         self.hold_until = None;
         self.shared().resets += 1;
         if moving {
-            // GRBL: a reset during a cycle or a hold flags possible position loss.
+            // GRBL: a reset while moving flags possible position loss.
             self.say("ALARM:3");
             self.state = State::Alarm;
         } else if self.state != State::Alarm {
