@@ -13,7 +13,7 @@ use std::time::Duration;
 use emulator::{Config, Emulator, Personality};
 use pfcam::gcode::parse::{Motion, Program};
 use pfcam::grbl::command::{job_blocks, run_stream};
-use pfcam::grbl::protocol::{FEED_HOLD, SOFT_RESET};
+use pfcam::grbl::protocol::{Position, StatusReport, WorkOffset, FEED_HOLD, SOFT_RESET};
 use pfcam::grbl::{
     Event, ExitStatus, GrblError, Link, Observer, OperatorCommand, Settings, StreamArgs,
     StreamReport, Streamer,
@@ -975,6 +975,93 @@ fn smaller_receive_buffer_is_respected() {
     assert!(s.max_rx <= 64);
     drop(s);
     assert_eq!(emu.lines(), file_blocks(&a));
+}
+
+/// Keeps every status report.
+struct Reports(Vec<StatusReport>);
+
+impl Observer for Reports {
+    fn event(&mut self, event: Event<'_>) {
+        if let Event::Status(r) = event {
+            self.0.push(r.clone());
+        }
+    }
+}
+
+fn reports_of(config: Config, name: &str) -> Vec<StatusReport> {
+    let emu = Emulator::start(config);
+    let file = job_file(name, &zigzag(300));
+    let (_tx, rx) = mpsc::channel();
+    let mut obs = Reports(Vec::new());
+    run_stream(&args(&emu, &file), &rx, &mut obs).expect("completes");
+    obs.0
+}
+
+#[test]
+fn work_position_uses_the_wco_grbl_reported_earlier() {
+    // G54 at machine (-200, -100, -30); GRBL names it in every 7th report only.
+    let wco = [-200.0, -100.0, -30.0];
+    let reports = reports_of(
+        Config {
+            wco,
+            wco_every: 7,
+            speedup: 100.0,
+            ..Config::default()
+        },
+        "wco",
+    );
+    assert!(reports[0].wco.is_some(), "GRBL's first report has the WCO");
+    let without = reports.iter().filter(|r| r.wco.is_none()).count();
+    assert!(
+        without * 2 > reports.len(),
+        "{without} of {}",
+        reports.len()
+    );
+    let mut offset = WorkOffset::default();
+    for r in &reports {
+        let m = r.mpos.expect("MPos");
+        let Some(Position::Work(p)) = offset.update(r) else {
+            panic!("no work position for {r:?}");
+        };
+        for i in 0..3 {
+            assert!((p[i] - (m[i] - wco[i])).abs() < 1e-9, "{r:?}: {p:?}");
+        }
+    }
+    // The job ends at work Z 5 (machine Z -25).
+    let last = offset.update(reports.last().expect("reports"));
+    assert!(
+        last.is_some_and(|p| p.to_string().starts_with("WPos") && p.to_string().contains("Z5.000")),
+        "{last:?}"
+    );
+    // Before any WCO, MPos is shown as what it is.
+    let m = StatusReport::parse("<Idle|MPos:-200.000,-100.000,-25.000>").expect("report");
+    let shown = WorkOffset::default()
+        .update(&m)
+        .expect("position")
+        .to_string();
+    assert!(
+        shown.starts_with("MPos") && shown.contains("not reported"),
+        "{shown}"
+    );
+}
+
+#[test]
+fn work_position_reported_directly_is_used_as_is() {
+    let reports = reports_of(
+        Config {
+            wco: [-200.0, -100.0, -30.0],
+            report_wpos: true,
+            ..Config::default()
+        },
+        "wpos",
+    );
+    let mut offset = WorkOffset::default();
+    for r in &reports {
+        assert!(r.mpos.is_none());
+        assert_eq!(offset.update(r), r.wpos.map(Position::Work));
+    }
+    let last = reports.last().and_then(|r| r.wpos).expect("WPos");
+    assert!((last[2] - 5.0).abs() < 1e-9, "{last:?}");
 }
 
 #[test]

@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::link::Link;
-use super::protocol::StatusReport;
+use super::protocol::{Position, StatusReport, WorkOffset};
 use super::streamer::{
     check_blocks, resume_blocks, Block, Event, Observer, OperatorCommand, Resume, Settings,
     StreamReport, Streamer,
@@ -401,6 +401,8 @@ struct Terminal {
     bar: Option<ProgressBar>,
     held: Arc<AtomicBool>,
     status: Option<StatusReport>,
+    offset: WorkOffset,
+    position: Option<Position>,
     acked: usize,
     total: usize,
     line: usize,
@@ -423,6 +425,8 @@ impl Terminal {
             bar,
             held,
             status: None,
+            offset: WorkOffset::default(),
+            position: None,
             acked: 0,
             total: 0,
             line: 0,
@@ -439,15 +443,10 @@ impl Terminal {
     }
 
     fn machine(&self) -> String {
-        match &self.status {
-            Some(s) => {
-                let p = s.work_position(None).or(s.mpos).unwrap_or([0.0; 3]);
-                format!(
-                    "line {}  {}  X{:.3} Y{:.3} Z{:.3}",
-                    self.line, s.state, p[0], p[1], p[2]
-                )
-            }
-            None => format!("line {}", self.line),
+        match (&self.status, &self.position) {
+            (Some(s), Some(p)) => format!("line {}  {}  {p}", self.line, s.state),
+            (Some(s), None) => format!("line {}  {}", self.line, s.state),
+            _ => format!("line {}", self.line),
         }
     }
 
@@ -483,6 +482,7 @@ impl Observer for Terminal {
             Event::Connected { version } => self.say(&format!("connected to GRBL {version}")),
             Event::Message(m) => self.say(&format!("GRBL: {m}")),
             Event::Status(s) => {
+                self.position = self.offset.update(s);
                 self.status = Some(s.clone());
                 self.update();
             }

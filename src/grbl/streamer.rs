@@ -374,6 +374,8 @@ impl Streamer {
                 match parse_response(&line) {
                     Response::Status(r) => {
                         self.note_status(&r);
+                        // Observers see it too: it may be the one with the WCO.
+                        obs.event(Event::Status(&r));
                         return Ok(r);
                     }
                     _ => obs.event(Event::Message(&line)),

@@ -13,7 +13,8 @@
 //!   over 79 characters;
 //! - a planner that executes motion at `speedup` × the programmed feed (rapids at
 //!   3000 mm/min), so positions in status reports advance;
-//! - `?` status reports (state, MPos, Bf, FS, WCO now and then), `!` feed hold
+//! - `?` status reports (state, MPos = work position + `wco` or WPos, Bf, FS,
+//!   WCO only every `wco_every`-th report as GRBL does), `!` feed hold
 //!   (Hold:1 while decelerating, then Hold:0), `~` resume (ignored before Hold:0,
 //!   as GRBL does), 0x18 soft reset (ALARM:3 if in motion or still decelerating
 //!   in Hold:1; from Hold:0 straight to Idle, as GRBL 1.1h does);
@@ -67,6 +68,12 @@ pub struct Config {
     /// The `ok` of this G-code line (1-based count) is lost on the way, as on a
     /// noisy cable: the line runs, the sender never hears about it.
     pub drop_ok: Option<usize>,
+    /// Work coordinate offset (G54 in machine coordinates): MPos = work + WCO.
+    pub wco: [f64; 3],
+    /// `WCO:` goes into every n-th status report only, as in GRBL (10 idle, 30 busy).
+    pub wco_every: usize,
+    /// Report `WPos:` instead of `MPos:` (GRBL's `$10=0`).
+    pub report_wpos: bool,
 }
 
 impl Default for Config {
@@ -84,6 +91,9 @@ impl Default for Config {
             reboot_after: None,
             startup_echo: false,
             drop_ok: None,
+            wco: [0.0; 3],
+            wco_every: 10,
+            report_wpos: false,
         }
     }
 }
@@ -450,9 +460,15 @@ impl Machine {
 
     fn status_report(&mut self) {
         self.reports += 1;
-        let p = self.current_position();
+        let w = self.current_position();
+        let o = self.cfg.wco;
+        let (kind, p) = if self.cfg.report_wpos {
+            ("WPos", w)
+        } else {
+            ("MPos", [w[0] + o[0], w[1] + o[1], w[2] + o[2]])
+        };
         let mut r = format!(
-            "<{}|MPos:{:.3},{:.3},{:.3}|Bf:{},{}|FS:{:.0},{:.0}",
+            "<{}|{kind}:{:.3},{:.3},{:.3}|Bf:{},{}|FS:{:.0},{:.0}",
             self.state_text(),
             p[0],
             p[1],
@@ -466,8 +482,8 @@ impl Machine {
             },
             self.modal.spindle_speed
         );
-        if self.reports % 10 == 1 {
-            r.push_str("|WCO:0.000,0.000,0.000");
+        if (self.reports - 1) % self.cfg.wco_every.max(1) == 0 {
+            r.push_str(&format!("|WCO:{:.3},{:.3},{:.3}", o[0], o[1], o[2]));
         }
         if self.reports % 10 == 2 {
             r.push_str("|Ov:100,100,100");
