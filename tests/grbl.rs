@@ -441,6 +441,26 @@ fn banner_on_open_needs_no_reset() {
 }
 
 #[test]
+fn stale_banner_is_flushed_and_grbl_reset() {
+    // The board printed its banner long before pfcam opened the port (and GRBL may
+    // have done anything since): that banner is not an answer to this connection.
+    let emu = Emulator::start(Config::default());
+    emu.wait_for("the boot banner", |s| s.banners >= 1);
+    std::thread::sleep(Duration::from_millis(200));
+    let file = job_file("stale", &zigzag(20));
+    let (r, events) = run(&args(&emu, &file));
+    r.expect("streams after a fresh banner");
+    let s = emu.shared();
+    assert_eq!(
+        s.resets, 1,
+        "the stale banner was flushed, so GRBL was soft-reset"
+    );
+    assert_eq!(s.banners, 2);
+    assert_eq!(s.realtime.first().map(|r| r.0), Some(SOFT_RESET));
+    assert!(events.iter().any(|e| e.contains("1.1h")), "{events:?}");
+}
+
+#[test]
 fn feed_hold_and_resume() {
     let emu = Emulator::start(Config {
         speedup: 100.0,

@@ -131,6 +131,8 @@ pub struct Shared {
     /// Lines whose moves were still in the planner (not or not fully run) when a
     /// soft reset discarded them.
     pub flushed: Vec<String>,
+    /// Banners printed (at start, on `boot`, after each reset).
+    pub banners: usize,
     /// `ok`s swallowed (`drop_ok`).
     pub dropped_oks: usize,
 }
@@ -283,6 +285,7 @@ impl Machine {
     }
 
     fn banner(&mut self) {
+        self.shared().banners += 1;
         self.say("Grbl 1.1h ['$' for help]");
         if self.state == State::Alarm {
             self.say("[MSG:'$H'|'$X' to unlock]");
