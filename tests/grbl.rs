@@ -586,6 +586,73 @@ fn reset_before_the_hold_completes_raises_alarm_3_and_is_reported() {
     assert!(!s.spindle_on);
 }
 
+/// Runs `pfcam stream` as a process (stdin not a terminal) against `emu`, sends
+/// it `signal` mid-job, and returns its exit code and stderr.
+fn signalled_stream(emu: &Emulator, file: &Path, signal: &str) -> (Option<i32>, String) {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_pfcam"))
+        .arg("stream")
+        .arg(file)
+        .args(["--port", &emu.path, "--connect-timeout", "0.3"])
+        .args(["--status-hz", "50", "--response-timeout", "3"])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run pfcam");
+    emu.wait_for("100 lines", |s| s.received.len() >= 100);
+    assert!(emu.shared().spindle_on, "cutting when the signal comes");
+    let sent = Command::new("kill")
+        .arg(format!("-{signal}"))
+        .arg(child.id().to_string())
+        .status()
+        .expect("kill");
+    assert!(sent.success());
+    let deadline = std::time::Instant::now() + Duration::from_secs(15);
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break status;
+        }
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("pfcam did not exit after SIG{signal}");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let mut stderr = String::new();
+    if let Some(mut err) = child.stderr.take() {
+        let _ = err.read_to_string(&mut stderr);
+    }
+    (status.code(), stderr)
+}
+
+#[test]
+fn sigterm_sighup_and_unattended_sigint_hold_reset_and_exit() {
+    for signal in ["TERM", "HUP", "INT"] {
+        let emu = Emulator::start(Config {
+            speedup: 20.0,
+            ..Config::default()
+        });
+        let file = job_file(&format!("signal-{signal}"), &zigzag(2000));
+        let (code, stderr) = signalled_stream(&emu, &file, signal);
+        assert_eq!(
+            code,
+            Some(ExitStatus::Aborted as i32),
+            "SIG{signal}: {stderr}"
+        );
+        assert!(stderr.contains("aborted"), "{stderr}");
+        let s = emu.shared();
+        let rt: Vec<u8> = s.realtime.iter().map(|r| r.0).collect();
+        assert!(
+            rt.ends_with(&[FEED_HOLD, SOFT_RESET]),
+            "SIG{signal}: hold, then reset: {rt:?}"
+        );
+        assert!(!s.spindle_on, "SIG{signal}: spindle stopped");
+        assert_eq!(s.state, "Idle", "SIG{signal}: reset from Hold:0");
+    }
+}
+
 #[test]
 fn check_mode_reports_every_error_without_moving() {
     let emu = Emulator::start(Config::default());

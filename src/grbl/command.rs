@@ -219,33 +219,39 @@ pub fn run_stream(
 pub fn stream_command(args: &StreamArgs) -> ExitCode {
     let (tx, rx) = mpsc::channel();
     let held = Arc::new(AtomicBool::new(false));
-    {
-        let tx = tx.clone();
-        let held = held.clone();
-        // First Ctrl-C: feed hold and ask; second (while held): abort.
-        let installed = ctrlc::set_handler(move || {
-            let _ = tx.send(ctrl_c(&held));
-        });
-        if let Err(e) = installed {
-            eprintln!("warning: cannot catch Ctrl-C ({e}); Ctrl-C will kill pfcam without stopping the machine");
+    // The prompt (resume or abort after a hold) needs someone at a terminal.
+    let interactive = std::io::stdin().is_terminal();
+    let signals = match catch_signals(tx.clone(), held.clone(), interactive) {
+        Ok(handle) => Some(handle),
+        Err(e) => {
+            eprintln!(
+                "warning: cannot catch signals ({e}); Ctrl-C, SIGTERM or SIGHUP will kill \
+                 pfcam without stopping the machine"
+            );
+            None
         }
+    };
+    if interactive {
+        spawn_prompt_reader(tx);
     }
-    spawn_prompt_reader(tx);
     let mut ui = Terminal::new(held);
     let outcome = run_stream(args, &rx, &mut ui);
     ui.finish();
+    if let Some(handle) = signals {
+        handle.close();
+    }
     let status = ExitStatus::of(&outcome);
     let program = job_blocks(args).ok().map(|(p, _)| p);
     match &outcome {
         Ok(report) => {
             if !report.faults.is_empty() {
-                eprintln!("lines GRBL rejected (not executed):");
+                note("lines GRBL rejected (not executed):");
                 for f in &report.faults {
-                    eprintln!("  {f}");
+                    note(&format!("  {f}"));
                 }
             }
             let what = if args.check { "checked" } else { "sent" };
-            eprintln!(
+            note(&format!(
                 "{what} {} lines in {:.1} s (mean receive-buffer fill {:.0}%){}",
                 report.acked,
                 report.elapsed.as_secs_f64(),
@@ -255,15 +261,21 @@ pub fn stream_command(args: &StreamArgs) -> ExitCode {
                 } else {
                     format!(", {} rejected by GRBL", report.faults.len())
                 }
-            );
+            ));
         }
         Err(e) => {
             for line in stop_advice(e, args, program.as_ref()) {
-                eprintln!("{line}");
+                note(&line);
             }
         }
     }
     status.into()
+}
+
+/// One line to stderr; a failed write is ignored (the terminal may be gone
+/// after SIGHUP), where `eprintln!` would panic.
+fn note(text: &str) {
+    let _ = writeln!(std::io::stderr(), "{text}");
 }
 
 /// What `pfcam stream` prints after a failed stream, line by line: the error, what
@@ -364,6 +376,41 @@ pub fn stop_advice(e: &GrblError, args: &StreamArgs, program: Option<&Program>) 
     out
 }
 
+/// Turns SIGINT, SIGTERM and SIGHUP into operator commands ([`signal_command`])
+/// on a thread of their own, until the returned handle is closed.
+fn catch_signals(
+    tx: Sender<OperatorCommand>,
+    held: Arc<AtomicBool>,
+    interactive: bool,
+) -> std::io::Result<signal_hook::iterator::Handle> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
+    let handle = signals.handle();
+    std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            for signal in signals.forever() {
+                if tx.send(signal_command(signal, &held, interactive)).is_err() {
+                    return;
+                }
+            }
+        })?;
+    Ok(handle)
+}
+
+/// What a signal means during a stream. SIGTERM and SIGHUP (a service stopping
+/// pfcam, the terminal gone) abort: feed hold, soft reset, exit 6. So does SIGINT
+/// when nobody is at a terminal to answer the resume-or-abort prompt: a hold
+/// without it would leave the machine held with the spindle running. At a
+/// terminal, SIGINT (Ctrl-C) holds and asks; see [`ctrl_c`].
+pub fn signal_command(signal: i32, held: &AtomicBool, interactive: bool) -> OperatorCommand {
+    if signal == signal_hook::consts::SIGINT && interactive {
+        ctrl_c(held)
+    } else {
+        OperatorCommand::Abort
+    }
+}
+
 /// What a Ctrl-C means: a feed hold, or an abort when already held (second
 /// Ctrl-C, or Ctrl-C at the resume-or-abort prompt).
 pub fn ctrl_c(held: &AtomicBool) -> OperatorCommand {
@@ -435,10 +482,12 @@ impl Terminal {
         }
     }
 
+    /// Prints a line. Never panics (unlike `eprintln!`): after SIGHUP the terminal
+    /// may be gone, and the machine still has to be stopped.
     fn say(&self, text: &str) {
         match &self.bar {
             Some(bar) => bar.println(text),
-            None => eprintln!("{text}"),
+            None => note(text),
         }
     }
 
@@ -458,13 +507,13 @@ impl Terminal {
         } else if self.last_plain.elapsed() >= Duration::from_secs(5) {
             self.last_plain = Instant::now();
             let pct = (self.acked * 100).checked_div(self.total).unwrap_or(0);
-            eprintln!(
+            self.say(&format!(
                 "stream: {}/{} lines ({pct}%), {:.0} s, {}",
                 self.acked,
                 self.total,
                 self.start.elapsed().as_secs_f64(),
                 self.machine()
-            );
+            ));
         }
     }
 
@@ -522,6 +571,23 @@ mod tests {
         // After a resume the front end clears the flag: Ctrl-C holds again.
         held.store(false, Ordering::SeqCst);
         assert_eq!(ctrl_c(&held), OperatorCommand::Hold);
+    }
+
+    #[test]
+    fn signals_abort_unless_someone_can_answer_the_prompt() {
+        use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+        let held = AtomicBool::new(false);
+        for sig in [SIGTERM, SIGHUP] {
+            for interactive in [false, true] {
+                assert_eq!(
+                    signal_command(sig, &held, interactive),
+                    OperatorCommand::Abort
+                );
+            }
+        }
+        assert_eq!(signal_command(SIGINT, &held, false), OperatorCommand::Abort);
+        assert_eq!(signal_command(SIGINT, &held, true), OperatorCommand::Hold);
+        assert_eq!(signal_command(SIGINT, &held, true), OperatorCommand::Abort);
     }
 
     #[test]
