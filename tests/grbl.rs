@@ -489,6 +489,40 @@ fn feed_hold_and_resume() {
 }
 
 #[test]
+fn typed_overrides_reach_grbl_as_realtime_bytes() {
+    use pfcam::grbl::command::typed_command;
+    let emu = Emulator::start(Config {
+        speedup: 50.0,
+        ..Config::default()
+    });
+    let file = job_file("overrides", &zigzag(600));
+    let a = args(&emu, &file);
+    let expected = file_blocks(&a);
+    let (op, _events, done) = spawn(a);
+    emu.wait_for("100 lines", |s| s.received.len() >= 100);
+    // What the keyboard reader gets, through the same channel as hold/resume.
+    let typed = ["f+", "f+", "F-1", "s-", "s -1", "r25", "r50"];
+    for t in typed {
+        op.send(typed_command(t).expect(t)).expect("send");
+    }
+    emu.wait_for("the overrides", |s| s.overrides == [119, 50, 89]);
+    let report = outcome(&done).expect("completes");
+    assert_eq!(report.acked, expected.len());
+    assert_eq!(emu.lines(), expected, "the job is unchanged");
+    let s = emu.shared();
+    // (A soft reset at connect may come first: the boot banner can be stale.)
+    let bytes: Vec<u8> = s
+        .realtime
+        .iter()
+        .map(|r| r.0)
+        .filter(|&b| b != SOFT_RESET)
+        .collect();
+    assert_eq!(bytes, [0x91, 0x91, 0x94, 0x9B, 0x9D, 0x97, 0x96]);
+    drop(s);
+    assert_no_overflow(&emu);
+}
+
+#[test]
 fn hold_then_abort_resets_and_reports_last_line() {
     let emu = Emulator::start(Config {
         speedup: 50.0,

@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::link::Link;
-use super::protocol::{Position, StatusReport, WorkOffset};
+use super::protocol::{Override, Position, StatusReport, WorkOffset};
 use super::streamer::{
     check_blocks, resume_blocks, Block, Event, Observer, OperatorCommand, Resume, Settings,
     StreamReport, Streamer,
@@ -234,7 +234,7 @@ pub fn stream_command(args: &StreamArgs) -> ExitCode {
     if interactive {
         spawn_prompt_reader(tx);
     }
-    let mut ui = Terminal::new(held);
+    let mut ui = Terminal::new(held, interactive);
     let outcome = run_stream(args, &rx, &mut ui);
     ui.finish();
     if let Some(handle) = signals {
@@ -421,7 +421,39 @@ pub fn ctrl_c(held: &AtomicBool) -> OperatorCommand {
     }
 }
 
-/// Reads `r`/`a` answers to the hold prompt from stdin.
+/// What a line typed during a stream asks for (case and spaces ignored):
+/// `r`/`resume`, `a`/`abort` at the hold prompt; overrides at any time:
+/// `f+`/`f-` feed ±10 %, `f+1`/`f-1` ±1 %, `f=` (or `f100`) back to 100 %;
+/// `s+`, `s-`, `s+1`, `s-1`, `s=` (`s100`) the same for the spindle;
+/// `r100`, `r50`, `r25` rapids. Anything else: `None`.
+pub fn typed_command(line: &str) -> Option<OperatorCommand> {
+    let key: String = line
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_lowercase();
+    let o = match key.as_str() {
+        "r" | "resume" => return Some(OperatorCommand::Resume),
+        "a" | "abort" => return Some(OperatorCommand::Abort),
+        "f=" | "f100" => Override::FeedReset,
+        "f+" => Override::FeedUp10,
+        "f-" => Override::FeedDown10,
+        "f+1" => Override::FeedUp1,
+        "f-1" => Override::FeedDown1,
+        "r100" => Override::Rapid100,
+        "r50" => Override::Rapid50,
+        "r25" => Override::Rapid25,
+        "s=" | "s100" => Override::SpindleReset,
+        "s+" => Override::SpindleUp10,
+        "s-" => Override::SpindleDown10,
+        "s+1" => Override::SpindleUp1,
+        "s-1" => Override::SpindleDown1,
+        _ => return None,
+    };
+    Some(OperatorCommand::Override(o))
+}
+
+/// Reads typed commands ([`typed_command`]) from stdin.
 fn spawn_prompt_reader(tx: Sender<OperatorCommand>) {
     if !std::io::stdin().is_terminal() {
         return;
@@ -431,10 +463,8 @@ fn spawn_prompt_reader(tx: Sender<OperatorCommand>) {
         .spawn(move || {
             for line in std::io::stdin().lock().lines() {
                 let Ok(line) = line else { return };
-                let cmd = match line.trim().to_ascii_lowercase().as_str() {
-                    "r" | "resume" => OperatorCommand::Resume,
-                    "a" | "abort" => OperatorCommand::Abort,
-                    _ => continue,
+                let Some(cmd) = typed_command(&line) else {
+                    continue;
                 };
                 if tx.send(cmd).is_err() {
                     return;
@@ -447,6 +477,8 @@ fn spawn_prompt_reader(tx: Sender<OperatorCommand>) {
 struct Terminal {
     bar: Option<ProgressBar>,
     held: Arc<AtomicBool>,
+    /// Someone can type commands (stdin is a terminal).
+    interactive: bool,
     status: Option<StatusReport>,
     offset: WorkOffset,
     position: Option<Position>,
@@ -458,7 +490,7 @@ struct Terminal {
 }
 
 impl Terminal {
-    fn new(held: Arc<AtomicBool>) -> Terminal {
+    fn new(held: Arc<AtomicBool>, interactive: bool) -> Terminal {
         let bar = std::io::stderr().is_terminal().then(|| {
             let bar = ProgressBar::new(0);
             if let Ok(style) = ProgressStyle::with_template(
@@ -471,6 +503,7 @@ impl Terminal {
         Terminal {
             bar,
             held,
+            interactive,
             status: None,
             offset: WorkOffset::default(),
             position: None,
@@ -528,7 +561,15 @@ impl Terminal {
 impl Observer for Terminal {
     fn event(&mut self, event: Event<'_>) {
         match event {
-            Event::Connected { version } => self.say(&format!("connected to GRBL {version}")),
+            Event::Connected { version } => {
+                self.say(&format!("connected to GRBL {version}"));
+                if self.interactive {
+                    self.say(
+                        "overrides (type, then Enter): f+ f- f+1 f-1 f= feed, s+ s- s+1 s-1 s= \
+                         spindle, r100 r50 r25 rapids; Ctrl-C holds",
+                    );
+                }
+            }
             Event::Message(m) => self.say(&format!("GRBL: {m}")),
             Event::Status(s) => {
                 self.position = self.offset.update(s);
@@ -588,6 +629,26 @@ mod tests {
         assert_eq!(signal_command(SIGINT, &held, false), OperatorCommand::Abort);
         assert_eq!(signal_command(SIGINT, &held, true), OperatorCommand::Hold);
         assert_eq!(signal_command(SIGINT, &held, true), OperatorCommand::Abort);
+    }
+
+    #[test]
+    fn typed_commands_map_to_grbl_override_bytes() {
+        let byte = |t: &str| match typed_command(t) {
+            Some(OperatorCommand::Override(o)) => Some(o.byte()),
+            _ => None,
+        };
+        let keys = [
+            "f=", "f+", "f-", "f+1", "f-1", "r100", "r50", "r25", "s=", "s+", "s-", "s+1", "s-1",
+        ];
+        let bytes: Vec<Option<u8>> = keys.iter().map(|k| byte(k)).collect();
+        let want: Vec<Option<u8>> = (0x90..=0x97).chain(0x99..=0x9D).map(Some).collect();
+        assert_eq!(bytes, want);
+        assert_eq!(byte("f100"), Some(0x90));
+        assert_eq!(byte("S100"), Some(0x99));
+        assert_eq!(typed_command(" R "), Some(OperatorCommand::Resume));
+        assert_eq!(typed_command("abort"), Some(OperatorCommand::Abort));
+        assert_eq!(typed_command("f+2"), None);
+        assert_eq!(typed_command(""), None);
     }
 
     #[test]

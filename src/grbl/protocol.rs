@@ -15,6 +15,60 @@ pub const CYCLE_START: u8 = b'~';
 /// Ctrl-X: soft reset (stops everything, spindle and coolant off).
 pub const SOFT_RESET: u8 = 0x18;
 
+/// GRBL 1.1's override real-time commands (bytes 0x90 to 0x9D; feed and spindle
+/// overrides step in percent and are clamped by GRBL to 10 to 200 %, rapids are
+/// 100, 50 or 25 %).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Override {
+    /// 0x90: feed override back to 100 %.
+    FeedReset,
+    /// 0x91: feed +10 %.
+    FeedUp10,
+    /// 0x92: feed −10 %.
+    FeedDown10,
+    /// 0x93: feed +1 %.
+    FeedUp1,
+    /// 0x94: feed −1 %.
+    FeedDown1,
+    /// 0x95: rapids at 100 %.
+    Rapid100,
+    /// 0x96: rapids at 50 %.
+    Rapid50,
+    /// 0x97: rapids at 25 %.
+    Rapid25,
+    /// 0x99: spindle override back to 100 %.
+    SpindleReset,
+    /// 0x9A: spindle +10 %.
+    SpindleUp10,
+    /// 0x9B: spindle −10 %.
+    SpindleDown10,
+    /// 0x9C: spindle +1 %.
+    SpindleUp1,
+    /// 0x9D: spindle −1 %.
+    SpindleDown1,
+}
+
+impl Override {
+    /// The real-time byte GRBL 1.1 reads for it.
+    pub fn byte(self) -> u8 {
+        match self {
+            Override::FeedReset => 0x90,
+            Override::FeedUp10 => 0x91,
+            Override::FeedDown10 => 0x92,
+            Override::FeedUp1 => 0x93,
+            Override::FeedDown1 => 0x94,
+            Override::Rapid100 => 0x95,
+            Override::Rapid50 => 0x96,
+            Override::Rapid25 => 0x97,
+            Override::SpindleReset => 0x99,
+            Override::SpindleUp10 => 0x9A,
+            Override::SpindleDown10 => 0x9B,
+            Override::SpindleUp1 => 0x9C,
+            Override::SpindleDown1 => 0x9D,
+        }
+    }
+}
+
 /// One line from GRBL, classified.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Response {

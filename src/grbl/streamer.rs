@@ -29,8 +29,8 @@ use std::time::{Duration, Instant};
 use super::codes;
 use super::link::Link;
 use super::protocol::{
-    parse_response, MachineState, Response, StatusReport, CYCLE_START, FEED_HOLD, SOFT_RESET,
-    STATUS_QUERY,
+    parse_response, MachineState, Override, Response, StatusReport, CYCLE_START, FEED_HOLD,
+    SOFT_RESET, STATUS_QUERY,
 };
 use super::GrblError;
 use crate::gcode::parse::{Distance, FeedMode, ModalState, Motion, Plane, Program, Spindle, Units};
@@ -134,6 +134,9 @@ pub enum OperatorCommand {
     Resume,
     /// Stop: feed hold, then soft reset.
     Abort,
+    /// A feed, rapid or spindle override: its real-time byte goes out at once
+    /// (GRBL applies it while running or held).
+    Override(Override),
 }
 
 /// What happens during a stream, for a front end (progress bar, log, prompt).
@@ -537,6 +540,9 @@ impl Streamer {
                         if r.held || self.in_hold() {
                             r.resume_pending = true;
                         }
+                    }
+                    Ok(OperatorCommand::Override(o)) => {
+                        self.link.send_realtime(o.byte()).map_err(|e| lost(e, &r))?;
                     }
                     Ok(OperatorCommand::Abort) => {
                         obs.event(Event::Stopping("aborted by the operator"));

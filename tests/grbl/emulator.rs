@@ -18,6 +18,7 @@
 //!   (Hold:1 while decelerating, then Hold:0), `~` resume (ignored before Hold:0,
 //!   as GRBL does), 0x18 soft reset (ALARM:3 if in motion or still decelerating
 //!   in Hold:1; from Hold:0 straight to Idle, as GRBL 1.1h does);
+//! - override bytes 0x90-0x9D (recorded, applied, reported in `Ov:`);
 //! - alarm state (G-code gets `error:9`; `$X` / `$H` unlock), `$C` check mode
 //!   (leaving it resets), an injectable `ALARM:N` after the k-th line, a link that
 //!   dies after the k-th line, an `ok` lost on the way (`drop_ok`), and
@@ -131,6 +132,8 @@ pub struct Shared {
     /// Lines whose moves were still in the planner (not or not fully run) when a
     /// soft reset discarded them.
     pub flushed: Vec<String>,
+    /// Feed, rapid and spindle overrides in percent (real-time bytes 0x90-0x9D).
+    pub overrides: [u32; 3],
     /// Banners printed (at start, on `boot`, after each reset).
     pub banners: usize,
     /// `ok`s swallowed (`drop_ok`).
@@ -149,7 +152,10 @@ impl Emulator {
     pub fn start(config: Config) -> Emulator {
         let (master, slave) = TTYPort::pair().expect("pty pair");
         let path = slave.name().expect("pty name");
-        let shared = Arc::new(Mutex::new(Shared::default()));
+        let shared = Arc::new(Mutex::new(Shared {
+            overrides: [100; 3],
+            ..Shared::default()
+        }));
         let stop = Arc::new(AtomicBool::new(false));
         let thread = {
             let shared = shared.clone();
@@ -404,6 +410,10 @@ impl Machine {
                 self.shared().realtime.push((b, lines));
                 self.reset();
             }
+            0x90..=0x9d => {
+                self.shared().realtime.push((b, lines));
+                self.override_byte(b);
+            }
             0x80..=0xff => self.shared().realtime.push((b, lines)),
             _ => {
                 self.rx.push_back(b);
@@ -417,6 +427,30 @@ impl Machine {
                     ));
                 }
             }
+        }
+    }
+
+    /// GRBL 1.1's override commands: feed and spindle in steps, clamped to
+    /// 10..=200 %, rapids at 100/50/25 %.
+    fn override_byte(&mut self, b: u8) {
+        let mut s = self.shared();
+        let step = |v: u32, d: i32| (v as i32 + d).clamp(10, 200) as u32;
+        let [feed, rapid, spindle] = &mut s.overrides;
+        match b {
+            0x90 => *feed = 100,
+            0x91 => *feed = step(*feed, 10),
+            0x92 => *feed = step(*feed, -10),
+            0x93 => *feed = step(*feed, 1),
+            0x94 => *feed = step(*feed, -1),
+            0x95 => *rapid = 100,
+            0x96 => *rapid = 50,
+            0x97 => *rapid = 25,
+            0x99 => *spindle = 100,
+            0x9a => *spindle = step(*spindle, 10),
+            0x9b => *spindle = step(*spindle, -10),
+            0x9c => *spindle = step(*spindle, 1),
+            0x9d => *spindle = step(*spindle, -1),
+            _ => {}
         }
     }
 
@@ -489,7 +523,8 @@ impl Machine {
             r.push_str(&format!("|WCO:{:.3},{:.3},{:.3}", o[0], o[1], o[2]));
         }
         if self.reports % 10 == 2 {
-            r.push_str("|Ov:100,100,100");
+            let [f, r0, sp] = self.shared().overrides;
+            r.push_str(&format!("|Ov:{f},{r0},{sp}"));
         }
         r.push('>');
         self.say(&r);
