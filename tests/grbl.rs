@@ -1020,6 +1020,25 @@ fn lost_ok_is_detected_as_a_stall_not_a_hang() {
 }
 
 #[test]
+fn lost_ok_in_check_mode_is_a_stall_too() {
+    let emu = Emulator::start(Config {
+        drop_ok: Some(40),
+        ..Config::default()
+    });
+    let file = job_file("stall-check", &zigzag(100));
+    let mut a = args(&emu, &file);
+    a.check = true;
+    a.response_timeout = 0.5;
+    let (_op, _events, done) = spawn(a);
+    let err = outcome(&done).expect_err("stall detected");
+    assert!(
+        matches!(err, GrblError::Stalled { unacked: 1, .. }),
+        "{err:?}"
+    );
+    assert!(!emu.shared().moved, "check mode moves nothing");
+}
+
+#[test]
 fn controller_reset_mid_job_stops_the_stream() {
     let emu = Emulator::start(Config {
         reboot_after: Some(150),

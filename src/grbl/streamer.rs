@@ -748,13 +748,14 @@ impl Streamer {
         }
     }
 
-    /// GRBL idle, its planner and receive buffer empty (as empty as it has ever
-    /// reported them; without `Bf:` the state alone), yet lines are unacknowledged:
-    /// their `ok`s can only have been lost. Status reports keep coming in this
-    /// state, so only this check ends it.
+    /// GRBL idle (or in check mode, where nothing is planned), its planner and
+    /// receive buffer empty (as empty as it has ever reported them; without `Bf:`
+    /// the state alone), yet lines are unacknowledged: their `ok`s can only have
+    /// been lost. Status reports keep coming in this state, so only this check
+    /// ends it.
     fn looks_stalled(&self, r: &Run<'_>, report: &StatusReport) -> bool {
         !r.pending.is_empty()
-            && report.state == MachineState::Idle
+            && matches!(report.state, MachineState::Idle | MachineState::Check)
             && match (report.buffer, self.empty_buffers) {
                 (Some(now), Some(empty)) => now == empty,
                 _ => true,
@@ -909,8 +910,9 @@ impl Streamer {
             // GRBL 1.1 resets from a completed hold (Hold:0) without an alarm; an
             // alarm here means the hold had not completed within `hold_timeout`.
             obs.event(Event::Message(
-                "ALARM:3: the reset came before the hold had stopped the machine; \
-                 position may be lost: home ($H) before continuing",
+                "GRBL is in alarm after the reset (ALARM:3: the reset came before the \
+                 hold had stopped the machine); position may be lost: home ($H) before \
+                 continuing",
             ));
         }
         Ok(())
