@@ -13,7 +13,7 @@ use std::time::Duration;
 use emulator::{Config, Emulator, Personality};
 use pfcam::gcode::parse::{Motion, Program};
 use pfcam::grbl::command::{job_blocks, run_stream};
-use pfcam::grbl::protocol::{FEED_HOLD, SOFT_RESET};
+use pfcam::grbl::protocol::{Position, StatusReport, WorkOffset, FEED_HOLD, SOFT_RESET};
 use pfcam::grbl::{
     Event, ExitStatus, GrblError, Link, Observer, OperatorCommand, Settings, StreamArgs,
     StreamReport, Streamer,
@@ -279,6 +279,64 @@ fn error_stops_the_stream_with_hold_and_reset() {
 }
 
 #[test]
+fn rejected_line_is_named_with_a_resume_line_that_skips_no_move() {
+    let emu = Emulator::start(Config::default());
+    let text = with_errors();
+    let file = job_file("error-advice", &text);
+    let a = args(&emu, &file);
+    let (r, _) = run(&a);
+    let err = r.expect_err("error stops");
+    let GrblError::Rejected {
+        fault,
+        last_acked,
+        resume_from,
+    } = &err
+    else {
+        panic!("unexpected {err:?}");
+    };
+    assert_eq!(fault.line, 50);
+    assert!(
+        last_acked.is_some_and(|l| l > 50),
+        "lines after it were acked"
+    );
+    // The moves the reset threw away: those before line 50 must all be re-run, so
+    // the resume line is the oldest of them, exactly.
+    let program = Program::parse(&text);
+    let file_line = |t: &String| {
+        program
+            .lines
+            .iter()
+            .position(|l| &l.block == t)
+            .map(|i| i + 1)
+            .expect("a file line")
+    };
+    let flushed_before: Vec<usize> = emu
+        .shared()
+        .flushed
+        .iter()
+        .map(file_line)
+        .filter(|&l| l < 50)
+        .collect();
+    let resume = resume_from.expect("a resume line");
+    assert_eq!(
+        Some(resume),
+        flushed_before.iter().copied().min().or(Some(50)),
+        "flushed before the fault: {flushed_before:?}"
+    );
+    let advice = pfcam::grbl::command::stop_advice(&err, &a, Some(&program)).join("\n");
+    assert!(
+        advice.contains("rejected: line 50: `G41 X10 (cutter comp: GRBL has none)`"),
+        "{advice}"
+    );
+    assert!(
+        advice.contains(&format!("--from-line {resume}")),
+        "{advice}"
+    );
+    // The last acknowledged line follows the rejected one: not offered as news.
+    assert!(!advice.contains("last line acknowledged"), "{advice}");
+}
+
+#[test]
 fn continue_on_error_lists_rejected_lines() {
     let emu = Emulator::start(Config::default());
     let file = job_file("continue", &with_errors());
@@ -383,6 +441,26 @@ fn banner_on_open_needs_no_reset() {
 }
 
 #[test]
+fn stale_banner_is_flushed_and_grbl_reset() {
+    // The board printed its banner long before pfcam opened the port (and GRBL may
+    // have done anything since): that banner is not an answer to this connection.
+    let emu = Emulator::start(Config::default());
+    emu.wait_for("the boot banner", |s| s.banners >= 1);
+    std::thread::sleep(Duration::from_millis(200));
+    let file = job_file("stale", &zigzag(20));
+    let (r, events) = run(&args(&emu, &file));
+    r.expect("streams after a fresh banner");
+    let s = emu.shared();
+    assert_eq!(
+        s.resets, 1,
+        "the stale banner was flushed, so GRBL was soft-reset"
+    );
+    assert_eq!(s.banners, 2);
+    assert_eq!(s.realtime.first().map(|r| r.0), Some(SOFT_RESET));
+    assert!(events.iter().any(|e| e.contains("1.1h")), "{events:?}");
+}
+
+#[test]
 fn feed_hold_and_resume() {
     let emu = Emulator::start(Config {
         speedup: 100.0,
@@ -406,6 +484,40 @@ fn feed_hold_and_resume() {
     assert_eq!(s.ignored_resumes, 0, "`~` sent only after Hold:0");
     let rt: Vec<u8> = s.realtime.iter().map(|r| r.0).collect();
     assert!(rt.ends_with(b"!~"), "{rt:?}");
+    drop(s);
+    assert_no_overflow(&emu);
+}
+
+#[test]
+fn typed_overrides_reach_grbl_as_realtime_bytes() {
+    use pfcam::grbl::command::typed_command;
+    let emu = Emulator::start(Config {
+        speedup: 50.0,
+        ..Config::default()
+    });
+    let file = job_file("overrides", &zigzag(600));
+    let a = args(&emu, &file);
+    let expected = file_blocks(&a);
+    let (op, _events, done) = spawn(a);
+    emu.wait_for("100 lines", |s| s.received.len() >= 100);
+    // What the keyboard reader gets, through the same channel as hold/resume.
+    let typed = ["f+", "f+", "F-1", "s-", "s -1", "r25", "r50"];
+    for t in typed {
+        op.send(typed_command(t).expect(t)).expect("send");
+    }
+    emu.wait_for("the overrides", |s| s.overrides == [119, 50, 89]);
+    let report = outcome(&done).expect("completes");
+    assert_eq!(report.acked, expected.len());
+    assert_eq!(emu.lines(), expected, "the job is unchanged");
+    let s = emu.shared();
+    // (A soft reset at connect may come first: the boot banner can be stale.)
+    let bytes: Vec<u8> = s
+        .realtime
+        .iter()
+        .map(|r| r.0)
+        .filter(|&b| b != SOFT_RESET)
+        .collect();
+    assert_eq!(bytes, [0x91, 0x91, 0x94, 0x9B, 0x9D, 0x97, 0x96]);
     drop(s);
     assert_no_overflow(&emu);
 }
@@ -457,8 +569,8 @@ fn hold_then_abort_resets_and_reports_last_line() {
     assert!(!s.spindle_on, "soft reset stops the spindle");
     assert_eq!(s.realtime.last().map(|r| r.0), Some(SOFT_RESET));
     assert_eq!(
-        s.state, "Alarm",
-        "GRBL flags ALARM:3 after a reset from a hold"
+        s.state, "Idle",
+        "GRBL 1.1h resets from Hold:0 to Idle, without an alarm"
     );
     drop(s);
     assert_eq!(
@@ -468,6 +580,111 @@ fn hold_then_abort_resets_and_reports_last_line() {
         })),
         ExitStatus::Aborted
     );
+}
+
+#[test]
+fn reset_before_the_hold_completes_raises_alarm_3_and_is_reported() {
+    // A hold that takes longer than pfcam waits: the reset comes while GRBL is
+    // still decelerating (Hold:1), which GRBL 1.1h flags with ALARM:3.
+    let emu = Emulator::start(Config {
+        speedup: 20.0,
+        decel: Duration::from_secs(3),
+        ..Config::default()
+    });
+    let file = job_file("abort-decel", &zigzag(500));
+    let a = args(&emu, &file);
+    let (_, blocks) = job_blocks(&a).expect("job");
+    let link = Link::open(&emu.path, 115200).expect("open");
+    let settings = Settings {
+        hold_timeout: Duration::from_millis(200),
+        banner_timeout: Duration::from_millis(300),
+        ..a.settings()
+    };
+    let (op, rx) = mpsc::channel();
+    let (ev_tx, events) = mpsc::channel();
+    let worker = std::thread::spawn(move || {
+        let mut rec = Recorder {
+            events: Vec::new(),
+            tx: Some(ev_tx),
+        };
+        let mut s = Streamer::connect(link, settings, &mut rec)?;
+        s.stream(&blocks, &rx, &mut rec)
+    });
+    emu.wait_for("100 lines", |s| s.received.len() >= 100);
+    op.send(OperatorCommand::Abort).expect("send");
+    wait_event(&events, "ALARM:3");
+    let r = worker.join().expect("streamer thread");
+    assert!(matches!(r, Err(GrblError::Aborted { .. })), "{r:?}");
+    let s = emu.shared();
+    assert_eq!(s.state, "Alarm", "reset while decelerating");
+    assert!(!s.spindle_on);
+}
+
+/// Runs `pfcam stream` as a process (stdin not a terminal) against `emu`, sends
+/// it `signal` mid-job, and returns its exit code and stderr.
+fn signalled_stream(emu: &Emulator, file: &Path, signal: &str) -> (Option<i32>, String) {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_pfcam"))
+        .arg("stream")
+        .arg(file)
+        .args(["--port", &emu.path, "--connect-timeout", "0.3"])
+        .args(["--status-hz", "50", "--response-timeout", "3"])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run pfcam");
+    emu.wait_for("100 lines", |s| s.received.len() >= 100);
+    assert!(emu.shared().spindle_on, "cutting when the signal comes");
+    let sent = Command::new("kill")
+        .arg(format!("-{signal}"))
+        .arg(child.id().to_string())
+        .status()
+        .expect("kill");
+    assert!(sent.success());
+    let deadline = std::time::Instant::now() + Duration::from_secs(15);
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break status;
+        }
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("pfcam did not exit after SIG{signal}");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let mut stderr = String::new();
+    if let Some(mut err) = child.stderr.take() {
+        let _ = err.read_to_string(&mut stderr);
+    }
+    (status.code(), stderr)
+}
+
+#[test]
+fn sigterm_sighup_and_unattended_sigint_hold_reset_and_exit() {
+    for signal in ["TERM", "HUP", "INT"] {
+        let emu = Emulator::start(Config {
+            speedup: 20.0,
+            ..Config::default()
+        });
+        let file = job_file(&format!("signal-{signal}"), &zigzag(2000));
+        let (code, stderr) = signalled_stream(&emu, &file, signal);
+        assert_eq!(
+            code,
+            Some(ExitStatus::Aborted as i32),
+            "SIG{signal}: {stderr}"
+        );
+        assert!(stderr.contains("aborted"), "{stderr}");
+        let s = emu.shared();
+        let rt: Vec<u8> = s.realtime.iter().map(|r| r.0).collect();
+        assert!(
+            rt.ends_with(&[FEED_HOLD, SOFT_RESET]),
+            "SIG{signal}: hold, then reset: {rt:?}"
+        );
+        assert!(!s.spindle_on, "SIG{signal}: spindle stopped");
+        assert_eq!(s.state, "Idle", "SIG{signal}: reset from Hold:0");
+    }
 }
 
 #[test]
@@ -604,6 +821,44 @@ fn from_line_restores_the_modal_state() {
 }
 
 #[test]
+fn from_line_plunges_at_the_programs_plunge_feed() {
+    // zigzag: `G1 Z-0.500 F300` plunges, the cuts run at F800.
+    let emu = Emulator::start(Config::default());
+    let file = job_file("resume-plunge", &zigzag(100));
+    let mut a = args(&emu, &file);
+    let resume_at = 60;
+    a.from_line = Some(resume_at);
+    let (r, _) = run(&a);
+    r.expect("resumed job completes");
+    let program = Program::parse(&zigzag(100));
+    let s = emu.shared();
+    let at = s
+        .received
+        .iter()
+        .position(|r| r.text == program.lines[resume_at - 1].block)
+        .expect("resume line sent");
+    // The preamble's move down to the resume point: the last Z-only feed move.
+    let plunge = s.received[..at]
+        .iter()
+        .rposition(|r| r.text.starts_with("G1Z"))
+        .expect("a plunge in the preamble");
+    let feed_after = |i: usize| s.received[i + 1].state_before.feed;
+    assert_eq!(
+        feed_after(plunge),
+        Some(300.0),
+        "{}",
+        s.received[plunge].text
+    );
+    assert!(
+        s.received[plunge].state_before.position[2]
+            > s.received[plunge + 1].state_before.position[2],
+        "it goes down"
+    );
+    // ... and the program continues at its cutting feed.
+    assert_eq!(s.received[at].state_before.feed, Some(800.0));
+}
+
+#[test]
 fn from_line_refuses_when_the_position_is_unknown() {
     let file = job_file("resume-bad", "G0 Z5\nG28\nG1 X1 F100\n");
     let mut a = StreamArgs::new(file, "/nonexistent/port");
@@ -726,6 +981,64 @@ fn controller_that_hangs_is_detected_and_stopped() {
 }
 
 #[test]
+fn lost_ok_is_detected_as_a_stall_not_a_hang() {
+    // GRBL runs every line but one `ok` never arrives: it ends idle with empty
+    // buffers (`Bf:15,128`) while the sender still counts a line in flight, and
+    // its status reports keep coming.
+    let emu = Emulator::start(Config {
+        drop_ok: Some(120),
+        ..Config::default()
+    });
+    let file = job_file("stall", &zigzag(300));
+    let mut a = args(&emu, &file);
+    a.response_timeout = 0.5;
+    let (_op, _events, done) = spawn(a.clone());
+    let err = outcome(&done).expect_err("stall detected");
+    let GrblError::Stalled {
+        unacked,
+        seconds,
+        last_acked,
+        resume_from,
+    } = &err
+    else {
+        panic!("unexpected {err:?}");
+    };
+    assert_eq!(*unacked, 1);
+    assert!(*seconds >= 0.5 && *seconds < 2.0, "{seconds}");
+    let total = file_blocks(&a).len();
+    // Every line ran; the sender can only know all but the last were answered.
+    assert_eq!(emu.lines().len(), total);
+    assert_eq!(emu.shared().dropped_oks, 1);
+    let last = last_acked.expect("acked");
+    assert_eq!(*resume_from, Some(last + 1));
+    assert!(err.to_string().contains("never acknowledged"), "{err}");
+    assert_eq!(ExitStatus::of(&Err(err)), ExitStatus::LinkLost);
+    let s = emu.shared();
+    let rt: Vec<u8> = s.realtime.iter().map(|r| r.0).collect();
+    assert!(rt.ends_with(&[FEED_HOLD, SOFT_RESET]), "{rt:?}");
+    assert!(!s.spindle_on);
+}
+
+#[test]
+fn lost_ok_in_check_mode_is_a_stall_too() {
+    let emu = Emulator::start(Config {
+        drop_ok: Some(40),
+        ..Config::default()
+    });
+    let file = job_file("stall-check", &zigzag(100));
+    let mut a = args(&emu, &file);
+    a.check = true;
+    a.response_timeout = 0.5;
+    let (_op, _events, done) = spawn(a);
+    let err = outcome(&done).expect_err("stall detected");
+    assert!(
+        matches!(err, GrblError::Stalled { unacked: 1, .. }),
+        "{err:?}"
+    );
+    assert!(!emu.shared().moved, "check mode moves nothing");
+}
+
+#[test]
 fn controller_reset_mid_job_stops_the_stream() {
     let emu = Emulator::start(Config {
         reboot_after: Some(150),
@@ -802,6 +1115,93 @@ fn smaller_receive_buffer_is_respected() {
     assert!(s.max_rx <= 64);
     drop(s);
     assert_eq!(emu.lines(), file_blocks(&a));
+}
+
+/// Keeps every status report.
+struct Reports(Vec<StatusReport>);
+
+impl Observer for Reports {
+    fn event(&mut self, event: Event<'_>) {
+        if let Event::Status(r) = event {
+            self.0.push(r.clone());
+        }
+    }
+}
+
+fn reports_of(config: Config, name: &str) -> Vec<StatusReport> {
+    let emu = Emulator::start(config);
+    let file = job_file(name, &zigzag(300));
+    let (_tx, rx) = mpsc::channel();
+    let mut obs = Reports(Vec::new());
+    run_stream(&args(&emu, &file), &rx, &mut obs).expect("completes");
+    obs.0
+}
+
+#[test]
+fn work_position_uses_the_wco_grbl_reported_earlier() {
+    // G54 at machine (-200, -100, -30); GRBL names it in every 7th report only.
+    let wco = [-200.0, -100.0, -30.0];
+    let reports = reports_of(
+        Config {
+            wco,
+            wco_every: 7,
+            speedup: 100.0,
+            ..Config::default()
+        },
+        "wco",
+    );
+    assert!(reports[0].wco.is_some(), "GRBL's first report has the WCO");
+    let without = reports.iter().filter(|r| r.wco.is_none()).count();
+    assert!(
+        without * 2 > reports.len(),
+        "{without} of {}",
+        reports.len()
+    );
+    let mut offset = WorkOffset::default();
+    for r in &reports {
+        let m = r.mpos.expect("MPos");
+        let Some(Position::Work(p)) = offset.update(r) else {
+            panic!("no work position for {r:?}");
+        };
+        for i in 0..3 {
+            assert!((p[i] - (m[i] - wco[i])).abs() < 1e-9, "{r:?}: {p:?}");
+        }
+    }
+    // The job ends at work Z 5 (machine Z -25).
+    let last = offset.update(reports.last().expect("reports"));
+    assert!(
+        last.is_some_and(|p| p.to_string().starts_with("WPos") && p.to_string().contains("Z5.000")),
+        "{last:?}"
+    );
+    // Before any WCO, MPos is shown as what it is.
+    let m = StatusReport::parse("<Idle|MPos:-200.000,-100.000,-25.000>").expect("report");
+    let shown = WorkOffset::default()
+        .update(&m)
+        .expect("position")
+        .to_string();
+    assert!(
+        shown.starts_with("MPos") && shown.contains("not reported"),
+        "{shown}"
+    );
+}
+
+#[test]
+fn work_position_reported_directly_is_used_as_is() {
+    let reports = reports_of(
+        Config {
+            wco: [-200.0, -100.0, -30.0],
+            report_wpos: true,
+            ..Config::default()
+        },
+        "wpos",
+    );
+    let mut offset = WorkOffset::default();
+    for r in &reports {
+        assert!(r.mpos.is_none());
+        assert_eq!(offset.update(r), r.wpos.map(Position::Work));
+    }
+    let last = reports.last().and_then(|r| r.wpos).expect("WPos");
+    assert!((last[2] - 5.0).abs() < 1e-9, "{last:?}");
 }
 
 #[test]

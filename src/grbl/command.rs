@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::link::Link;
-use super::protocol::StatusReport;
+use super::protocol::{Override, Position, StatusReport, WorkOffset};
 use super::streamer::{
     check_blocks, resume_blocks, Block, Event, Observer, OperatorCommand, Resume, Settings,
     StreamReport, Streamer,
@@ -131,7 +131,8 @@ pub enum ExitStatus {
     Alarm = 5,
     /// 6: the operator aborted.
     Aborted = 6,
-    /// 7: the link died mid-job (port gone, GRBL silent, GRBL reset itself).
+    /// 7: the link died mid-job (port gone, GRBL silent, GRBL reset itself,
+    /// acknowledgements lost).
     LinkLost = 7,
 }
 
@@ -151,6 +152,7 @@ impl ExitStatus {
                 GrblError::Aborted { .. } => ExitStatus::Aborted,
                 GrblError::LinkLost { .. }
                 | GrblError::Unresponsive { .. }
+                | GrblError::Stalled { .. }
                 | GrblError::UnexpectedReset { .. } => ExitStatus::LinkLost,
             },
         }
@@ -217,40 +219,39 @@ pub fn run_stream(
 pub fn stream_command(args: &StreamArgs) -> ExitCode {
     let (tx, rx) = mpsc::channel();
     let held = Arc::new(AtomicBool::new(false));
-    {
-        let tx = tx.clone();
-        let held = held.clone();
-        // First Ctrl-C: feed hold and ask; second (while held): abort.
-        let installed = ctrlc::set_handler(move || {
-            let _ = tx.send(ctrl_c(&held));
-        });
-        if let Err(e) = installed {
-            eprintln!("warning: cannot catch Ctrl-C ({e}); Ctrl-C will kill pfcam without stopping the machine");
+    // The prompt (resume or abort after a hold) needs someone at a terminal.
+    let interactive = std::io::stdin().is_terminal();
+    let signals = match catch_signals(tx.clone(), held.clone(), interactive) {
+        Ok(handle) => Some(handle),
+        Err(e) => {
+            eprintln!(
+                "warning: cannot catch signals ({e}); Ctrl-C, SIGTERM or SIGHUP will kill \
+                 pfcam without stopping the machine"
+            );
+            None
         }
+    };
+    if interactive {
+        spawn_prompt_reader(tx);
     }
-    spawn_prompt_reader(tx);
-    let mut ui = Terminal::new(held);
+    let mut ui = Terminal::new(held, interactive);
     let outcome = run_stream(args, &rx, &mut ui);
     ui.finish();
+    if let Some(handle) = signals {
+        handle.close();
+    }
     let status = ExitStatus::of(&outcome);
     let program = job_blocks(args).ok().map(|(p, _)| p);
-    let line_text = |n: usize| {
-        program
-            .as_ref()
-            .and_then(|p| p.lines.get(n.wrapping_sub(1)))
-            .map(|l| l.raw.trim().to_string())
-            .unwrap_or_default()
-    };
     match &outcome {
         Ok(report) => {
             if !report.faults.is_empty() {
-                eprintln!("lines GRBL rejected (not executed):");
+                note("lines GRBL rejected (not executed):");
                 for f in &report.faults {
-                    eprintln!("  {f}");
+                    note(&format!("  {f}"));
                 }
             }
             let what = if args.check { "checked" } else { "sent" };
-            eprintln!(
+            note(&format!(
                 "{what} {} lines in {:.1} s (mean receive-buffer fill {:.0}%){}",
                 report.acked,
                 report.elapsed.as_secs_f64(),
@@ -260,49 +261,154 @@ pub fn stream_command(args: &StreamArgs) -> ExitCode {
                 } else {
                     format!(", {} rejected by GRBL", report.faults.len())
                 }
-            );
+            ));
         }
         Err(e) => {
-            eprintln!("error: {e}");
-            if let GrblError::CheckFailed { faults } = e {
-                for f in faults {
-                    eprintln!("  {f}");
-                }
-                if args.check_first {
-                    eprintln!("nothing was streamed: fix these lines first");
-                }
-            }
-            let stopped = matches!(e, GrblError::Rejected { .. } | GrblError::Aborted { .. });
-            if stopped {
-                eprintln!(
-                    "the machine was stopped with a feed hold and a soft reset: spindle and \
-                     coolant are off. GRBL may report ALARM:3 after a reset from a hold; the \
-                     stop was controlled, so `$X` unlocks (home with `$H` if in doubt)"
-                );
-            }
-            if let GrblError::Alarm { .. } = e {
-                eprintln!(
-                    "GRBL has stopped and locks out G-code until it is unlocked (`$X`) or homed (`$H`)"
-                );
-            }
-            if let Some(resume) = e.resume_from() {
-                match e.last_acked() {
-                    Some(n) => eprintln!("last line acknowledged by GRBL: {n}: `{}`", line_text(n)),
-                    None => eprintln!("no line of the file was acknowledged by GRBL"),
-                }
-                match resume {
-                    Some(n) => eprintln!(
-                        "lines from {n} on may not have been (fully) executed; to resume after \
-                         fixing the cause: pfcam stream {} --port {} --from-line {n}",
-                        args.file.display(),
-                        args.port
-                    ),
-                    None => eprintln!("to resume, restart the job from the beginning"),
-                }
+            for line in stop_advice(e, args, program.as_ref()) {
+                note(&line);
             }
         }
     }
     status.into()
+}
+
+/// One line to stderr; a failed write is ignored (the terminal may be gone
+/// after SIGHUP), where `eprintln!` would panic.
+fn note(text: &str) {
+    let _ = writeln!(std::io::stderr(), "{text}");
+}
+
+/// What `pfcam stream` prints after a failed stream, line by line: the error, what
+/// state the machine was left in, and how to resume. For a rejected line it names
+/// that line (number and text as in the file) and the line to resume at once it is
+/// fixed, not the last acknowledged line (which follows the rejected one).
+pub fn stop_advice(e: &GrblError, args: &StreamArgs, program: Option<&Program>) -> Vec<String> {
+    let line_text = |n: usize| {
+        program
+            .and_then(|p| p.lines.get(n.wrapping_sub(1)))
+            .map(|l| l.raw.trim().to_string())
+            .unwrap_or_default()
+    };
+    let resume_cmd = |n: usize| {
+        format!(
+            "pfcam stream {} --port {} --from-line {n}",
+            args.file.display(),
+            args.port
+        )
+    };
+    let mut out = vec![format!("error: {e}")];
+    if let GrblError::CheckFailed { faults } = e {
+        out.extend(faults.iter().map(|f| format!("  {f}")));
+        if args.check_first {
+            out.push("nothing was streamed: fix these lines first".into());
+        }
+    }
+    if matches!(e, GrblError::Rejected { .. } | GrblError::Aborted { .. }) {
+        out.push(
+            "the machine was stopped with a feed hold and, once the hold was complete \
+             (Hold:0), a soft reset: spindle and coolant are off, GRBL is idle and keeps \
+             its position (GRBL 1.1 raises ALARM:3 only when reset while still moving, \
+             i.e. if the hold did not complete within 10 s: then home with `$H`)"
+                .into(),
+        );
+    }
+    if let GrblError::Alarm { .. } = e {
+        out.push(
+            "GRBL has stopped and locks out G-code until it is unlocked (`$X`) or homed (`$H`)"
+                .into(),
+        );
+    }
+    if let GrblError::Rejected {
+        fault, resume_from, ..
+    } = e
+    {
+        if fault.line == 0 {
+            out.push(format!(
+                "the rejected line is pfcam's resume preamble `{}`, not a file line",
+                fault.text
+            ));
+        } else {
+            out.push(format!(
+                "rejected: line {}: `{}`",
+                fault.line,
+                line_text(fault.line)
+            ));
+        }
+        match resume_from {
+            Some(n) if *n == fault.line => out.push(format!(
+                "every move before it had run; after fixing line {}, resume there: {}",
+                fault.line,
+                resume_cmd(*n)
+            )),
+            Some(n) => out.push(format!(
+                "lines {n} to {} were still in GRBL's planner and did not run; after fixing \
+                 line {}, resume at line {n} (`{}`): {}",
+                fault.line.saturating_sub(1).max(*n),
+                fault.line,
+                line_text(*n),
+                resume_cmd(*n)
+            )),
+            None => out.push(format!(
+                "moves from the start of the job may not have run; after fixing line {}, \
+                 restart the job from the beginning",
+                fault.line
+            )),
+        }
+        return out;
+    }
+    if let Some(resume) = e.resume_from() {
+        match e.last_acked() {
+            Some(n) => out.push(format!(
+                "last line acknowledged by GRBL: {n}: `{}`",
+                line_text(n)
+            )),
+            None => out.push("no line of the file was acknowledged by GRBL".into()),
+        }
+        match resume {
+            Some(n) => out.push(format!(
+                "lines from {n} on may not have been (fully) executed; to resume after \
+                 fixing the cause: {}",
+                resume_cmd(n)
+            )),
+            None => out.push("to resume, restart the job from the beginning".into()),
+        }
+    }
+    out
+}
+
+/// Turns SIGINT, SIGTERM and SIGHUP into operator commands ([`signal_command`])
+/// on a thread of their own, until the returned handle is closed.
+fn catch_signals(
+    tx: Sender<OperatorCommand>,
+    held: Arc<AtomicBool>,
+    interactive: bool,
+) -> std::io::Result<signal_hook::iterator::Handle> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
+    let handle = signals.handle();
+    std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            for signal in signals.forever() {
+                if tx.send(signal_command(signal, &held, interactive)).is_err() {
+                    return;
+                }
+            }
+        })?;
+    Ok(handle)
+}
+
+/// What a signal means during a stream. SIGTERM and SIGHUP (a service stopping
+/// pfcam, the terminal gone) abort: feed hold, soft reset, exit 6. So does SIGINT
+/// when nobody is at a terminal to answer the resume-or-abort prompt: a hold
+/// without it would leave the machine held with the spindle running. At a
+/// terminal, SIGINT (Ctrl-C) holds and asks; see [`ctrl_c`].
+pub fn signal_command(signal: i32, held: &AtomicBool, interactive: bool) -> OperatorCommand {
+    if signal == signal_hook::consts::SIGINT && interactive {
+        ctrl_c(held)
+    } else {
+        OperatorCommand::Abort
+    }
 }
 
 /// What a Ctrl-C means: a feed hold, or an abort when already held (second
@@ -315,7 +421,39 @@ pub fn ctrl_c(held: &AtomicBool) -> OperatorCommand {
     }
 }
 
-/// Reads `r`/`a` answers to the hold prompt from stdin.
+/// What a line typed during a stream asks for (case and spaces ignored):
+/// `r`/`resume`, `a`/`abort` at the hold prompt; overrides at any time:
+/// `f+`/`f-` feed ±10 %, `f+1`/`f-1` ±1 %, `f=` (or `f100`) back to 100 %;
+/// `s+`, `s-`, `s+1`, `s-1`, `s=` (`s100`) the same for the spindle;
+/// `r100`, `r50`, `r25` rapids. Anything else: `None`.
+pub fn typed_command(line: &str) -> Option<OperatorCommand> {
+    let key: String = line
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_lowercase();
+    let o = match key.as_str() {
+        "r" | "resume" => return Some(OperatorCommand::Resume),
+        "a" | "abort" => return Some(OperatorCommand::Abort),
+        "f=" | "f100" => Override::FeedReset,
+        "f+" => Override::FeedUp10,
+        "f-" => Override::FeedDown10,
+        "f+1" => Override::FeedUp1,
+        "f-1" => Override::FeedDown1,
+        "r100" => Override::Rapid100,
+        "r50" => Override::Rapid50,
+        "r25" => Override::Rapid25,
+        "s=" | "s100" => Override::SpindleReset,
+        "s+" => Override::SpindleUp10,
+        "s-" => Override::SpindleDown10,
+        "s+1" => Override::SpindleUp1,
+        "s-1" => Override::SpindleDown1,
+        _ => return None,
+    };
+    Some(OperatorCommand::Override(o))
+}
+
+/// Reads typed commands ([`typed_command`]) from stdin.
 fn spawn_prompt_reader(tx: Sender<OperatorCommand>) {
     if !std::io::stdin().is_terminal() {
         return;
@@ -325,10 +463,8 @@ fn spawn_prompt_reader(tx: Sender<OperatorCommand>) {
         .spawn(move || {
             for line in std::io::stdin().lock().lines() {
                 let Ok(line) = line else { return };
-                let cmd = match line.trim().to_ascii_lowercase().as_str() {
-                    "r" | "resume" => OperatorCommand::Resume,
-                    "a" | "abort" => OperatorCommand::Abort,
-                    _ => continue,
+                let Some(cmd) = typed_command(&line) else {
+                    continue;
                 };
                 if tx.send(cmd).is_err() {
                     return;
@@ -341,7 +477,11 @@ fn spawn_prompt_reader(tx: Sender<OperatorCommand>) {
 struct Terminal {
     bar: Option<ProgressBar>,
     held: Arc<AtomicBool>,
+    /// Someone can type commands (stdin is a terminal).
+    interactive: bool,
     status: Option<StatusReport>,
+    offset: WorkOffset,
+    position: Option<Position>,
     acked: usize,
     total: usize,
     line: usize,
@@ -350,7 +490,7 @@ struct Terminal {
 }
 
 impl Terminal {
-    fn new(held: Arc<AtomicBool>) -> Terminal {
+    fn new(held: Arc<AtomicBool>, interactive: bool) -> Terminal {
         let bar = std::io::stderr().is_terminal().then(|| {
             let bar = ProgressBar::new(0);
             if let Ok(style) = ProgressStyle::with_template(
@@ -363,7 +503,10 @@ impl Terminal {
         Terminal {
             bar,
             held,
+            interactive,
             status: None,
+            offset: WorkOffset::default(),
+            position: None,
             acked: 0,
             total: 0,
             line: 0,
@@ -372,23 +515,20 @@ impl Terminal {
         }
     }
 
+    /// Prints a line. Never panics (unlike `eprintln!`): after SIGHUP the terminal
+    /// may be gone, and the machine still has to be stopped.
     fn say(&self, text: &str) {
         match &self.bar {
             Some(bar) => bar.println(text),
-            None => eprintln!("{text}"),
+            None => note(text),
         }
     }
 
     fn machine(&self) -> String {
-        match &self.status {
-            Some(s) => {
-                let p = s.work_position(None).or(s.mpos).unwrap_or([0.0; 3]);
-                format!(
-                    "line {}  {}  X{:.3} Y{:.3} Z{:.3}",
-                    self.line, s.state, p[0], p[1], p[2]
-                )
-            }
-            None => format!("line {}", self.line),
+        match (&self.status, &self.position) {
+            (Some(s), Some(p)) => format!("line {}  {}  {p}", self.line, s.state),
+            (Some(s), None) => format!("line {}  {}", self.line, s.state),
+            _ => format!("line {}", self.line),
         }
     }
 
@@ -400,13 +540,13 @@ impl Terminal {
         } else if self.last_plain.elapsed() >= Duration::from_secs(5) {
             self.last_plain = Instant::now();
             let pct = (self.acked * 100).checked_div(self.total).unwrap_or(0);
-            eprintln!(
+            self.say(&format!(
                 "stream: {}/{} lines ({pct}%), {:.0} s, {}",
                 self.acked,
                 self.total,
                 self.start.elapsed().as_secs_f64(),
                 self.machine()
-            );
+            ));
         }
     }
 
@@ -421,9 +561,18 @@ impl Terminal {
 impl Observer for Terminal {
     fn event(&mut self, event: Event<'_>) {
         match event {
-            Event::Connected { version } => self.say(&format!("connected to GRBL {version}")),
+            Event::Connected { version } => {
+                self.say(&format!("connected to GRBL {version}"));
+                if self.interactive {
+                    self.say(
+                        "overrides (type, then Enter): f+ f- f+1 f-1 f= feed, s+ s- s+1 s-1 s= \
+                         spindle, r100 r50 r25 rapids; Ctrl-C holds",
+                    );
+                }
+            }
             Event::Message(m) => self.say(&format!("GRBL: {m}")),
             Event::Status(s) => {
+                self.position = self.offset.update(s);
                 self.status = Some(s.clone());
                 self.update();
             }
@@ -463,6 +612,43 @@ mod tests {
         // After a resume the front end clears the flag: Ctrl-C holds again.
         held.store(false, Ordering::SeqCst);
         assert_eq!(ctrl_c(&held), OperatorCommand::Hold);
+    }
+
+    #[test]
+    fn signals_abort_unless_someone_can_answer_the_prompt() {
+        use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+        let held = AtomicBool::new(false);
+        for sig in [SIGTERM, SIGHUP] {
+            for interactive in [false, true] {
+                assert_eq!(
+                    signal_command(sig, &held, interactive),
+                    OperatorCommand::Abort
+                );
+            }
+        }
+        assert_eq!(signal_command(SIGINT, &held, false), OperatorCommand::Abort);
+        assert_eq!(signal_command(SIGINT, &held, true), OperatorCommand::Hold);
+        assert_eq!(signal_command(SIGINT, &held, true), OperatorCommand::Abort);
+    }
+
+    #[test]
+    fn typed_commands_map_to_grbl_override_bytes() {
+        let byte = |t: &str| match typed_command(t) {
+            Some(OperatorCommand::Override(o)) => Some(o.byte()),
+            _ => None,
+        };
+        let keys = [
+            "f=", "f+", "f-", "f+1", "f-1", "r100", "r50", "r25", "s=", "s+", "s-", "s+1", "s-1",
+        ];
+        let bytes: Vec<Option<u8>> = keys.iter().map(|k| byte(k)).collect();
+        let want: Vec<Option<u8>> = (0x90..=0x97).chain(0x99..=0x9D).map(Some).collect();
+        assert_eq!(bytes, want);
+        assert_eq!(byte("f100"), Some(0x90));
+        assert_eq!(byte("S100"), Some(0x99));
+        assert_eq!(typed_command(" R "), Some(OperatorCommand::Resume));
+        assert_eq!(typed_command("abort"), Some(OperatorCommand::Abort));
+        assert_eq!(typed_command("f+2"), None);
+        assert_eq!(typed_command(""), None);
     }
 
     #[test]

@@ -50,9 +50,12 @@ pub struct Link {
 }
 
 impl Link {
-    /// Opens `path` at `baud` 8N1, no flow control.
+    /// Opens `path` at `baud` 8N1, no flow control, and starts fresh: DTR is
+    /// toggled where the port allows it (an Arduino-style board resets and prints a
+    /// new banner), then whatever arrived before now is thrown away, so a banner or
+    /// an `ok` printed before pfcam connected is never taken as fresh.
     pub fn open(path: &str, baud: u32) -> Result<Link, GrblError> {
-        let port = serialport::new(path, baud)
+        let mut port = serialport::new(path, baud)
             .data_bits(serialport::DataBits::Eight)
             .parity(serialport::Parity::None)
             .stop_bits(serialport::StopBits::One)
@@ -63,6 +66,7 @@ impl Link {
                 port: path.to_string(),
                 reason: e.to_string(),
             })?;
+        fresh_start(port.as_mut());
         Link::from_port(path, port)
     }
 
@@ -173,6 +177,20 @@ impl Drop for Link {
             let _ = reader.join();
         }
     }
+}
+
+/// How long DTR is held low: long enough for a board's auto-reset circuit.
+const DTR_PULSE: Duration = Duration::from_millis(100);
+
+/// Toggles DTR (bCNC does the same; a pty or a port without modem lines refuses,
+/// which is fine) and flushes the input queue. Errors are ignored: a port that
+/// cannot do either still works, and the banner wait deals with what comes.
+fn fresh_start(port: &mut dyn SerialPort) {
+    if port.write_data_terminal_ready(false).is_ok() {
+        std::thread::sleep(DTR_PULSE);
+        let _ = port.write_data_terminal_ready(true);
+    }
+    let _ = port.clear(serialport::ClearBuffer::Input);
 }
 
 fn read_lines(mut port: Box<dyn SerialPort>, tx: mpsc::Sender<Incoming>, stop: Arc<AtomicBool>) {

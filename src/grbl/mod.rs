@@ -110,6 +110,25 @@ pub enum GrblError {
         /// `--from-line` should resume (conservative; `None`: from the start).
         resume_from: Option<usize>,
     },
+    /// GRBL sat idle with empty buffers while lines were still unacknowledged:
+    /// their `ok`s were lost on the way (noise on the cable), so character counting
+    /// can never finish. Status reports still come, so this is not silence.
+    #[error(
+        "GRBL is idle with empty buffers but {unacked} line(s) were never acknowledged \
+         (for {seconds:.1} s): acknowledgements were lost on the link; feed hold and soft \
+         reset sent"
+    )]
+    Stalled {
+        /// How long GRBL was idle with the lines outstanding.
+        seconds: f64,
+        /// Lines sent and never acknowledged.
+        unacked: usize,
+        /// Last line acknowledged with `ok`.
+        last_acked: Option<usize>,
+        /// First file line that may not have been fully executed: where
+        /// `--from-line` should resume (conservative; `None`: from the start).
+        resume_from: Option<usize>,
+    },
     /// GRBL printed its banner mid-job: it was reset (reset button, power, brown-out).
     #[error("GRBL reset itself in the middle of the job (banner received)")]
     UnexpectedReset {
@@ -166,6 +185,11 @@ impl GrblError {
                 ..
             }
             | GrblError::Unresponsive {
+                last_acked,
+                resume_from,
+                ..
+            }
+            | GrblError::Stalled {
                 last_acked,
                 resume_from,
                 ..

@@ -15,6 +15,60 @@ pub const CYCLE_START: u8 = b'~';
 /// Ctrl-X: soft reset (stops everything, spindle and coolant off).
 pub const SOFT_RESET: u8 = 0x18;
 
+/// GRBL 1.1's override real-time commands (bytes 0x90 to 0x9D; feed and spindle
+/// overrides step in percent and are clamped by GRBL to 10 to 200 %, rapids are
+/// 100, 50 or 25 %).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Override {
+    /// 0x90: feed override back to 100 %.
+    FeedReset,
+    /// 0x91: feed +10 %.
+    FeedUp10,
+    /// 0x92: feed −10 %.
+    FeedDown10,
+    /// 0x93: feed +1 %.
+    FeedUp1,
+    /// 0x94: feed −1 %.
+    FeedDown1,
+    /// 0x95: rapids at 100 %.
+    Rapid100,
+    /// 0x96: rapids at 50 %.
+    Rapid50,
+    /// 0x97: rapids at 25 %.
+    Rapid25,
+    /// 0x99: spindle override back to 100 %.
+    SpindleReset,
+    /// 0x9A: spindle +10 %.
+    SpindleUp10,
+    /// 0x9B: spindle −10 %.
+    SpindleDown10,
+    /// 0x9C: spindle +1 %.
+    SpindleUp1,
+    /// 0x9D: spindle −1 %.
+    SpindleDown1,
+}
+
+impl Override {
+    /// The real-time byte GRBL 1.1 reads for it.
+    pub fn byte(self) -> u8 {
+        match self {
+            Override::FeedReset => 0x90,
+            Override::FeedUp10 => 0x91,
+            Override::FeedDown10 => 0x92,
+            Override::FeedUp1 => 0x93,
+            Override::FeedDown1 => 0x94,
+            Override::Rapid100 => 0x95,
+            Override::Rapid50 => 0x96,
+            Override::Rapid25 => 0x97,
+            Override::SpindleReset => 0x99,
+            Override::SpindleUp10 => 0x9A,
+            Override::SpindleDown10 => 0x9B,
+            Override::SpindleUp1 => 0x9C,
+            Override::SpindleDown1 => 0x9D,
+        }
+    }
+}
+
 /// One line from GRBL, classified.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Response {
@@ -214,14 +268,62 @@ impl StatusReport {
         Some(r)
     }
 
-    /// Work position: `WPos` if reported, else `MPos − WCO` with the last known WCO.
+    /// Work position: `WPos` if reported, else `MPos − WCO` with this report's WCO
+    /// or else `wco`, the last one GRBL reported. `None` when neither is known:
+    /// machine position is not work position.
     pub fn work_position(&self, wco: Option<[f64; 3]>) -> Option<[f64; 3]> {
         if let Some(w) = self.wpos {
             return Some(w);
         }
         let m = self.mpos?;
-        let o = self.wco.or(wco).unwrap_or([0.0; 3]);
+        let o = self.wco.or(wco)?;
         Some([m[0] - o[0], m[1] - o[1], m[2] - o[2]])
+    }
+}
+
+/// Where the tool is, as well as the status reports tell.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Position {
+    /// Work coordinates (what the program says): `WPos`, or `MPos − WCO`.
+    Work([f64; 3]),
+    /// Machine coordinates: `MPos` before GRBL has reported any `WCO`.
+    Machine([f64; 3]),
+}
+
+impl std::fmt::Display for Position {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (name, p, note) = match self {
+            Position::Work(p) => ("WPos", p, ""),
+            Position::Machine(p) => ("MPos", p, " (work offset not reported yet)"),
+        };
+        write!(f, "{name} X{:.3} Y{:.3} Z{:.3}{note}", p[0], p[1], p[2])
+    }
+}
+
+/// Tracks GRBL's work coordinate offset. GRBL 1.1 sends `WCO:` only in some
+/// status reports (every 10th when idle, every 30th when busy, and after it
+/// changes), so the last one seen applies to the reports without it: work
+/// position = `MPos − WCO`. A report with `WPos` (`$10` without bit 0) is used as is.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WorkOffset {
+    wco: Option<[f64; 3]>,
+}
+
+impl WorkOffset {
+    /// Takes in a report (its `WCO`, if any) and says where the tool is.
+    pub fn update(&mut self, r: &StatusReport) -> Option<Position> {
+        if r.wco.is_some() {
+            self.wco = r.wco;
+        }
+        match r.work_position(self.wco) {
+            Some(w) => Some(Position::Work(w)),
+            None => r.mpos.map(Position::Machine),
+        }
+    }
+
+    /// The last `WCO` GRBL reported.
+    pub fn wco(&self) -> Option<[f64; 3]> {
+        self.wco
     }
 }
 
@@ -272,6 +374,13 @@ mod tests {
         let r = StatusReport::parse("<Idle|WPos:1,2,3|F:0>").unwrap();
         assert_eq!(r.work_position(None), Some([1.0, 2.0, 3.0]));
         assert!(StatusReport::parse("<>").is_some_and(|r| r.mpos.is_none()));
+        // MPos without any WCO is not a work position.
+        let r = StatusReport::parse("<Idle|MPos:5,6,7>").unwrap();
+        assert_eq!(r.work_position(None), None);
+        assert_eq!(
+            r.work_position(Some([1.0, 1.0, 1.0])),
+            Some([4.0, 5.0, 6.0])
+        );
         assert!(StatusReport::parse("Idle").is_none());
     }
 }

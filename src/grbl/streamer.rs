@@ -16,7 +16,9 @@
 //! # Stopping
 //! A rejected line (by default) and an operator abort stop the machine the same way:
 //! feed hold `!`, wait until the hold is complete (`Hold:0`, bounded), soft reset
-//! (spindle and coolant off, buffers flushed), wait for the banner. An `ALARM:N`
+//! (spindle and coolant off, buffers flushed), wait for the banner. GRBL 1.1h
+//! resets from `Hold:0` to `Idle` with no alarm and keeps its position; only a
+//! reset while still moving (the hold not complete in time) raises `ALARM:3`. An `ALARM:N`
 //! needs no stop (GRBL has already stopped); pfcam sends nothing more.
 
 use std::collections::VecDeque;
@@ -27,8 +29,8 @@ use std::time::{Duration, Instant};
 use super::codes;
 use super::link::Link;
 use super::protocol::{
-    parse_response, MachineState, Response, StatusReport, CYCLE_START, FEED_HOLD, SOFT_RESET,
-    STATUS_QUERY,
+    parse_response, MachineState, Override, Response, StatusReport, CYCLE_START, FEED_HOLD,
+    SOFT_RESET, STATUS_QUERY,
 };
 use super::GrblError;
 use crate::gcode::parse::{Distance, FeedMode, ModalState, Motion, Plane, Program, Spindle, Units};
@@ -46,7 +48,10 @@ pub struct Settings {
     pub stop_on_error: bool,
     /// How long to wait for the banner, before and after the soft reset.
     pub banner_timeout: Duration,
-    /// Silence (no line at all, status reports included) that means GRBL is gone.
+    /// Silence (no line at all, status reports included) that means GRBL is gone;
+    /// also how long GRBL may sit idle with empty buffers while lines are still
+    /// unacknowledged (lost `ok`s) before the stream stops (plus any `G4` dwell
+    /// among those lines).
     pub response_timeout: Duration,
     /// How long a feed hold may take to come to a stop before pfcam resets anyway.
     pub hold_timeout: Duration,
@@ -129,6 +134,9 @@ pub enum OperatorCommand {
     Resume,
     /// Stop: feed hold, then soft reset.
     Abort,
+    /// A feed, rapid or spindle override: its real-time byte goes out at once
+    /// (GRBL applies it while running or held).
+    Override(Override),
 }
 
 /// What happens during a stream, for a front end (progress bar, log, prompt).
@@ -199,6 +207,9 @@ pub struct Streamer {
     version: String,
     status: Option<StatusReport>,
     wco: Option<[f64; 3]>,
+    /// Most free planner blocks and receive-buffer bytes GRBL has reported (`Bf:`):
+    /// what it says when both are empty.
+    empty_buffers: Option<(u32, u32)>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -223,6 +234,9 @@ struct Run<'a> {
     resume_pending: bool,
     /// `~` sent; status reports still saying Hold were asked before it.
     awaiting_run: bool,
+    /// Since when GRBL has been idle with empty buffers while lines are
+    /// outstanding (see [`Streamer::looks_stalled`]).
+    stall_since: Option<Instant>,
     fill_integral: f64,
     fill_time: f64,
     last_change: Instant,
@@ -245,6 +259,7 @@ impl Streamer {
             version: String::new(),
             status: None,
             wco: None,
+            empty_buffers: None,
         };
         let mut heard = String::new();
         let mut alarm_hint = false;
@@ -362,6 +377,8 @@ impl Streamer {
                 match parse_response(&line) {
                     Response::Status(r) => {
                         self.note_status(&r);
+                        // Observers see it too: it may be the one with the WCO.
+                        obs.event(Event::Status(&r));
                         return Ok(r);
                     }
                     _ => obs.event(Event::Message(&line)),
@@ -373,6 +390,10 @@ impl Streamer {
     fn note_status(&mut self, r: &StatusReport) {
         if r.wco.is_some() {
             self.wco = r.wco;
+        }
+        if let Some((planner, rx)) = r.buffer {
+            let (p, x) = self.empty_buffers.unwrap_or((0, 0));
+            self.empty_buffers = Some((p.max(planner), x.max(rx)));
         }
         self.status = Some(r.clone());
     }
@@ -476,6 +497,7 @@ impl Streamer {
             hold_announced: false,
             resume_pending: false,
             awaiting_run: false,
+            stall_since: None,
             fill_integral: 0.0,
             fill_time: 0.0,
             last_change: Instant::now(),
@@ -518,6 +540,9 @@ impl Streamer {
                         if r.held || self.in_hold() {
                             r.resume_pending = true;
                         }
+                    }
+                    Ok(OperatorCommand::Override(o)) => {
+                        self.link.send_realtime(o.byte()).map_err(|e| lost(e, &r))?;
                     }
                     Ok(OperatorCommand::Abort) => {
                         obs.event(Event::Stopping("aborted by the operator"));
@@ -619,13 +644,11 @@ impl Streamer {
                         if mode == Mode::Run && self.settings.stop_on_error {
                             obs.event(Event::Stopping("GRBL rejected a line"));
                             self.stop_machine(&mut r, obs)?;
-                            let resume = self
-                                .resume_point(&r, false)
-                                .map_or(fault.line, |l| l.min(fault.line));
+                            let resume_from = self.rejected_resume(&r, fault.line);
                             return Err(GrblError::Rejected {
                                 fault,
                                 last_acked: r.last_acked,
-                                resume_from: Some(resume),
+                                resume_from,
                             });
                         }
                         obs.event(Event::Rejected(&fault));
@@ -642,6 +665,14 @@ impl Streamer {
                 Response::Status(report) => {
                     self.note_status(&report);
                     reports += 1;
+                    if self.looks_stalled(&r, &report) {
+                        let since = *r.stall_since.get_or_insert_with(Instant::now);
+                        if since.elapsed() > self.settings.response_timeout + pending_dwell(&r) {
+                            return Err(self.stalled(&mut r, since, obs));
+                        }
+                    } else {
+                        r.stall_since = None;
+                    }
                     if !matches!(report.state, MachineState::Hold(_)) {
                         r.awaiting_run = false;
                     }
@@ -677,11 +708,77 @@ impl Streamer {
     /// Resume point from the planner fill in the last status report (`Bf:`), or
     /// assuming a full planner when `worst_case` or when GRBL did not report it.
     fn resume_point(&self, r: &Run<'_>, worst_case: bool) -> Option<usize> {
-        let used = match self.status.as_ref().and_then(|s| s.buffer) {
-            Some((free, _)) if !worst_case => PLANNER_BLOCKS.saturating_sub(free as usize),
-            _ => PLANNER_BLOCKS,
-        };
-        resume_point(r, used)
+        resume_point(r, self.planner_used(worst_case))
+    }
+
+    /// Planner blocks in use at the last status report: its capacity (the most free
+    /// blocks GRBL ever reported, else GRBL 1.1's 15) less the free ones, or the
+    /// whole capacity when `worst_case` or without `Bf:`.
+    fn planner_used(&self, worst_case: bool) -> usize {
+        let capacity = self
+            .empty_buffers
+            .map_or(PLANNER_BLOCKS, |(p, _)| p as usize);
+        match self.status.as_ref().and_then(|s| s.buffer) {
+            Some((free, _)) if !worst_case => capacity.saturating_sub(free as usize),
+            _ => capacity,
+        }
+    }
+
+    /// Where to resume after GRBL rejected file line `fault` and the machine was
+    /// stopped (hold, reset: the planner is discarded). The planner held the newest
+    /// acknowledged moves; those after the rejected line take their share, the rest
+    /// are moves before it that never ran. Resume at the oldest of those, or at the
+    /// rejected line itself when none was left. `None`: from the start.
+    fn rejected_resume(&self, r: &Run<'_>, fault: usize) -> Option<usize> {
+        if fault == 0 {
+            // pfcam's own resume preamble was rejected: resume where it was for.
+            return r.blocks.iter().find(|b| b.line != 0).map(|b| b.line);
+        }
+        let after = r.acked_motion.iter().filter(|&&l| l > fault).count();
+        let before: Vec<usize> = r
+            .acked_motion
+            .iter()
+            .copied()
+            .filter(|&l| l < fault)
+            .collect();
+        match self.planner_used(false).saturating_sub(after) {
+            0 => Some(fault),
+            k if k <= before.len() => Some(before[before.len() - k]),
+            _ => None,
+        }
+    }
+
+    /// GRBL idle (or in check mode, where nothing is planned), its planner and
+    /// receive buffer empty (as empty as it has ever reported them; without `Bf:`
+    /// the state alone), yet lines are unacknowledged: their `ok`s can only have
+    /// been lost. Status reports keep coming in this state, so only this check
+    /// ends it.
+    fn looks_stalled(&self, r: &Run<'_>, report: &StatusReport) -> bool {
+        !r.pending.is_empty()
+            && matches!(report.state, MachineState::Idle | MachineState::Check)
+            && match (report.buffer, self.empty_buffers) {
+                (Some(now), Some(empty)) => now == empty,
+                _ => true,
+            }
+    }
+
+    /// Ends a stall: hold and reset (the spindle may be running), then the error.
+    fn stalled(&mut self, r: &mut Run<'_>, since: Instant, obs: &mut dyn Observer) -> GrblError {
+        let seconds = since.elapsed().as_secs_f64();
+        let unacked = r.pending.len();
+        obs.event(Event::Stopping(
+            "GRBL is idle with empty buffers but lines are unacknowledged",
+        ));
+        if let Err(e) = self.stop_machine(r, obs) {
+            return e;
+        }
+        GrblError::Stalled {
+            seconds,
+            unacked,
+            last_acked: r.last_acked,
+            // Idle with an empty planner: every acknowledged line has run.
+            resume_from: resume_point(r, 0),
+        }
     }
 
     fn in_hold(&self) -> bool {
@@ -710,6 +807,7 @@ impl Streamer {
         r.account();
         r.in_flight -= len;
         r.acked += 1;
+        r.stall_since = None;
         let block = &r.blocks[index];
         let fault = error.map(|code| Fault {
             line: block.line,
@@ -808,6 +906,15 @@ impl Streamer {
                 resume_from: self.resume_point(r, true),
             });
         }
+        if alarm {
+            // GRBL 1.1 resets from a completed hold (Hold:0) without an alarm; an
+            // alarm here means the hold had not completed within `hold_timeout`.
+            obs.event(Event::Message(
+                "GRBL is in alarm after the reset (ALARM:3: the reset came before the \
+                 hold had stopped the machine); position may be lost: home ($H) before \
+                 continuing",
+            ));
+        }
         Ok(())
     }
 }
@@ -874,8 +981,69 @@ fn resume_point(r: &Run<'_>, planner_used: usize) -> Option<usize> {
         .copied()
 }
 
+/// Seconds of `G4 P` dwell in the unacknowledged lines: GRBL is idle while it
+/// dwells, so a stall is declared only after them (each capped at an hour).
+fn pending_dwell(r: &Run<'_>) -> Duration {
+    let secs: f64 = r
+        .pending
+        .iter()
+        .map(|&(i, _)| dwell_seconds(&r.blocks[i].text))
+        .sum();
+    Duration::from_secs_f64(secs)
+}
+
+/// The `P` of a block with a `G4` word (cleaned, upper-case text), else 0.
+fn dwell_seconds(block: &str) -> f64 {
+    let mut words = Vec::new();
+    let mut rest = block;
+    while let Some(c) = rest.chars().next() {
+        let tail = &rest[c.len_utf8()..];
+        let end = tail
+            .find(|ch: char| ch.is_ascii_alphabetic())
+            .unwrap_or(tail.len());
+        words.push((c, tail[..end].parse::<f64>().ok()));
+        rest = &tail[end..];
+    }
+    let dwell = words.iter().any(|&(c, v)| c == 'G' && v == Some(4.0));
+    let p = words
+        .iter()
+        .find_map(|&(c, v)| (c == 'P').then_some(v).flatten());
+    match p {
+        Some(p) if dwell && p.is_finite() && p > 0.0 => p.min(3600.0),
+        _ => 0.0,
+    }
+}
+
 fn truncate(s: &str, n: usize) -> String {
     s.chars().take(n).collect()
+}
+
+/// What the program did before line `n`: the highest Z it reached and the feed
+/// (mm/min) of its last plunge, a `G1` in units per minute that moves Z down and
+/// neither X nor Y.
+fn history_before(program: &Program, n: usize) -> (Option<f64>, Option<f64>) {
+    let mut highest_z: Option<f64> = None;
+    let mut plunge_feed = None;
+    let mut s = ModalState::default();
+    for l in program.blocks().take_while(|l| l.number < n) {
+        let before = s.position;
+        if s.execute(&l.block).is_err() {
+            continue;
+        }
+        let after = s.position;
+        if let Some(z) = after[2] {
+            highest_z = Some(highest_z.map_or(z, |h: f64| h.max(z)));
+        }
+        let down = matches!((before[2], after[2]), (Some(a), Some(b)) if b < a);
+        if down
+            && s.motion == Motion::Linear
+            && s.feed_mode == FeedMode::UnitsPerMinute
+            && before[..2] == after[..2]
+        {
+            plunge_feed = s.feed.or(plunge_feed);
+        }
+    }
+    (highest_z, plunge_feed)
 }
 
 /// Options for resuming a job from a line.
@@ -910,17 +1078,7 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
     let state = program
         .state_before(n)
         .map_err(|e| GrblError::Input(format!("--from-line {n}: cannot compute the state: {e}")))?;
-    let mut highest_z: Option<f64> = None;
-    {
-        let mut s = ModalState::default();
-        for l in program.blocks().take_while(|l| l.number < n) {
-            if s.execute(&l.block).is_ok() {
-                if let Some(z) = s.position[2] {
-                    highest_z = Some(highest_z.map_or(z, |h: f64| h.max(z)));
-                }
-            }
-        }
-    }
+    let (highest_z, plunge_feed) = history_before(program, n);
     let safe_z = resume.safe_z.or(highest_z).ok_or_else(|| {
         GrblError::Input(format!(
             "--from-line {n}: no Z move before this line; give --safe-z"
@@ -1005,12 +1163,17 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
         num(to_units(pos[0])),
         num(to_units(pos[1]))
     ));
+    // Down at the program's own plunge feed, then its cutting feed is restored.
+    let plunge = plunge_feed.unwrap_or(feed);
     out.push(format!(
         "G1Z{}F{}",
         num(to_units(pos[2])),
-        num(to_units(feed))
+        num(to_units(plunge))
     ));
     let mut modes = String::new();
+    if plunge != feed {
+        modes.push_str(&format!("F{}", num(to_units(feed))));
+    }
     if state.distance == Distance::Incremental {
         modes.push_str("G91");
     }
@@ -1080,6 +1243,15 @@ mod tests {
         assert_eq!(s.spindle, expected.spindle);
         assert_eq!(s.feed, expected.feed);
         assert_eq!(s.flood, expected.flood);
+    }
+
+    #[test]
+    fn dwell_is_read_from_g4_only() {
+        assert_eq!(dwell_seconds("G4P2.5"), 2.5);
+        assert_eq!(dwell_seconds("P3G4"), 3.0);
+        assert_eq!(dwell_seconds("G40P2"), 0.0);
+        assert_eq!(dwell_seconds("G1X1F100"), 0.0);
+        assert_eq!(dwell_seconds("G4P99999"), 3600.0);
     }
 
     #[test]

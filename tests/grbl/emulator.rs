@@ -13,12 +13,16 @@
 //!   over 79 characters;
 //! - a planner that executes motion at `speedup` × the programmed feed (rapids at
 //!   3000 mm/min), so positions in status reports advance;
-//! - `?` status reports (state, MPos, Bf, FS, WCO now and then), `!` feed hold
+//! - `?` status reports (state, MPos = work position + `wco` or WPos, Bf, FS,
+//!   WCO only every `wco_every`-th report as GRBL does), `!` feed hold
 //!   (Hold:1 while decelerating, then Hold:0), `~` resume (ignored before Hold:0,
-//!   as GRBL does), 0x18 soft reset (ALARM:3 if in motion or hold, as GRBL does);
+//!   as GRBL does), 0x18 soft reset (ALARM:3 if in motion or still decelerating
+//!   in Hold:1; from Hold:0 straight to Idle, as GRBL 1.1h does);
+//! - override bytes 0x90-0x9D (recorded, applied, reported in `Ov:`);
 //! - alarm state (G-code gets `error:9`; `$X` / `$H` unlock), `$C` check mode
 //!   (leaving it resets), an injectable `ALARM:N` after the k-th line, a link that
-//!   dies after the k-th line, and personalities that are not GRBL (silent, noise).
+//!   dies after the k-th line, an `ok` lost on the way (`drop_ok`), and
+//!   personalities that are not GRBL (silent, noise).
 
 use std::collections::VecDeque;
 use std::io::{Read, Write};
@@ -62,6 +66,15 @@ pub struct Config {
     pub reboot_after: Option<usize>,
     /// A startup line echoed after the banner (`>G54:ok`).
     pub startup_echo: bool,
+    /// The `ok` of this G-code line (1-based count) is lost on the way, as on a
+    /// noisy cable: the line runs, the sender never hears about it.
+    pub drop_ok: Option<usize>,
+    /// Work coordinate offset (G54 in machine coordinates): MPos = work + WCO.
+    pub wco: [f64; 3],
+    /// `WCO:` goes into every n-th status report only, as in GRBL (10 idle, 30 busy).
+    pub wco_every: usize,
+    /// Report `WPos:` instead of `MPos:` (GRBL's `$10=0`).
+    pub report_wpos: bool,
 }
 
 impl Default for Config {
@@ -78,6 +91,10 @@ impl Default for Config {
             freeze_after: None,
             reboot_after: None,
             startup_echo: false,
+            drop_ok: None,
+            wco: [0.0; 3],
+            wco_every: 10,
+            report_wpos: false,
         }
     }
 }
@@ -112,6 +129,15 @@ pub struct Shared {
     pub dead: bool,
     /// Lines received when the emulator rebooted (`reboot_after`).
     pub rebooted_at: Option<usize>,
+    /// Lines whose moves were still in the planner (not or not fully run) when a
+    /// soft reset discarded them.
+    pub flushed: Vec<String>,
+    /// Feed, rapid and spindle overrides in percent (real-time bytes 0x90-0x9D).
+    pub overrides: [u32; 3],
+    /// Banners printed (at start, on `boot`, after each reset).
+    pub banners: usize,
+    /// `ok`s swallowed (`drop_ok`).
+    pub dropped_oks: usize,
 }
 
 pub struct Emulator {
@@ -126,7 +152,10 @@ impl Emulator {
     pub fn start(config: Config) -> Emulator {
         let (master, slave) = TTYPort::pair().expect("pty pair");
         let path = slave.name().expect("pty name");
-        let shared = Arc::new(Mutex::new(Shared::default()));
+        let shared = Arc::new(Mutex::new(Shared {
+            overrides: [100; 3],
+            ..Shared::default()
+        }));
         let stop = Arc::new(AtomicBool::new(false));
         let thread = {
             let shared = shared.clone();
@@ -193,6 +222,8 @@ enum State {
 }
 
 struct Block {
+    /// The line that planned it.
+    text: String,
     from: [f64; 3],
     to: [f64; 3],
     /// Simulated seconds.
@@ -214,6 +245,8 @@ struct Machine {
     out: Vec<u8>,
     reports: usize,
     lines: usize,
+    /// The line being executed (for the planner blocks it makes).
+    current: String,
     last: Instant,
     noise_at: Instant,
 }
@@ -242,6 +275,7 @@ impl Machine {
             out: Vec::new(),
             reports: 0,
             lines: 0,
+            current: String::new(),
             last: Instant::now(),
             noise_at: Instant::now(),
         }
@@ -257,6 +291,7 @@ impl Machine {
     }
 
     fn banner(&mut self) {
+        self.shared().banners += 1;
         self.say("Grbl 1.1h ['$' for help]");
         if self.state == State::Alarm {
             self.say("[MSG:'$H'|'$X' to unlock]");
@@ -375,6 +410,10 @@ impl Machine {
                 self.shared().realtime.push((b, lines));
                 self.reset();
             }
+            0x90..=0x9d => {
+                self.shared().realtime.push((b, lines));
+                self.override_byte(b);
+            }
             0x80..=0xff => self.shared().realtime.push((b, lines)),
             _ => {
                 self.rx.push_back(b);
@@ -391,19 +430,46 @@ impl Machine {
         }
     }
 
+    /// GRBL 1.1's override commands: feed and spindle in steps, clamped to
+    /// 10..=200 %, rapids at 100/50/25 %.
+    fn override_byte(&mut self, b: u8) {
+        let mut s = self.shared();
+        let step = |v: u32, d: i32| (v as i32 + d).clamp(10, 200) as u32;
+        let [feed, rapid, spindle] = &mut s.overrides;
+        match b {
+            0x90 => *feed = 100,
+            0x91 => *feed = step(*feed, 10),
+            0x92 => *feed = step(*feed, -10),
+            0x93 => *feed = step(*feed, 1),
+            0x94 => *feed = step(*feed, -1),
+            0x95 => *rapid = 100,
+            0x96 => *rapid = 50,
+            0x97 => *rapid = 25,
+            0x99 => *spindle = 100,
+            0x9a => *spindle = step(*spindle, 10),
+            0x9b => *spindle = step(*spindle, -10),
+            0x9c => *spindle = step(*spindle, 1),
+            0x9d => *spindle = step(*spindle, -1),
+            _ => {}
+        }
+    }
+
     fn reset(&mut self) {
-        let moving = matches!(self.state, State::Run | State::Hold(_));
+        // GRBL 1.1h `mc_reset`: ALARM:3 only when steppers are moving (a cycle, or a
+        // hold still decelerating); a completed hold (Hold:0) resets to Idle.
+        let moving = matches!(self.state, State::Run | State::Hold(1));
         self.rx.clear();
         if let Some(b) = self.planner.front() {
             self.position = interpolate(b);
         }
-        self.planner.clear();
+        let flushed: Vec<String> = self.planner.drain(..).map(|b| b.text).collect();
+        self.shared().flushed.extend(flushed);
         self.modal = ModalState::default();
         self.modal.position = self.position.map(Some);
         self.hold_until = None;
         self.shared().resets += 1;
         if moving {
-            // GRBL: a reset during a cycle or a hold flags possible position loss.
+            // GRBL: a reset while moving flags possible position loss.
             self.say("ALARM:3");
             self.state = State::Alarm;
         } else if self.state != State::Alarm {
@@ -431,9 +497,15 @@ impl Machine {
 
     fn status_report(&mut self) {
         self.reports += 1;
-        let p = self.current_position();
+        let w = self.current_position();
+        let o = self.cfg.wco;
+        let (kind, p) = if self.cfg.report_wpos {
+            ("WPos", w)
+        } else {
+            ("MPos", [w[0] + o[0], w[1] + o[1], w[2] + o[2]])
+        };
         let mut r = format!(
-            "<{}|MPos:{:.3},{:.3},{:.3}|Bf:{},{}|FS:{:.0},{:.0}",
+            "<{}|{kind}:{:.3},{:.3},{:.3}|Bf:{},{}|FS:{:.0},{:.0}",
             self.state_text(),
             p[0],
             p[1],
@@ -447,11 +519,12 @@ impl Machine {
             },
             self.modal.spindle_speed
         );
-        if self.reports % 10 == 1 {
-            r.push_str("|WCO:0.000,0.000,0.000");
+        if (self.reports - 1) % self.cfg.wco_every.max(1) == 0 {
+            r.push_str(&format!("|WCO:{:.3},{:.3},{:.3}", o[0], o[1], o[2]));
         }
         if self.reports % 10 == 2 {
-            r.push_str("|Ov:100,100,100");
+            let [f, r0, sp] = self.shared().overrides;
+            r.push_str(&format!("|Ov:{f},{r0},{sp}"));
         }
         r.push('>');
         self.say(&r);
@@ -509,6 +582,7 @@ impl Machine {
     }
 
     fn line(&mut self, text: String) {
+        self.current = text.clone();
         let before = self.modal.clone();
         let check = self.state == State::Check;
         let mut error = None;
@@ -576,8 +650,10 @@ impl Machine {
             self.say("[MSG:Pgm End]");
             self.modal.ended = false;
         }
+        let lost = !text.starts_with('$') && self.cfg.drop_ok == Some(self.lines);
         match error {
             Some(n) => self.say(&format!("error:{n}")),
+            None if extra_ok && lost => self.shared().dropped_oks += 1,
             None if extra_ok => self.say("ok"),
             None => {}
         }
@@ -609,6 +685,7 @@ impl Machine {
             _ => self.modal.feed_mm_per_min().unwrap_or(RAPID_MM_PER_MIN),
         };
         self.planner.push_back(Block {
+            text: self.current.clone(),
             from,
             to,
             duration: dist / (rate / 60.0),
