@@ -84,9 +84,11 @@ pub enum Command {
         /// Lay the field's colour map under the drawing (a larger file).
         #[arg(long)]
         field_image: bool,
-        /// Equipotential values s to draw, comma separated, each in (0, 1).
-        #[arg(long, value_delimiter = ',', default_value = "0.9,0.95,0.98,0.99")]
-        levels: Vec<f64>,
+        /// Equipotential values s to draw, comma separated, each in (0, 1)
+        /// (default: a boss's or cavity's top edge and foot, Γ(s1) and Γ(s2);
+        /// for a profile 0.9,0.95,0.98,0.99).
+        #[arg(long, value_delimiter = ',')]
+        levels: Option<Vec<f64>>,
     },
     /// Run a job and write its potential field as the paper's colour map (PNG).
     Field {
@@ -345,6 +347,7 @@ fn cmd_run(
         total: 1,
     });
     let opts = PreviewOptions {
+        levels: pfcam::preview::levels_for(&job),
         field_image,
         ..PreviewOptions::default()
     };
@@ -456,9 +459,9 @@ fn cmd_preview(
     force: bool,
     quiet: bool,
     field_image: bool,
-    levels: Vec<f64>,
+    levels: Option<Vec<f64>>,
 ) -> Result<()> {
-    if let Some(s) = levels.iter().find(|s| !(**s > 0.0 && **s < 1.0)) {
+    if let Some(s) = levels.iter().flatten().find(|s| !(**s > 0.0 && **s < 1.0)) {
         bail!("--levels: every value must lie strictly between 0 and 1, got {s}");
     }
     let target = output_path(path, output, "svg")?;
@@ -466,7 +469,7 @@ fn cmd_preview(
     let (job, out) = run_quietly(path, quiet)?;
     let report = RunReport::new(&job, &out);
     let opts = PreviewOptions {
-        levels,
+        levels: levels.unwrap_or_else(|| pfcam::preview::levels_for(&job)),
         field_image,
         ..PreviewOptions::default()
     };

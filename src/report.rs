@@ -388,13 +388,13 @@ impl RunReport {
     /// A short human table: one row per level, then the totals.
     pub fn table(&self) -> String {
         let mut s = format!(
-            "{:>9} {:>6} {:>5} {:>10} {:>11} {:>13} {:>9}\n",
+            "{:>9} {:>8} {:>5} {:>10} {:>11} {:>13} {:>9}\n",
             "z (mm)", "s", "N", "max error", "length (mm)", "clearance (mm)", "time"
         );
         let clear = |c: Option<f64>| c.map_or("-".to_string(), |c| format!("{c:.4}"));
         for l in &self.levels {
             s += &format!(
-                "{:>9.3} {:>6.3} {:>5} {:>10.2e} {:>11.1} {:>14} {:>9}\n",
+                "{:>9.3} {:>8.5} {:>5} {:>10.2e} {:>11.1} {:>14} {:>9}\n",
                 l.z,
                 l.s,
                 l.n,
@@ -406,7 +406,7 @@ impl RunReport {
         }
         let t = &self.totals;
         s += &format!(
-            "{:>9} {:>6} {:>5} {:>10.2e} {:>11.1} {:>14} {:>9}",
+            "{:>9} {:>8} {:>5} {:>10.2e} {:>11.1} {:>14} {:>9}",
             "total",
             t.levels,
             "",

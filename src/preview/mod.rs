@@ -47,6 +47,21 @@ pub fn is_pfcam_svg(first_line: &str) -> bool {
     first_line.starts_with(SVG_MARKER_PREFIX) && first_line.trim_end().ends_with("-->")
 }
 
+/// The equipotentials a job's preview draws by default: for a boss or cavity
+/// the part's own outlines, its top edge Γ(s_top) and its foot Γ(s_bottom)
+/// (for a mould, its floor and its rim); for a profile `DEFAULT_LEVELS`.
+pub fn levels_for(job: &crate::job::Job) -> Vec<f64> {
+    use crate::job::OperationKind;
+    match (job.operation.kind, &job.profile) {
+        (OperationKind::Boss | OperationKind::Cavity, Some(p)) => {
+            let (lo, hi) = p.s_range();
+            // s = 1 is the glyph itself, drawn anyway.
+            [lo, hi].into_iter().filter(|s| *s < 1.0).collect()
+        }
+        _ => DEFAULT_LEVELS.to_vec(),
+    }
+}
+
 /// Settings of the preview.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PreviewOptions {
@@ -118,6 +133,12 @@ pub fn drawing_area(job: &Job, out: &RunOutput) -> (Vec2, Vec2) {
 
 fn xy(p: Vec3) -> Vec2 {
     Vec2::new(p.x, p.y)
+}
+
+/// An equipotential value as written in a job (`0.9995`, not `num`'s `1`):
+/// the shortest decimal that reads back as the same number.
+fn level_label(s: f64) -> String {
+    format!("{s}")
 }
 
 /// A number for SVG: three decimals, trailing zeros dropped, no `-0`.
@@ -494,7 +515,8 @@ pub fn preview_svg(
             {
                 placed.push(*at);
                 labels = labels.add(
-                    text(at.x, -at.y + 0.2 * fs, 0.6 * fs, &num(s)).set("fill", colour.clone()),
+                    text(at.x, -at.y + 0.2 * fs, 0.6 * fs, &level_label(s))
+                        .set("fill", colour.clone()),
                 );
             }
             let closed: Vec<Vec<Vec2>> = curves
@@ -772,7 +794,7 @@ pub fn preview_svg(
     entries.push((Swatch::Line("#6b6b6b".into(), lw, true), "rapid".into()));
     entries.push((Swatch::Dot("#00a650".into()), "start, tool ⌀".into()));
     if !shown.is_empty() {
-        let vals: Vec<String> = shown.iter().map(|s| num(*s)).collect();
+        let vals: Vec<String> = shown.iter().map(|s| level_label(*s)).collect();
         entries.push((
             Swatch::Line(curve_colour(levels.len() - 1, levels.len()), lw, false),
             format!("Γ(s), s = {}", vals.join(", ")),
