@@ -259,7 +259,8 @@ pub fn message(e: &anyhow::Error) -> String {
             text += &c;
         }
     }
-    text
+    // Whatever a message echoes (a part name, a path), never 600 kB of it.
+    pfcam::job::echo::clip_message(&text)
 }
 
 /// The exit status for an error from [`run`].

@@ -422,14 +422,14 @@ pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, 
         if out.is_empty() {
             return Err(part_err(
                 &m.name,
-                format!("Γ({s}) of its field is empty near the part"),
+                format!("Γ({s:?}) of its field is empty near the part"),
             ));
         }
         return Ok(out);
     }
     Err(part_err(
         &m.name,
-        format!("Γ({s}) of its field does not close within 32 times the part's size; take a level closer to 1"),
+        format!("Γ({s:?}) of its field does not close within 32 times the part's size; take a level closer to 1"),
     ))
 }
 
@@ -1015,8 +1015,8 @@ pub fn build(
                     &frame,
                     part.singularities,
                     match &part.source {
-                        PartSource::Ref(of) => format!("{name} = Γ({s}) of {of}"),
-                        _ => format!("{name} = Γ({s}) of its field"),
+                        PartSource::Ref(of) => format!("{name} = Γ({s:?}) of {of}"),
+                        _ => format!("{name} = Γ({s:?}) of its field"),
                     },
                 )?;
                 reports.push(r);

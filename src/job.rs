@@ -13,7 +13,9 @@ use crate::geometry::{
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
+pub mod echo;
 mod exact;
+pub mod extent;
 pub mod limits;
 
 /// A resolved job: units in mm, mm/min and rev/min, defaults applied, validated.
@@ -274,7 +276,7 @@ pub enum JobError {
         message: String,
     },
     /// A font file that does not exist.
-    #[error("{key}: no such file: {}", path.display())]
+    #[error("{key}: no such file: {}", echo::clip(&path.display().to_string()))]
     FontNotFound {
         /// the key: `shape.font`, or a part's `shape.part[2].font`
         key: String,
@@ -306,10 +308,12 @@ impl JobError {
     }
 }
 
+/// An invalid value's error; echoed values in `message` are clipped
+/// ([`echo::clip_message`]).
 fn invalid(key: &str, message: impl Into<String>) -> JobError {
     JobError::Invalid {
         key: key.into(),
-        message: message.into(),
+        message: echo::clip_message(&message.into()),
     }
 }
 
@@ -790,8 +794,8 @@ fn parse_error(text: &str, e: &toml::de::Error) -> JobError {
         origin: "job".into(),
         line,
         column,
-        key,
-        message,
+        key: key.map(|k| echo::clip(&k).into_owned()),
+        message: echo::clip_message(&message),
     }
 }
 
@@ -909,7 +913,8 @@ fn one_of(key: &str, value: &str, accepted: &[&str]) -> Result<(), JobError> {
         Err(invalid(
             key,
             format!(
-                "has no value `{value}`; accepted: {}",
+                "has no value `{}`; accepted: {}",
+                echo::clip(value),
                 accepted
                     .iter()
                     .map(|a| format!("`{a}`"))
@@ -935,7 +940,8 @@ fn check_name(key: &str, name: &str) -> Result<(), JobError> {
         Err(invalid(
             key,
             format!(
-                "must be 1 to 64 of the characters A-Z a-z 0-9 - _ . (not starting with .), got {name:?}"
+                "must be 1 to 64 of the characters A-Z a-z 0-9 - _ . (not starting with .), got {:?}",
+                echo::clip(name)
             ),
         ))
     }
@@ -1073,9 +1079,14 @@ impl RawJob {
             return Err(invalid(
                 "operation.tolerance",
                 format!(
-                    "must be smaller than the tool radius ({} mm), got {}",
+                    "must be smaller than the tool radius ({} mm), got {}{}",
                     show(diameter / 2.0),
-                    show(tolerance)
+                    show(tolerance),
+                    if o.tolerance.is_none() {
+                        " (the default): set it for so small a tool"
+                    } else {
+                        ""
+                    }
                 ),
             ));
         }
@@ -1566,7 +1577,8 @@ fn resolve_composition(
                 return Err(invalid(
                     "shape.result",
                     format!(
-                        "names an unknown part {r:?} (the parts: {})",
+                        "names an unknown part {:?} (the parts: {})",
+                        echo::clip(&r),
                         names.join(", ")
                     ),
                 ));
@@ -1742,7 +1754,7 @@ fn resolve_part_source(
         let message = match this_and_later.iter().position(|n| n == name) {
             Some(0) => format!("names the part itself, {name:?} (a part may only use parts defined before it; {before})"),
             Some(_) => format!("names {name:?}, which is defined after it (a part may only use parts defined before it; {before})"),
-            None => format!("names an unknown part {name:?} ({before})"),
+            None => format!("names an unknown part {:?} ({before})", echo::clip(name)),
         };
         return Err(invalid(&key("of"), message));
     }
@@ -2538,7 +2550,7 @@ of = ["m6", "m3"]
         q_err(
             &q_with("singularities = 300", "singularities = 0"),
             "shape.part[5].singularities",
-            &["in [1, 10000], got 0"],
+            &["in [1, 8000], got 0"],
         );
         q_err(
             &q_with("singularities = 300", "singularities = 2.5"),

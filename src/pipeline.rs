@@ -2,6 +2,7 @@
 
 use crate::field::{self, Boundary, FieldError, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape, ShapeSource};
+use crate::job::extent::check_extent;
 use crate::job::{Direction, Job, OperationKind};
 use crate::levels::plan::{plan_levels_reporting, LevelInfo, LevelJob, LevelProgress};
 use crate::toolpath::arcfit::{self, ArcFitParams};
@@ -115,6 +116,9 @@ pub enum PipelineError {
         /// the uncut share of its reachable area
         share: f64,
     },
+    /// A job value that only the built shape shows to be wrong (its size).
+    #[error("{0}")]
+    Job(#[from] crate::job::JobError),
     /// Anything else.
     #[error("{0}")]
     Other(String),
@@ -294,7 +298,9 @@ pub fn job_shape(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<(Shape, Vec<SolveReport>), PipelineError> {
     let ShapeSource::Composite(comp) = &job.shape else {
-        return Ok((build_shape(&job.shape)?, Vec::new()));
+        let shape = build_shape(&job.shape)?;
+        check_extent(&job.shape, &shape, job.tool.diameter)?;
+        return Ok((shape, Vec::new()));
     };
     progress(Progress::Stage {
         name: "modelling the shape from its parts".into(),
@@ -325,6 +331,7 @@ pub fn job_shape(
             max_error: r.max_error,
         })
         .collect();
+    check_extent(&job.shape, &built.shape, job.tool.diameter)?;
     Ok((built.shape, reports))
 }
 

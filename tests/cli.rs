@@ -530,6 +530,39 @@ fn values_no_machine_could_use_are_refused_by_key() {
             "shape.part",
         ),
         (
+            "diameter-1e-300",
+            GOOD.replace("diameter = 3.175", "diameter = 1e-300"),
+            "tool.diameter must be in [0.01, 100] mm, got 1e-300",
+        ),
+        (
+            "height-1e-300",
+            GOOD.replace("height = 50.0", "height = 1e-300"),
+            "shape.height must be in [0.1, 2000] mm, got 1e-300",
+        ),
+        (
+            "polygon-1km",
+            "[shape]\n[[shape.part]]\nname = \"p\"\npolygon = [[0,0],[1e6,0],[1e6,1e6],[0,1e6]]\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"boss\"\ndepth = 3.0\n".to_string(),
+            "shape.result makes a shape 1000000.0 × 1000000.0 mm; at most 2000 mm",
+        ),
+        (
+            "svg-1km",
+            "[shape]\nsvg_path = \"M0 0 H1e6 V1e6 Z\"\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n".to_string(),
+            "shape.svg_path makes a shape",
+        ),
+        (
+            "text-53m",
+            GOOD.replace(
+                "text = \"I\"",
+                &format!("text = \"{}\"\nletter_spacing = 1000", "I".repeat(53)),
+            ),
+            "shape.text makes a shape",
+        ),
+        (
+            "level-1e-300",
+            "[shape]\n[[shape.part]]\nname = \"p\"\npolygon = [[0,0],[1,0],[1,1],[0,1]]\nlevel = 1e-300\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n".to_string(),
+            "shape.part[1] \"p\": Γ(1e-300) of its field does not close",
+        ),
+        (
             "text-10k",
             GOOD.replace(
                 "text = \"I\"",
@@ -546,12 +579,19 @@ fn values_no_machine_could_use_are_refused_by_key() {
             &["run", "job.toml", "--out", "out"][..],
         ] {
             let o = pfcam_bounded(args, &dir, 60);
-            let err = text(&o.stderr);
-            assert_eq!(o.status.code(), Some(1), "{case}: {args:?}: {err}");
-            assert!(err.starts_with("error: "), "{case}: {err}");
-            assert!(err.contains(key), "{case}: {args:?}: no {key:?} in {err}");
-            assert_eq!(err.lines().count(), 1, "{case}: one message: {err}");
-            assert!(err.len() < 400, "{case}: message not clipped: {err}");
+            let all = text(&o.stderr);
+            assert_eq!(o.status.code(), Some(1), "{case}: {args:?}: {all}");
+            // A run may say which stage it is in (a composition is built
+            // before its size is known); then comes one message.
+            let err = all.lines().last().unwrap_or_default();
+            assert!(err.starts_with("error: "), "{case}: {all}");
+            assert!(err.contains(key), "{case}: {args:?}: no {key:?} in {all}");
+            assert_eq!(
+                all.matches("error").count(),
+                1,
+                "{case}: one message: {all}"
+            );
+            assert!(all.len() < 400, "{case}: message not clipped: {all}");
             let left = files_in(&dir.join("out"));
             assert!(left.is_empty(), "{case}: files left behind: {left:?}");
         }
@@ -590,7 +630,7 @@ fn a_job_file_that_is_no_job_file_is_refused_unread() {
     let o = pfcam_bounded(&["convergence", "--glyph", "I", "--n", "100000"], &dir, 60);
     let err = text(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(err.contains("--n") && err.contains("10000"), "{err}");
+    assert!(err.contains("--n") && err.contains("8000"), "{err}");
 }
 
 /// Wrong shapes of values are named by their key, once: extra numbers, an
@@ -598,6 +638,16 @@ fn a_job_file_that_is_no_job_file_is_refused_unread() {
 #[test]
 fn wrongly_shaped_values_name_their_key() {
     for (case, job, needles) in [
+        (
+            "profile-point-3",
+            "[shape]\ntext = \"I\"\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"boss\"\ndepth = 3.0\n[profile]\nkind = \"table\"\npoints = [[0.8, -3.0], [0.9, -1.0, 7.0], [1.0, 0.0]]\n".to_string(),
+            &["profile.points", "invalid length 3, expected 2 numbers [x, y]"][..],
+        ),
+        (
+            "polygon-point-3",
+            "[shape]\n[[shape.part]]\nname = \"p\"\npolygon = [[0, 0], [10, 0, 1], [0, 10]]\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n".to_string(),
+            &["shape.part[1].polygon", "invalid length 3, expected 2 numbers [x, y]"][..],
+        ),
         (
             "origin-3",
             GOOD.replace("height = 50.0", "height = 50.0\norigin = [1.0, 2.0, 3.0]"),
@@ -625,6 +675,60 @@ fn wrongly_shaped_values_name_their_key() {
         ),
     ] {
         assert_rejected(case, &job, needles);
+    }
+}
+
+/// A value pasted by mistake (600 000 characters, the job file's limit allows
+/// it) is echoed once, clipped to its start and its length: an unknown key, a
+/// word, a name, a path, a string where a number belongs.
+#[test]
+fn long_values_are_echoed_clipped() {
+    let long = "x".repeat(600_000);
+    let clipped = format!("{}… (600000 characters)", "x".repeat(60));
+    for (case, job, key) in [
+        (
+            "key",
+            format!("{GOOD}{long} = 1\n"),
+            "operation.xxxxxxxxxx",
+        ),
+        (
+            "kind",
+            GOOD.replace("depth = 3.0", &format!("depth = 3.0\nkind = \"{long}\"")),
+            "operation.kind has no value",
+        ),
+        (
+            "font",
+            GOOD.replace("height = 50.0", &format!("height = 50.0\nfont = \"{long}\"")),
+            "shape.font: no such file",
+        ),
+        (
+            "name",
+            format!("[job]\nname = \"{long}\"\n{GOOD}"),
+            "job.name must be",
+        ),
+        (
+            "result",
+            format!("[shape]\nresult = \"{long}\"\n[[shape.part]]\nname = \"p\"\npolygon = [[0,0],[1,0],[1,1]]\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n"),
+            "shape.result names an unknown part",
+        ),
+        (
+            "string-for-number",
+            GOOD.replace("depth = 3.0", &format!("depth = \"{long}\"")),
+            "operation.depth: invalid type: string",
+        ),
+    ] {
+        let dir = scratch(&format!("clip-{case}"));
+        fs::write(dir.join("job.toml"), job).expect("write job");
+        let o = pfcam_bounded(&["validate", "job.toml"], &dir, 60);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{case}");
+        assert!(err.contains(key), "{case}: no {key:?} in {}", &err[..err.len().min(400)]);
+        assert!(err.len() < 400, "{case}: {} bytes: {}", err.len(), &err[..400]);
+        assert!(err.contains("… (6000"), "{case}: not clipped: {err}");
+        assert_eq!(err.lines().count(), 1, "{case}: {err}");
+        if case != "key" && case != "string-for-number" {
+            assert!(err.contains(&clipped), "{case}: {err}");
+        }
     }
 }
 

@@ -70,7 +70,8 @@ impl Range {
         if self.contains(x) {
             return Ok(x);
         }
-        let message = if self.lo == 0.0 && self.lo_open && (x.is_nan() || x <= 0.0) {
+        let positive = self.lo > 0.0 || (self.lo == 0.0 && self.lo_open);
+        let message = if positive && (x.is_nan() || x <= 0.0) {
             let of = if self.unit.is_empty() {
                 String::new()
             } else {
@@ -84,32 +85,35 @@ impl Range {
     }
 }
 
-/// `tool.diameter`: from an engraving bit to a large surfacing cutter.
-pub const TOOL_DIAMETER: Range = Range::open(0.0, 50.0, "mm");
-/// `tool.feed` and `tool.plunge_feed`: no GRBL machine moves faster than 50 m/min.
-pub const FEED: Range = Range::open(0.0, 50_000.0, "mm/min");
+/// `tool.diameter`: from a 10 µm micro-engraving bit to a 100 mm surfacing cutter.
+pub const TOOL_DIAMETER: Range = Range::closed(0.01, 100.0, "mm");
+/// `tool.feed` and `tool.plunge_feed`: no GRBL machine moves faster than 100 m/min.
+pub const FEED: Range = Range::open(0.0, 100_000.0, "mm/min");
 /// `tool.spindle`.
 pub const SPINDLE: Range = Range::closed(0.0, 100_000.0, "rev/min");
 /// `tool.stepdown`.
 pub const STEPDOWN: Range = Range::open(0.0, 50.0, "mm");
-/// `tool.stepover` (also at most the tool radius, checked on its own).
-pub const STEPOVER: Range = Range::closed(0.01, 25.0, "mm");
+/// `tool.stepover` (also at most the tool radius, checked on its own): the
+/// default, 0.4 × the smallest diameter, is inside it.
+pub const STEPOVER: Range = Range::closed(0.001, 50.0, "mm");
 /// `tool.ramp_angle`: below half a degree a ramp is longer than any part.
 pub const RAMP_ANGLE: Range = Range::closed(0.5, 45.0, "degrees");
 /// `stock.top`.
 pub const STOCK_TOP: Range = Range::closed(-1000.0, 1000.0, "mm");
 /// `stock.safe_z`, as a height above `stock.top` (also above it, checked on its own).
 pub const SAFE_CLEARANCE: Range = Range::open(0.0, 200.0, "mm above stock.top");
-/// `stock.margin`.
-pub const MARGIN: Range = Range::closed(0.0, 200.0, "mm");
+/// `stock.margin`: a metre of slab on every side.
+pub const MARGIN: Range = Range::closed(0.0, 1000.0, "mm");
 /// `operation.depth`.
 pub const DEPTH: Range = Range::open(0.0, 200.0, "mm");
 /// `operation.tolerance` (also below the tool radius, checked on its own).
 pub const TOLERANCE: Range = Range::closed(0.0001, 1.0, "mm");
 /// `operation.max_scallop`.
 pub const MAX_SCALLOP: Range = Range::closed(0.01, 50.0, "mm");
-/// `shape.height` for text and SVG: a sign no larger than a large router's bed.
-pub const SHAPE_HEIGHT: Range = Range::open(0.0, 2000.0, "mm");
+/// `shape.height`: from a 0.1 mm engraving to a sign as large as a large
+/// router's bed. The width and height of the built shape are bounded by the
+/// same 2000 mm ([`MAX_EXTENT`]).
+pub const SHAPE_HEIGHT: Range = Range::closed(0.1, 2000.0, "mm");
 /// `shape.origin`, each coordinate.
 pub const ORIGIN: Range = Range::closed(-10_000.0, 10_000.0, "mm");
 /// `shape.letter_spacing`.
@@ -167,8 +171,8 @@ pub const KEYS: &[(&str, Range)] = &[
 pub const MAX_JOB_BYTES: u64 = 1 << 20;
 /// Largest number of singularities of one MFS solve (`field.singularities`,
 /// `shape.part[i].singularities`, `pfcam convergence --n`): the dense system is
-/// about 3N × N numbers, 2.4 GB at this N.
-pub const MAX_SINGULARITIES: usize = 10_000;
+/// about 3N × N numbers, 1.5 GB at this N.
+pub const MAX_SINGULARITIES: usize = 8000;
 /// Largest number of characters of `shape.text` or a text part.
 pub const MAX_TEXT_CHARS: usize = 200;
 /// Largest number of `[[shape.part]]` tables: each may need a field solve.
@@ -182,6 +186,10 @@ pub const MAX_PASSES: f64 = 1000.0;
 /// Largest ratio of the shape's height to the tool diameter: beyond it the tool
 /// path runs to kilometres (issue-sized letters with an engraving bit).
 pub const MAX_HEIGHT_PER_DIAMETER: f64 = 2000.0;
+/// Largest width or height of the built shape, mm (`shape.height`'s upper end),
+/// checked once the shape is built: a composition, an SVG path without
+/// `shape.height`, or a long text can be larger than its height says.
+pub const MAX_EXTENT: f64 = 2000.0;
 
 /// `n` if it is a count in [1, limit], else an error naming `key`.
 pub fn count(key: &str, n: i64, limit: usize, what: &str) -> Result<usize, JobError> {
@@ -217,26 +225,26 @@ mod tests {
 
     #[test]
     fn describe_and_message() {
-        assert_eq!(TOOL_DIAMETER.describe(), "(0, 50] mm");
+        assert_eq!(TOOL_DIAMETER.describe(), "[0.01, 100] mm");
         assert_eq!(SPINDLE.describe(), "[0, 100000] rev/min");
         assert_eq!(STEEPNESS.describe(), "(0, 10000]");
         let e = TOOL_DIAMETER.check("tool.diameter", 1e300).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "tool.diameter must be in (0, 50] mm, got 1e300"
+            "tool.diameter must be in [0.01, 100] mm, got 1e300"
         );
-        let e = TOOL_DIAMETER.check("tool.diameter", -3.0).unwrap_err();
+        let e = DEPTH.check("operation.depth", -3.0).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "tool.diameter must be a positive number of mm, got -3"
+            "operation.depth must be a positive number of mm, got -3"
         );
         let e = STEEPNESS.check("profile.steepness", 0.0).unwrap_err();
         assert_eq!(
             e.to_string(),
             "profile.steepness must be a positive number, got 0"
         );
-        assert_eq!(count("field.singularities", 100_000, 10_000, "singularities").unwrap_err().to_string(),
-            "field.singularities must be \"auto\" or a whole number of singularities in [1, 10000], got 100000");
+        assert_eq!(count("field.singularities", 100_000, MAX_SINGULARITIES, "singularities").unwrap_err().to_string(),
+            "field.singularities must be \"auto\" or a whole number of singularities in [1, 8000], got 100000");
         assert_eq!(count("k", 7, 10, "x").unwrap(), 7);
         assert!(count("k", 0, 10, "x").is_err());
         assert!(count("k", -3, 10, "x").is_err());
