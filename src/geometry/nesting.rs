@@ -21,6 +21,14 @@ const NEST_TOL: f64 = 1e-5;
 /// squared have no inside (a path that doubles back on itself) and are dropped.
 const DEGENERATE_AREA: f64 = 1e-12;
 
+/// Whether a contour encloses area: |signed area| > `DEGENERATE_AREA` × d²,
+/// d its box's diagonal (a ratio, so the same at every scale). Contours that
+/// do not (a subpath drawn forth and back along a line) are no region.
+pub fn encloses_area(c: &Contour) -> bool {
+    let diag = c.bbox().map(|(lo, hi)| (hi - lo).norm2()).unwrap_or(0.0);
+    diag > 0.0 && c.signed_area().abs() > DEGENERATE_AREA * diag
+}
+
 /// Splits `contours` into regions: outlines counter-clockwise, each with the
 /// counters directly inside it clockwise. Regions come in the order of their
 /// outlines in `contours`; counters keep their input order.
@@ -29,13 +37,7 @@ const DEGENERATE_AREA: f64 = 1e-12;
 /// the parentheses when `name` ends with one (`i (3)` → `i (3.1)`, `i (3.2)`), else
 /// appended (`logo` → `logo (1)`).
 pub fn regions_from_contours(name: &str, contours: Vec<Contour>) -> Vec<Region> {
-    let contours: Vec<Contour> = contours
-        .into_iter()
-        .filter(|c| {
-            let diag = c.bbox().map(|(lo, hi)| (hi - lo).norm2()).unwrap_or(0.0);
-            diag > 0.0 && c.signed_area().abs() > DEGENERATE_AREA * diag
-        })
-        .collect();
+    let contours: Vec<Contour> = contours.into_iter().filter(encloses_area).collect();
     let n = contours.len();
     let boxes: Vec<(Vec2, Vec2)> = contours
         .iter()

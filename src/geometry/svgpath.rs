@@ -24,14 +24,23 @@ fn err(offset: usize, message: impl Into<String>) -> GeometryError {
     }
 }
 
+/// The error of path data whose every subpath is a line drawn forth and back.
+const NO_AREA: &str = "no subpath of the path data encloses any area";
+
 /// The shape described by the path data `d` (see the module documentation).
 pub fn svg_shape(d: &str, height: Option<f64>, origin: Vec2) -> Result<Shape, GeometryError> {
     let contours = parse_path(d)?;
-    // Flip y, then scale and place by the tight box.
+    // Flip y, then scale and place by the tight box of the subpaths that
+    // enclose area (the others are no part of the shape: a line drawn forth and
+    // back would otherwise stretch the box the height and origin apply to).
     let flipped: Vec<Contour> = contours
         .iter()
         .map(|c| c.map(|p| Vec2::new(p.x, -p.y)))
+        .filter(crate::geometry::nesting::encloses_area)
         .collect();
+    if flipped.is_empty() && !contours.is_empty() {
+        return Err(err(0, NO_AREA));
+    }
     let bbox = flipped
         .iter()
         .filter_map(Contour::tight_bbox)
@@ -66,7 +75,7 @@ pub fn svg_shape(d: &str, height: Option<f64>, origin: Vec2) -> Result<Shape, Ge
         .collect();
     let regions = regions_from_contours("path", placed);
     if regions.is_empty() {
-        return Err(err(0, "no subpath of the path data encloses any area"));
+        return Err(err(0, NO_AREA));
     }
     Ok(Shape { regions })
 }
@@ -596,10 +605,25 @@ mod tests {
         assert!(svg_err("M0 0 L1e999 0 z").1.contains("out of range"));
         // Nothing enclosed, or no height to scale.
         let flat = svg_shape("M0 0 H10 Z", Some(5.0), Vec2::ZERO).expect_err("flat");
-        assert!(flat.to_string().contains("zero height"), "{flat}");
+        assert!(flat.to_string().contains("encloses any area"), "{flat}");
         let line = svg_shape("M0 0 L10 10 Z", None, Vec2::ZERO).expect_err("line");
         assert!(line.to_string().contains("encloses"), "{line}");
         assert!(svg_shape("M0 0", None, Vec2::ZERO).is_err());
+    }
+
+    /// Found by tests/inputs.rs: a subpath drawn forth and back along a line
+    /// encloses nothing and is dropped, but it stretched the box that the height
+    /// and origin apply to (the square was placed at x = 7, not 5, and scaled
+    /// to 2/3 of the height asked for).
+    #[test]
+    fn a_subpath_without_area_does_not_stretch_the_box() {
+        let d = "M0 0 H20 0 0 1 10 5 Z M2 1 h3 v2 h-3 z";
+        let shape = svg_shape(d, Some(10.0), Vec2::new(5.0, -5.0)).expect("shape");
+        let (lo, hi) = shape.bbox().expect("box");
+        assert!((lo - Vec2::new(5.0, -5.0)).norm() < 1e-12, "{lo:?}");
+        assert!((hi - Vec2::new(20.0, 5.0)).norm() < 1e-12, "{hi:?}");
+        let e = svg_shape("M0 0 H20 0 Z M1 1 L3 3 Z", Some(10.0), Vec2::ZERO).unwrap_err();
+        assert!(e.to_string().contains("encloses any area"), "{e}");
     }
 
     #[test]
