@@ -16,6 +16,16 @@ use pfcam::report::RunReport;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
+/// A line on standard error that never panics: `eprintln!` does when stderr
+/// is closed (`pfcam run job.toml 2>&1 | head -1` exited 101 at the next
+/// progress line); a note nobody can read is dropped.
+macro_rules! note {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 mod batch;
 mod simulate;
 
@@ -380,7 +390,7 @@ fn cmd_run(
 
     if !quiet {
         for w in &output.warnings {
-            eprintln!("warning: {w}");
+            note!("warning: {w}");
         }
         let mut s = summary(&job, &output, &target);
         s += &format!(
@@ -410,7 +420,7 @@ fn run_quietly(path: &Path, quiet: bool) -> Result<(Job, RunOutput)> {
         .with_context(|| path.display().to_string())?;
     if !quiet {
         for w in &output.warnings {
-            eprintln!("warning: {w}");
+            note!("warning: {w}");
         }
     }
     Ok((job, output))
@@ -666,7 +676,7 @@ impl Reporter {
                 }
             }
             (Progress::Stage { name, total }, false) => {
-                eprintln!("{name} ({total} steps)");
+                note!("{name} ({total} steps)");
                 let now = std::time::Instant::now();
                 self.stage = Some(Stage {
                     name,
@@ -685,9 +695,13 @@ impl Reporter {
                         st.last_line = now;
                         let spent = (now - st.started).as_secs_f64();
                         let left = spent / st.done as f64 * st.total.saturating_sub(st.done) as f64;
-                        eprintln!(
+                        note!(
                             "{}: {}/{} after {:.0} s, about {:.0} s left",
-                            st.name, st.done, st.total, spent, left
+                            st.name,
+                            st.done,
+                            st.total,
+                            spent,
+                            left
                         );
                     }
                 }
@@ -758,7 +772,7 @@ fn cmd_check(file: &Path, machine: Option<&Path>, json: bool, quiet: bool) -> Re
                 MachineSource::Job => "job file",
                 MachineSource::MachineFile => "machine file",
             };
-            eprintln!(
+            note!(
                 "note: {what} {} has no machine.travel: travel limits not checked",
                 path.display()
             );

@@ -26,7 +26,9 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::from(cli::EXIT_OK),
         Err(e) if cli::is_broken_pipe(&e) => ExitCode::from(cli::EXIT_OK),
         Err(e) => {
-            eprintln!("error: {}", cli::message(&e));
+            // Not eprintln!, which panics when stderr is closed.
+            use std::io::Write as _;
+            let _ = writeln!(std::io::stderr(), "error: {}", cli::message(&e));
             ExitCode::from(cli::exit_code(&e))
         }
     }

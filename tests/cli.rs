@@ -732,6 +732,29 @@ fn long_values_are_echoed_clipped() {
     }
 }
 
+/// A closed standard error (`pfcam run job.toml 2>&1 | head -1`) is no crash:
+/// the progress lines nobody reads are dropped and the run finishes (it
+/// panicked with exit 101 at the first line), as does an error message.
+#[test]
+fn a_closed_stderr_is_no_crash() {
+    let dir = scratch("closed-stderr");
+    fs::write(dir.join("job.toml"), GOOD).expect("write job");
+    fs::write(dir.join("bad.toml"), GOOD.replace("3.175", "-3")).expect("write job");
+    for (job, code) in [("job.toml", 0), ("bad.toml", 1)] {
+        let mut child = Command::new(PFCAM)
+            .args(["run", job, "-o", "out"])
+            .current_dir(&dir)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("run pfcam");
+        drop(child.stderr.take());
+        let status = child.wait().expect("wait");
+        assert_eq!(status.code(), Some(code), "{job}");
+    }
+    assert!(dir.join("out/job.nc").is_file());
+}
+
 /// The command line reads the same way in every command: `-o`, `-q`, comma
 /// separated defaults, an output name that fits its format, an empty G-code
 /// file named as such, an unwritable directory found before the work.
