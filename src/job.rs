@@ -991,6 +991,17 @@ impl RawJob {
                     "tool.stepover",
                     t.stepover.unwrap_or(defaults::STEPOVER_FRACTION * diameter),
                 )?;
+                if so < diameter * limits::MIN_STEPOVER_FRACTION {
+                    return Err(invalid(
+                        "tool.stepover",
+                        format!(
+                            "must be at least {} of tool.diameter ({} mm): finer steps multiply the clearing rings and the run time, got {}",
+                            show(limits::MIN_STEPOVER_FRACTION),
+                            show(diameter * limits::MIN_STEPOVER_FRACTION),
+                            show(so)
+                        ),
+                    ));
+                }
                 if so > diameter / 2.0 {
                     return Err(invalid(
                         "tool.stepover",

@@ -530,6 +530,16 @@ fn values_no_machine_could_use_are_refused_by_key() {
             "shape.part",
         ),
         (
+            "tolerance-1e-4",
+            GOOD.replace("depth = 3.0", "depth = 3.0\ntolerance = 0.0001"),
+            "operation.tolerance must be in [0.001, 1] mm, got 0.0001",
+        ),
+        (
+            "stepover-0.001",
+            GOOD.replace("diameter = 3.175", "diameter = 3.175\nstepover = 0.001"),
+            "tool.stepover must be at least 0.05 of tool.diameter (0.15875 mm)",
+        ),
+        (
             "diameter-1e-300",
             GOOD.replace("diameter = 3.175", "diameter = 1e-300"),
             "tool.diameter must be in [0.01, 100] mm, got 1e-300",
