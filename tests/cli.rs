@@ -829,6 +829,23 @@ fn command_line_consistency() {
     assert_eq!(o.status.code(), Some(3), "{}", text(&o.stderr));
     assert!(!text(&o.stderr).contains("solving"), "{}", text(&o.stderr));
     assert_eq!(text(&o.stderr).lines().count(), 1, "{}", text(&o.stderr));
+    // So do the other commands that write a file (a boss, which has a surface).
+    let boss = GOOD.replace("depth = 3.0", "depth = 3.0\nkind = \"boss\"");
+    fs::write(dir.join("boss.toml"), boss).expect("write job");
+    for (cmd, name) in [
+        ("surface", "/proc/pfcam-out/s.stl"),
+        ("preview", "/proc/pfcam-out/p.svg"),
+        ("field", "/proc/pfcam-out/f.png"),
+    ] {
+        let o = pfcam(&[cmd, "boss.toml", "-o", name], &dir);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(3), "{cmd}: {err}");
+        assert!(
+            err.starts_with("error: cannot ") && err.contains("/proc"),
+            "{cmd}: {err}"
+        );
+        assert_eq!(err.lines().count(), 1, "{cmd}: before the work: {err}");
+    }
 }
 
 /// A batch: the good jobs are written, the bad one is named in the table, and
