@@ -475,6 +475,11 @@ fn cmd_preview(
     if let Some(s) = levels.iter().flatten().find(|s| !(**s > 0.0 && **s < 1.0)) {
         bail!("--levels: every value must lie strictly between 0 and 1, got {s}");
     }
+    // Each level is a traced curve (about 1 ms each on the letter I).
+    let most = pfcam::job::limits::MAX_PREVIEW_LEVELS;
+    if let Some(n) = levels.as_ref().map(Vec::len).filter(|&n| n > most) {
+        bail!("--levels: give at most {most} values, got {n}");
+    }
     let target = output_path(path, output, "svg")?;
     check_output(&target, "svg", force)?;
     let (job, out) = run_quietly(path, quiet)?;
@@ -849,6 +854,12 @@ fn cmd_convergence(glyph: char, ns: &[usize], json: bool) -> Result<()> {
     let max = pfcam::job::limits::MAX_SINGULARITIES;
     if ns.is_empty() || ns.iter().any(|&n| n == 0 || n > max) {
         bail!("--n: give one or more counts in [1, {max}], e.g. --n 78,148,272");
+    }
+    // Each count is a dense solve (minutes near the largest N): a study is a
+    // handful of them, not a list pasted by mistake.
+    let most = pfcam::job::limits::MAX_STUDY_COUNTS;
+    if ns.len() > most {
+        bail!("--n: give at most {most} counts, got {}", ns.len());
     }
     let rows = pfcam::field::convergence_table(glyph, ns)
         .with_context(|| format!("convergence study of {glyph:?}"))?;

@@ -641,6 +641,20 @@ fn a_job_file_that_is_no_job_file_is_refused_unread() {
     let err = text(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("--n") && err.contains("8000"), "{err}");
+    let many = vec!["10"; 51].join(",");
+    let o = pfcam_bounded(&["convergence", "--glyph", "I", "--n", &many], &dir, 60);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("--n: give at most 50 counts, got 51"), "{err}");
+    fs::write(dir.join("job.toml"), GOOD).expect("write job");
+    let many = vec!["0.5"; 1001].join(",");
+    let o = pfcam_bounded(&["preview", "job.toml", "--levels", &many], &dir, 60);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("--levels: give at most 1000 values, got 1001"),
+        "{err}"
+    );
 }
 
 /// Wrong shapes of values are named by their key, once: extra numbers, an

@@ -180,6 +180,10 @@ pub const MAX_JOB_BYTES: u64 = 1 << 20;
 /// `shape.part[i].singularities`, `pfcam convergence --n`): the dense system is
 /// about 3N × N numbers, 1.5 GB at this N.
 pub const MAX_SINGULARITIES: usize = 8000;
+/// Largest number of counts in one `pfcam convergence --n` study.
+pub const MAX_STUDY_COUNTS: usize = 50;
+/// Largest number of curves `pfcam preview --levels` draws.
+pub const MAX_PREVIEW_LEVELS: usize = 1000;
 /// Largest number of characters of `shape.text` or a text part.
 pub const MAX_TEXT_CHARS: usize = 200;
 /// Largest number of `[[shape.part]]` tables: each may need a field solve.
