@@ -1478,6 +1478,15 @@ fn resolve_font(
                     ),
                 ));
             }
+            if p.exists() && !p.is_file() {
+                return Err(invalid(
+                    font_key,
+                    format!(
+                        "is not a regular file: {} (give a .ttf or .otf file)",
+                        echo::clip(&p.display().to_string())
+                    ),
+                ));
+            }
             if !p.is_file() {
                 return Err(JobError::FontNotFound {
                     key: font_key.into(),

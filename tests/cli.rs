@@ -693,6 +693,11 @@ fn wrongly_shaped_values_name_their_key() {
             &["profile.steepness must be a positive number, got 0"][..],
         ),
         (
+            "font-device",
+            GOOD.replace("height = 50.0", "height = 50.0\nfont = \"/dev/zero\""),
+            &["shape.font is not a regular file: /dev/zero"][..],
+        ),
+        (
             "font-dir",
             GOOD.replace("height = 50.0", "height = 50.0\nfont = \".\""),
             &["shape.font is a directory, not a font file"][..],

@@ -34,12 +34,16 @@ fn font_err(name: &str, reason: impl Into<String>) -> GeometryError {
     }
 }
 
+/// Largest font file read, bytes: the largest CJK fonts are about 20 MB; a
+/// larger file is refused before it is read into memory.
+pub const MAX_FONT_BYTES: u64 = 64 << 20;
+
 impl FontFile {
     /// Reads and checks the font at `path`. Errors name the path: missing,
-    /// unreadable, or not a TrueType/OpenType font.
+    /// unreadable, larger than [`MAX_FONT_BYTES`], or not a TrueType/OpenType font.
     pub fn open(path: &Path) -> Result<FontFile, GeometryError> {
         let name = path.display().to_string();
-        let data = std::fs::read(path).map_err(|e| font_err(&name, e.to_string()))?;
+        let data = read_capped(path, MAX_FONT_BYTES)?;
         ttf_parser::Face::parse(&data, 0)
             .map_err(|e| font_err(&name, format!("not a TrueType/OpenType font ({e})")))?;
         Ok(FontFile { name, data })
@@ -50,6 +54,25 @@ impl FontFile {
         ttf_parser::Face::parse(&self.data, 0)
             .map_err(|e| font_err(&self.name, format!("not a TrueType/OpenType font ({e})")))
     }
+}
+
+/// The bytes of the file at `path`, refused past `cap` bytes without reading
+/// further.
+fn read_capped(path: &Path, cap: u64) -> Result<Vec<u8>, GeometryError> {
+    use std::io::Read;
+    let name = path.display().to_string();
+    let file = std::fs::File::open(path).map_err(|e| font_err(&name, e.to_string()))?;
+    let mut data = Vec::new();
+    file.take(cap + 1)
+        .read_to_end(&mut data)
+        .map_err(|e| font_err(&name, e.to_string()))?;
+    if data.len() as u64 > cap {
+        return Err(font_err(
+            &name,
+            format!("larger than {cap} bytes; not a font file"),
+        ));
+    }
+    Ok(data)
 }
 
 /// The cap height in font units: the OS/2 `sCapHeight` when present and positive,
@@ -193,5 +216,24 @@ impl ttf_parser::OutlineBuilder for Builder {
     }
     fn close(&mut self) {
         self.finish();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_file_past_the_cap_is_refused_and_one_at_it_is_read() {
+        let dir = std::env::temp_dir().join(format!("pfcam-font-cap-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let path = dir.join("f.ttf");
+        std::fs::write(&path, [7u8; 20]).expect("write");
+        assert_eq!(read_capped(&path, 20).expect("at the cap").len(), 20);
+        let e = read_capped(&path, 19).unwrap_err().to_string();
+        assert!(e.contains("larger than 19 bytes; not a font file"), "{e}");
+        let e = FontFile::open(&path).err().expect("not a font").to_string();
+        assert!(e.contains("not a TrueType/OpenType font"), "{e}");
+        std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -49,15 +49,21 @@ pub fn check_extent(source: &ShapeSource, shape: &Shape, diameter: f64) -> Resul
             "the result is wide for its height: lower shape.height",
         ),
     };
+    let why = if limit < limits::MAX_EXTENT {
+        format!(
+            " ({} × tool.diameter)",
+            show(limits::MAX_HEIGHT_PER_DIAMETER)
+        )
+    } else {
+        String::new()
+    };
     Err(super::invalid(
         key,
         format!(
-            "makes a shape {} × {} mm; at most {} mm on a side are allowed ({} mm, and {} × tool.diameter): {advice}",
+            "makes a shape {} × {} mm; at most {} mm on a side are allowed{why}: {advice}",
             show_mm(w),
             show_mm(h),
             show(limit),
-            show(limits::MAX_EXTENT),
-            show(limits::MAX_HEIGHT_PER_DIAMETER),
         ),
     ))
 }
@@ -106,7 +112,11 @@ mod tests {
         assert_eq!(max_side(3.175), 2000.0);
         let src = svg("M0 0 H1001 V10 H0 Z", None);
         let shape = build_shape(&src).expect("shape");
-        assert!(check_extent(&src, &shape, 0.5).is_err());
+        let e = check_extent(&src, &shape, 0.5).unwrap_err().to_string();
+        assert!(
+            e.contains("at most 1000 mm on a side are allowed (2000 × tool.diameter)"),
+            "{e}"
+        );
         assert!(check_extent(&src, &shape, 0.6).is_ok());
     }
 
