@@ -1111,6 +1111,17 @@ impl RawJob {
             "cavity" => OperationKind::Cavity,
             _ => OperationKind::Profile,
         };
+        let levels = (depth / tool.stepdown - 1e-9).ceil();
+        if op_kind != OperationKind::Profile && levels >= limits::MAX_LEVELS as f64 {
+            return Err(invalid(
+                "operation.depth",
+                format!(
+                    "needs {levels} levels of tool.stepdown = {} mm; a boss or cavity has fewer than {} (raise tool.stepdown)",
+                    show(tool.stepdown),
+                    limits::MAX_LEVELS
+                ),
+            ));
+        }
         let profile = if op_kind == OperationKind::Profile {
             if self.profile.is_some() {
                 return Err(invalid(

@@ -540,6 +540,11 @@ fn values_no_machine_could_use_are_refused_by_key() {
             "tool.stepover must be at least 0.05 of tool.diameter (0.15875 mm)",
         ),
         (
+            "boss-levels-500",
+            boss.replace("diameter = 3.175", "diameter = 3.175\nstepdown = 0.2").replace("depth = 3.0", "depth = 100"),
+            "operation.depth needs 500 levels of tool.stepdown = 0.2 mm",
+        ),
+        (
             "diameter-1e-300",
             GOOD.replace("diameter = 3.175", "diameter = 1e-300"),
             "tool.diameter must be in [0.01, 100] mm, got 1e-300",

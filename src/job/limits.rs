@@ -194,6 +194,10 @@ pub const MAX_POLYGON_POINTS: usize = 10_000;
 pub const MAX_PROFILE_POINTS: usize = 1000;
 /// Largest number of passes or stepdown levels, `operation.depth / tool.stepdown`.
 pub const MAX_PASSES: f64 = 1000.0;
+/// Most z-levels of a boss or cavity, the stepdown's and those added for
+/// `operation.max_scallop` together: each is a field solve and a trace (the
+/// mfs-sign job has 31), and each added one a contour comparison first.
+pub const MAX_LEVELS: usize = 400;
 /// Largest ratio of the shape's height to the tool diameter: beyond it the tool
 /// path runs to kilometres (issue-sized letters with an engraving bit).
 pub const MAX_HEIGHT_PER_DIAMETER: f64 = 2000.0;

@@ -235,26 +235,36 @@ fn segment(xs: &[f64], s: f64) -> usize {
 /// equal steps of at most `stepdown`, the last exactly at −depth; then, wherever
 /// `gap(z_a, z_b)` (the horizontal distance between the contours of neighbouring
 /// levels, mm) exceeds `max_scallop`, a level is added half way in z, until every
-/// gap is within bound or the levels are `min_dz` apart.
+/// gap is within bound or the levels are `min_dz` apart. `None` when that
+/// takes more than `max_levels` levels: each costs a gap measurement here and a
+/// solve and a trace later, and `min_dz` alone allows depth / min_dz of them
+/// (10 000 for 200 mm at 0.02 mm).
 pub fn schedule(
     depth: f64,
     stepdown: f64,
     max_scallop: f64,
     min_dz: f64,
+    max_levels: usize,
     gap: &dyn Fn(f64, f64) -> f64,
-) -> Vec<f64> {
+) -> Option<Vec<f64>> {
     let n = ((depth / stepdown) - 1e-9).ceil().max(1.0) as usize;
+    if n >= max_levels {
+        return None;
+    }
     let mut zs: Vec<f64> = (0..=n).map(|k| -depth * k as f64 / n as f64).collect();
     let mut i = 0;
     while i + 1 < zs.len() {
         let (a, b) = (zs[i], zs[i + 1]);
         if a - b > 2.0 * min_dz && gap(a, b) > max_scallop {
+            if zs.len() >= max_levels {
+                return None;
+            }
             zs.insert(i + 1, 0.5 * (a + b));
         } else {
             i += 1;
         }
     }
-    zs
+    Some(zs)
 }
 
 #[cfg(test)]
@@ -361,16 +371,32 @@ mod tests {
     #[test]
     fn schedule_steps_and_refines() {
         // No gap problem: 6 mm at 1 mm a step gives 7 levels, the last at −6.
-        let zs = schedule(6.0, 1.0, 0.5, 0.01, &|_, _| 0.0);
+        let zs = schedule(6.0, 1.0, 0.5, 0.01, 100, &|_, _| 0.0).expect("levels");
         assert_eq!(zs.len(), 7);
         assert_eq!(zs[6], -6.0);
         // 2.5 mm at most 1 mm: three equal steps.
-        let zs = schedule(2.5, 1.0, 0.5, 0.01, &|_, _| 0.0);
+        let zs = schedule(2.5, 1.0, 0.5, 0.01, 100, &|_, _| 0.0).expect("levels");
         assert_eq!(zs, vec![0.0, -2.5 / 3.0, -5.0 / 3.0, -2.5]);
         // A gap proportional to the step (a 45° wall): 1 mm steps have 1 mm gaps,
         // so every step is halved until the gap is at most 0.3 mm: 0.25 mm steps.
-        let zs = schedule(2.0, 1.0, 0.3, 0.01, &|a, b| a - b);
+        let zs = schedule(2.0, 1.0, 0.3, 0.01, 100, &|a, b| a - b).expect("levels");
         assert_eq!(zs.len(), 9);
+        // The same needs 9 levels: refused with 8 at most, given with 9.
+        assert_eq!(schedule(2.0, 1.0, 0.3, 0.01, 8, &|a, b| a - b), None);
+        assert_eq!(
+            schedule(2.0, 1.0, 0.3, 0.01, 9, &|a, b| a - b),
+            Some(zs.clone())
+        );
+        // A wall no level count satisfies stops at the cap, not at depth / min_dz.
+        let calls = std::cell::Cell::new(0);
+        let steep = |a: f64, b: f64| {
+            calls.set(calls.get() + 1);
+            1e3 * (a - b)
+        };
+        assert_eq!(schedule(200.0, 50.0, 0.01, 0.02, 400, &steep), None);
+        assert!(calls.get() < 400, "{} gap measurements", calls.get());
+        // Too many passes of the stepdown alone.
+        assert_eq!(schedule(10.0, 0.01, 0.5, 0.001, 400, &|_, _| 0.0), None);
         for w in zs.windows(2) {
             assert!((w[0] - w[1] - 0.25).abs() < 1e-12);
         }

@@ -257,7 +257,14 @@ pub fn plan_levels_reporting(
             .map(|&p| idx.distance(p))
             .fold(0.0, f64::max)
     };
-    let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, &gap);
+    let max_levels = crate::job::limits::MAX_LEVELS;
+    let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, max_levels, &gap)
+        .ok_or_else(|| {
+            PlanError::Invalid(format!(
+                "operation.max_scallop = {} mm needs more than {max_levels} levels on this wall: raise it, or tool.stepdown",
+                job.max_scallop
+            ))
+        })?;
     // The levels of the plain stepdown schedule clear everything; the ones added
     // for the scallop bound only the band down to the next of those below.
     let n_rough = ((depth / job.stepdown) - 1e-9).ceil().max(1.0) as usize;
