@@ -1111,6 +1111,18 @@ impl RawJob {
             "cavity" => OperationKind::Cavity,
             _ => OperationKind::Profile,
         };
+        let rings = (stock.margin / tool.stepover).ceil();
+        if op_kind == OperationKind::Boss && rings > limits::MAX_MARGIN_RINGS {
+            return Err(invalid(
+                "stock.margin",
+                format!(
+                    "= {} mm is {rings} clearing rings of tool.stepover = {} mm around a boss, at every level; at most {} are allowed (lower the margin or raise tool.stepover)",
+                    show(stock.margin),
+                    show(tool.stepover),
+                    limits::MAX_MARGIN_RINGS
+                ),
+            ));
+        }
         let levels = (depth / tool.stepdown - 1e-9).ceil();
         if op_kind != OperationKind::Profile && levels >= limits::MAX_LEVELS as f64 {
             return Err(invalid(

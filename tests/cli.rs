@@ -540,6 +540,12 @@ fn values_no_machine_could_use_are_refused_by_key() {
             "tool.stepover must be at least 0.05 of tool.diameter (0.15875 mm)",
         ),
         (
+            "margin-rings",
+            boss.replace("diameter = 3.175", "diameter = 3.175\nstepover = 0.16")
+                + "[stock]\nmargin = 200\n",
+            "stock.margin = 200 mm is 1250 clearing rings of tool.stepover = 0.16 mm",
+        ),
+        (
             "boss-levels-500",
             boss.replace("diameter = 3.175", "diameter = 3.175\nstepdown = 0.2").replace("depth = 3.0", "depth = 100"),
             "operation.depth needs 500 levels of tool.stepdown = 0.2 mm",

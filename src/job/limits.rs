@@ -197,6 +197,10 @@ pub const MAX_POLYGON_POINTS: usize = 10_000;
 pub const MAX_PROFILE_POINTS: usize = 1000;
 /// Largest number of passes or stepdown levels, `operation.depth / tool.stepdown`.
 pub const MAX_PASSES: f64 = 1000.0;
+/// Most clearing rings across a boss's `stock.margin` (margin / stepover): the
+/// 160 s measured for the largest margin (200 mm at the 3.175 mm tool's 1.27 mm
+/// stepover, see [`MARGIN`]); a fine stepover or a small tool lowers the margin.
+pub const MAX_MARGIN_RINGS: f64 = 160.0;
 /// Most z-levels of a boss or cavity, the stepdown's and those added for
 /// `operation.max_scallop` together: each is a field solve and a trace (the
 /// mfs-sign job has 31), and each added one a contour comparison first.
