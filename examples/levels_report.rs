@@ -1,7 +1,9 @@
 //! Prints the per-level figures of a boss or cavity job: z, s, N, max boundary
 //! error, the gouge check's clearance, for a cavity the uncut share of the
 //! reachable area, and where the time went.
-//! `cargo run --release --example levels_report -- jobs/mfs-mould.toml`
+//! `cargo run --release --example levels_report -- jobs/mfs-mould.toml [OUT.nc]`
+//! (with OUT.nc, the G-code is written there without `pfcam run`'s own
+//! simulation, to look at a program that run refuses with `pfcam simulate`).
 use std::time::Instant;
 
 fn main() {
@@ -39,5 +41,11 @@ fn main() {
     println!("grid, contours and schedule {:.2} s; level solves {ts:.2} s; tracing and clearing {tp:.2} s (the last two summed over levels, which run in parallel)", out.t_schedule);
     for w in &out.warnings {
         println!("warning: {w}");
+    }
+    if let Some(nc) = std::env::args().nth(2) {
+        let g = pfcam::gcode::write_gcode_on(&out.toolpath, &job, out.stock)
+            .unwrap_or_else(|e| panic!("{e}"));
+        std::fs::write(&nc, g).unwrap_or_else(|e| panic!("{nc}: {e}"));
+        println!("wrote {nc} (not simulated)");
     }
 }

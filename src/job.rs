@@ -216,6 +216,9 @@ pub mod defaults {
     pub const S_BOTTOM: f64 = 0.8;
     /// `profile.s1`, `profile.s2`, `profile.steepness` for a sigmoid (the paper's Section 7 values).
     pub const SIGMOID: (f64, f64, f64) = (0.99, 0.75, 8.0);
+    /// `profile.s1`, `s2`, `exponent` for a power wall: the paper's n = 500
+    /// (Section 3.2), from Γ(0.999) down to Γ(0.99).
+    pub const POWER: (f64, f64, f64) = (0.999, 0.99, 500.0);
     /// `machine.coolant`: off (most hobby routers have none).
     pub const COOLANT: bool = false;
     /// `output.arcs`: on (GRBL 1.1 cuts arcs well and the file is smaller).
@@ -228,7 +231,7 @@ pub mod defaults {
 /// The accepted values of `operation.kind`.
 pub const OPERATION_KINDS: &[&str] = &["profile", "boss", "cavity"];
 /// The accepted values of `profile.kind`.
-pub const PROFILE_KINDS: &[&str] = &["linear", "sigmoid", "spline", "table"];
+pub const PROFILE_KINDS: &[&str] = &["linear", "sigmoid", "power", "spline", "table"];
 /// The accepted values of `operation.side`.
 pub const SIDES: &[&str] = &["outside"];
 /// The accepted values of `operation.direction`.
@@ -345,7 +348,7 @@ pub struct RawJob {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawProfile {
-    /// `kind`: linear, sigmoid, spline or table
+    /// `kind`: linear, sigmoid, power, spline or table
     pub kind: Option<String>,
     /// `s_bottom` (linear)
     pub s_bottom: Option<f64>,
@@ -355,6 +358,8 @@ pub struct RawProfile {
     pub s2: Option<f64>,
     /// `steepness` (sigmoid)
     pub steepness: Option<f64>,
+    /// `exponent` (power)
+    pub exponent: Option<f64>,
     /// `points`: [[s, z], ...] (spline, table), z in mm relative to stock.top
     #[serde(default, deserialize_with = "exact::opt_vec")]
     pub points: Option<Vec<[f64; 2]>>,
@@ -1252,14 +1257,25 @@ fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProf
             unused("profile.s1", p.s1.is_some())?;
             unused("profile.s2", p.s2.is_some())?;
             unused("profile.steepness", p.steepness.is_some())?;
+            unused("profile.exponent", p.exponent.is_some())?;
             unused("profile.points", p.points.is_some())?;
             let s_bottom = unit("profile.s_bottom", p.s_bottom.unwrap_or(defaults::S_BOTTOM))?;
             Ok(DepthProfile::Linear { s_bottom, depth })
         }
-        "sigmoid" => {
+        "sigmoid" | "power" => {
             unused("profile.s_bottom", p.s_bottom.is_some())?;
             unused("profile.points", p.points.is_some())?;
-            let (d1, d2, dk) = defaults::SIGMOID;
+            let sigmoid = kind == "sigmoid";
+            if sigmoid {
+                unused("profile.exponent", p.exponent.is_some())?;
+            } else {
+                unused("profile.steepness", p.steepness.is_some())?;
+            }
+            let (d1, d2, dk) = if sigmoid {
+                defaults::SIGMOID
+            } else {
+                defaults::POWER
+            };
             let s1 = unit("profile.s1", p.s1.unwrap_or(d1))?;
             let s2 = unit("profile.s2", p.s2.unwrap_or(d2))?;
             if s2 >= s1 {
@@ -1268,13 +1284,24 @@ fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProf
                     format!("must be below profile.s1 ({}), got {}", show(s1), show(s2)),
                 ));
             }
-            let steepness =
-                limits::STEEPNESS.check("profile.steepness", p.steepness.unwrap_or(dk))?;
-            Ok(DepthProfile::Sigmoid {
-                s1,
-                s2,
-                steepness,
-                depth,
+            Ok(if sigmoid {
+                let steepness =
+                    limits::STEEPNESS.check("profile.steepness", p.steepness.unwrap_or(dk))?;
+                DepthProfile::Sigmoid {
+                    s1,
+                    s2,
+                    steepness,
+                    depth,
+                }
+            } else {
+                let exponent =
+                    limits::EXPONENT.check("profile.exponent", p.exponent.unwrap_or(dk))?;
+                DepthProfile::Power {
+                    s1,
+                    s2,
+                    exponent,
+                    depth,
+                }
             })
         }
         _ => {
@@ -1282,6 +1309,7 @@ fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProf
             unused("profile.s1", p.s1.is_some())?;
             unused("profile.s2", p.s2.is_some())?;
             unused("profile.steepness", p.steepness.is_some())?;
+            unused("profile.exponent", p.exponent.is_some())?;
             let points = p
                 .points
                 .ok_or_else(|| invalid("profile.points", "is required for a spline or table: [[s, z], ...] with z in mm relative to stock.top"))?;
@@ -2761,6 +2789,18 @@ mod doc_tests {
     const DOC: &str = include_str!("../docs/job-format.md");
 
     #[test]
+    fn the_example_is_the_shipped_job() {
+        let job = include_str!("../jobs/mfs-sign.toml");
+        let example = DOC
+            .split("`jobs/mfs-sign.toml` as shipped")
+            .nth(1)
+            .and_then(|rest| rest.split("```toml\n").nth(1))
+            .and_then(|block| block.split("```").next())
+            .expect("docs/job-format.md has the mfs-sign example");
+        assert_eq!(example, job, "docs/job-format.md's example is stale");
+    }
+
+    #[test]
     fn every_key_is_documented() {
         let keys = [
             "name",
@@ -2799,6 +2839,7 @@ mod doc_tests {
             "s1",
             "s2",
             "steepness",
+            "exponent",
             "points",
             "shape.result",
             "shape.part.name",

@@ -518,7 +518,9 @@ pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
     let base: Vec<Vec<Vec2>> = isolines(&grid, s_lo, f, sj.glyphs)
         .into_iter()
         .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
-        .map(|p| crate::levels::plan::refine(&p, f, s_lo, 0.25 * sj.tol))
+        .map(|p| {
+            crate::levels::plan::refine(&p, f, s_lo, crate::levels::plan::CHORD_FRACTION * sj.tol)
+        })
         .collect();
     let (blo, bhi) = crate::geometry::polygons_bbox(&base).ok_or_else(|| {
         SurfaceError::Invalid(format!(

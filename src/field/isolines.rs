@@ -34,7 +34,13 @@ pub struct Grid {
 
 /// Marks grid points inside the closed polygons (non-zero winding), row by row
 /// from the crossings of each row with the polygon edges.
-fn fill_rows(origin: Vec2, h: f64, nx: usize, ny: usize, polys: &[Vec<Vec2>]) -> Vec<bool> {
+pub(crate) fn fill_rows(
+    origin: Vec2,
+    h: f64,
+    nx: usize,
+    ny: usize,
+    polys: &[Vec<Vec2>],
+) -> Vec<bool> {
     let mut inside = vec![false; nx * ny];
     inside.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
         let y = origin.y + h * j as f64;

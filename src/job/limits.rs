@@ -134,6 +134,9 @@ pub const DESIGN: Range = Range::closed(-1e6, 1e6, "design units");
 pub const PART_SIZE: Range = Range::open(0.0, 1e6, "design units");
 /// `profile.steepness`.
 pub const STEEPNESS: Range = Range::open(0.0, 10_000.0, "");
+/// `profile.exponent`: n in (s/s1)ⁿ; past 1e6 the whole wall sits within
+/// rounding of s1.
+pub const EXPONENT: Range = Range::open(0.0, 1e6, "");
 /// `field.pseudo_boundary`.
 pub const PSEUDO_BOUNDARY: Range = Range::open(0.0, 10_000.0, "mm");
 /// `machine.rapid_rate`.
@@ -168,6 +171,7 @@ pub const KEYS: &[(&str, Range)] = &[
     ("shape.part.size", PART_SIZE),
     ("shape.part.polygon", DESIGN),
     ("profile.steepness", STEEPNESS),
+    ("profile.exponent", EXPONENT),
     ("field.pseudo_boundary", PSEUDO_BOUNDARY),
     ("machine.rapid_rate", RAPID_RATE),
     ("machine.spindle_dwell", SPINDLE_DWELL),

@@ -29,6 +29,21 @@ pub enum DepthProfile {
         /// Total height, mm.
         depth: f64,
     },
+    /// The paper's wall of Fig. 3.3 (Section 3.2: height sⁿ, n = 500 near
+    /// s = 1): w(s) = (s/s1)ⁿ rescaled to run from 0 at the foot s2 to 1 at
+    /// the top edge s1, z = −depth·(1 − w). Most of the height falls just below
+    /// the top edge, where Γ(s) still follows the letters, and the wall flares
+    /// out along the field to the foot; flat above s1 and below s2.
+    Power {
+        /// s at the top edge.
+        s1: f64,
+        /// s at the foot of the wall.
+        s2: f64,
+        /// The exponent n.
+        exponent: f64,
+        /// Total height, mm.
+        depth: f64,
+    },
     /// Monotone cubic (Fritsch–Carlson) through (s, z) points.
     Spline {
         /// s values, increasing.
@@ -149,7 +164,7 @@ impl DepthProfile {
     pub fn s_range(&self) -> (f64, f64) {
         match self {
             DepthProfile::Linear { s_bottom, .. } => (*s_bottom, 1.0),
-            DepthProfile::Sigmoid { s1, s2, .. } => (*s2, *s1),
+            DepthProfile::Sigmoid { s1, s2, .. } | DepthProfile::Power { s1, s2, .. } => (*s2, *s1),
             DepthProfile::Spline { s, .. } | DepthProfile::Table { s, .. } => {
                 (s[0], s[s.len() - 1])
             }
@@ -181,6 +196,17 @@ impl DepthProfile {
                 let (a, b) = (logistic(-0.5 * k), logistic(0.5 * k));
                 let w = (logistic(k * (t - 0.5)) - a) / (b - a);
                 -depth * (1.0 - w)
+            }
+            DepthProfile::Power {
+                s1,
+                s2,
+                exponent,
+                depth,
+            } => {
+                // (s/s1)ⁿ as exp(n ln(s/s1)): no overflow or underflow trouble.
+                let pow = |x: f64| (exponent * (x / s1).ln()).exp();
+                let a = pow(*s2);
+                -depth * (1.0 - (pow(s) - a) / (1.0 - a))
             }
             DepthProfile::Table { s: xs, z } => {
                 let i = segment(xs, s);
@@ -281,6 +307,12 @@ mod tests {
                 s1: 0.99,
                 s2: 0.75,
                 steepness: 8.0,
+                depth: 6.0,
+            },
+            DepthProfile::Power {
+                s1: 0.999,
+                s2: 0.99,
+                exponent: 500.0,
                 depth: 6.0,
             },
             DepthProfile::from_points(
