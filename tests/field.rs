@@ -263,3 +263,69 @@ fn rectangles_and_l_shapes_solve_wherever_they_sit() {
         );
     }
 }
+
+/// The fast evaluator (`field::fast`, local expansions of the far charges)
+/// against the direct sums, on the paper's S and A (its counter has a sink)
+/// solved as the pipeline solves them: random points around the glyph and
+/// points within one charge spacing of its boundary. Issue 13's bound: the
+/// differences at most 1e-12 of the largest |u| and |∇u| seen.
+#[test]
+fn local_expansions_match_the_direct_sums() {
+    use field::adaptive::{solve_to, Target};
+    for ch in ['S', 'A'] {
+        let prep = Prepared::new(field::paper_boundary(ch).unwrap()).unwrap();
+        let target = Target {
+            max_error: 0.0,
+            n_start: 1000,
+            n_max: 1000,
+            distance: None,
+        };
+        let direct = solve_to(&prep, &target).unwrap().solution.field;
+        let polys = prep.polygons();
+        let (mut lo, mut hi) = (polys[0][0], polys[0][0]);
+        for p in polys.iter().flatten() {
+            lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+        }
+        let diag = (hi - lo).norm();
+        let pad = Vec2::new(0.5 * diag, 0.5 * diag);
+        let fast = direct.accelerated(lo - pad, hi + pad, diag / 100.0);
+        let h = prep.perimeter() / 1000.0;
+        let mut rng = Lcg(7);
+        let mut points = Vec::new();
+        while points.len() < 3000 {
+            let p = Vec2::new(
+                lo.x - pad.x + (hi.x - lo.x + 2.0 * pad.x) * rng.next(),
+                lo.y - pad.y + (hi.y - lo.y + 2.0 * pad.y) * rng.next(),
+            );
+            if !prep.in_material(p) {
+                points.push(p);
+            }
+        }
+        for poly in polys {
+            for w in poly.windows(2).step_by(3) {
+                let m = w[0].lerp(w[1], rng.next());
+                let off = Vec2::new(rng.next() - 0.5, rng.next() - 0.5) * (2.0 * h);
+                if !prep.in_material(m + off) {
+                    points.push(m + off);
+                }
+            }
+        }
+        let (mut du, mut dg, mut umax, mut gmax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for &p in &points {
+            let (u0, g0) = direct.value_grad(p);
+            let (u1, g1) = fast.value_grad(p);
+            assert_eq!(fast.value(p), u1, "value and value_grad agree");
+            umax = umax.max(u0.abs());
+            gmax = gmax.max(g0.norm());
+            du = du.max((u1 - u0).abs());
+            dg = dg.max((g1 - g0).norm());
+        }
+        assert!(du <= 1e-12 * umax, "{ch}: |Δu| {du:e}, max |u| {umax}");
+        assert!(dg <= 1e-12 * gmax, "{ch}: |Δ∇u| {dg:e}, max |∇u| {gmax}");
+        eprintln!(
+            "{ch}: {} points, |Δu| ≤ {du:.1e} (max |u| {umax:.3}), |Δ∇u| ≤ {dg:.1e} (max |∇u| {gmax:.3e})",
+            points.len()
+        );
+    }
+}

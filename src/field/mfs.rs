@@ -52,11 +52,22 @@ pub struct Problem {
     pub checks: Vec<Condition>,
 }
 
-/// A solved potential field u(P) = Σ cₙ k(P, Qₙ).
-#[derive(Clone, Debug, PartialEq)]
+/// A solved potential field u(P) = gain · Σ cₙ k(P, Qₙ), optionally with
+/// local expansions for fast evaluation ([`Field::accelerated`]).
+#[derive(Clone, Debug)]
 pub struct Field {
     charges: Vec<Vec2>,
     coef: Vec<f64>,
+    gain: f64,
+    accel: Option<std::sync::Arc<super::fast::Accel>>,
+}
+
+impl PartialEq for Field {
+    /// The same field: same charges, coefficients and gain (how it is
+    /// evaluated does not matter).
+    fn eq(&self, o: &Field) -> bool {
+        self.charges == o.charges && self.coef == o.coef && self.gain == o.gain
+    }
 }
 
 /// The result of a solve.
@@ -88,15 +99,63 @@ impl Solution {
 impl Field {
     /// A field from charges and coefficients (tests build analytic fields this way).
     pub fn new(charges: Vec<Vec2>, coef: Vec<f64>) -> Field {
-        Field { charges, coef }
+        Field {
+            charges,
+            coef,
+            gain: 1.0,
+            accel: None,
+        }
     }
 
-    /// The field times `k` (the same charges, every coefficient times k).
+    /// The field times `k` (the same charges and expansions, a gain of k).
     pub fn scaled(&self, k: f64) -> Field {
         Field {
-            charges: self.charges.clone(),
-            coef: self.coef.iter().map(|c| c * k).collect(),
+            gain: self.gain * k,
+            ..self.clone()
         }
+    }
+
+    /// The same field, evaluated inside [lo, hi] from local expansions in
+    /// boxes of side `box_size` (mm), built as they are first needed, plus
+    /// direct sums over the charges near each box (`field::fast`); outside
+    /// it, directly. Within 1e-15 of the direct sums before rounding.
+    pub fn accelerated(&self, lo: Vec2, hi: Vec2, box_size: f64) -> Field {
+        Field {
+            accel: Some(std::sync::Arc::new(super::fast::Accel::new(
+                lo, hi, box_size,
+            ))),
+            ..self.clone()
+        }
+    }
+
+    /// The same field without expansions (every evaluation a direct sum).
+    pub fn direct(&self) -> Field {
+        Field {
+            accel: None,
+            ..self.clone()
+        }
+    }
+
+    /// Σ c log|P − Q| and Σ c (P − Q)/|P − Q|², by the expansions when there
+    /// are some for P.
+    fn sums(&self, p: Vec2) -> (f64, Vec2) {
+        if let Some(r) = self
+            .accel
+            .as_ref()
+            .and_then(|a| a.sums(&self.charges, &self.coef, p))
+        {
+            return r;
+        }
+        let (mut s, mut gx, mut gy) = (0.0, 0.0, 0.0);
+        for (q, c) in self.charges.iter().zip(&self.coef) {
+            let d = p - *q;
+            let r2 = d.norm2();
+            s += c * r2.ln();
+            let w = c / r2;
+            gx += w * d.x;
+            gy += w * d.y;
+        }
+        (0.5 * s, Vec2::new(gx, gy))
     }
 
     /// Number of singularities N.
@@ -111,16 +170,22 @@ impl Field {
 
     /// u(P).
     pub fn value(&self, p: Vec2) -> f64 {
+        if self.accel.is_some() {
+            return -INV_2PI * self.gain * self.sums(p).0;
+        }
         let mut s = 0.0;
         for (q, c) in self.charges.iter().zip(&self.coef) {
             s += c * (p - *q).norm2().ln();
         }
-        -INV_2PI * 0.5 * s
+        -INV_2PI * 0.5 * self.gain * s
     }
 
     /// ∇u(P) = −(1/2π) Σ cₙ (P − Qₙ)/|P − Qₙ|²: in complex form the conjugate of
     /// −(1/2π) Σ cₙ/(z − qₙ), which needs no logarithm.
     pub fn grad(&self, p: Vec2) -> Vec2 {
+        if self.accel.is_some() {
+            return self.sums(p).1 * (-INV_2PI * self.gain);
+        }
         let (mut gx, mut gy) = (0.0, 0.0);
         for (q, c) in self.charges.iter().zip(&self.coef) {
             let d = p - *q;
@@ -128,21 +193,14 @@ impl Field {
             gx += w * d.x;
             gy += w * d.y;
         }
-        Vec2::new(-INV_2PI * gx, -INV_2PI * gy)
+        Vec2::new(-INV_2PI * self.gain * gx, -INV_2PI * self.gain * gy)
     }
 
     /// u(P) and ∇u(P) together.
     pub fn value_grad(&self, p: Vec2) -> (f64, Vec2) {
-        let (mut s, mut gx, mut gy) = (0.0, 0.0, 0.0);
-        for (q, c) in self.charges.iter().zip(&self.coef) {
-            let d = p - *q;
-            let r2 = d.norm2();
-            s += c * r2.ln();
-            let w = c / r2;
-            gx += w * d.x;
-            gy += w * d.y;
-        }
-        (-INV_2PI * 0.5 * s, Vec2::new(-INV_2PI * gx, -INV_2PI * gy))
+        let (s, g) = self.sums(p);
+        let k = -INV_2PI * self.gain;
+        (k * s, g * k)
     }
 
     /// The Hessian [[u_xx, u_xy], [u_xy, u_yy]] (u_yy = −u_xx: u is harmonic).
@@ -155,8 +213,8 @@ impl Field {
             hxx += c * (d.y * d.y - d.x * d.x) / r4;
             hxy += c * (-2.0 * d.x * d.y) / r4;
         }
-        let hxx = -INV_2PI * hxx;
-        let hxy = -INV_2PI * hxy;
+        let hxx = -INV_2PI * self.gain * hxx;
+        let hxy = -INV_2PI * self.gain * hxy;
         [[hxx, hxy], [hxy, -hxx]]
     }
 }
@@ -226,10 +284,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
             "the MFS solve gave coefficients that are not numbers".into(),
         ));
     }
-    let field = Field {
-        charges: problem.charges.clone(),
-        coef,
-    };
+    let field = Field::new(problem.charges.clone(), coef);
     let max_error = max_error(&field, &problem.checks);
     if max_error.is_nan() {
         return Err(FieldError::Invalid(

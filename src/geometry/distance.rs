@@ -15,6 +15,8 @@ pub struct DistanceIndex {
     /// Edge indices per cell, row-major; `starts[c]..starts[c+1]` index into `items`.
     starts: Vec<u32>,
     items: Vec<u32>,
+    /// The hierarchy `nearest` searches (the grid serves `segment_distance`).
+    bvh: super::bvh::Bvh,
 }
 
 fn seg_dist2(p: Vec2, a: Vec2, b: Vec2) -> (f64, Vec2) {
@@ -104,7 +106,9 @@ impl DistanceIndex {
                 fill[c] += 1;
             }
         }
+        let bvh = super::bvh::Bvh::new(&edges);
         DistanceIndex {
+            bvh,
             edges,
             origin: lo,
             cell,
@@ -127,73 +131,10 @@ impl DistanceIndex {
 
     /// Distance from `p` to the nearest edge and the nearest point on it.
     pub fn nearest(&self, p: Vec2) -> (f64, Vec2) {
-        if self.edges.is_empty() {
-            return (f64::INFINITY, p);
+        match self.bvh.nearest(&self.edges, p, seg_dist2) {
+            Some((d2, q)) => (d2.sqrt(), q),
+            None => (f64::INFINITY, p),
         }
-        let fx = (p.x - self.origin.x) / self.cell;
-        let fy = (p.y - self.origin.y) / self.cell;
-        let ci = (fx.floor().max(0.0) as usize).min(self.nx - 1) as isize;
-        let cj = (fy.floor().max(0.0) as usize).min(self.ny - 1) as isize;
-        let mut best = f64::INFINITY;
-        let mut best_q = p;
-        let max_ring = self.nx.max(self.ny) as isize;
-        let mut ring = 0isize;
-        loop {
-            // Distance from p to the outside of the square of cells searched so far.
-            for j in (cj - ring)..=(cj + ring) {
-                if j < 0 || j >= self.ny as isize {
-                    continue;
-                }
-                let on_edge_row = j == cj - ring || j == cj + ring;
-                let step = if on_edge_row { 1 } else { (2 * ring).max(1) };
-                let mut i = ci - ring;
-                while i <= ci + ring {
-                    if i >= 0 && i < self.nx as isize {
-                        let c = j as usize * self.nx + i as usize;
-                        for &e in &self.items[self.starts[c] as usize..self.starts[c + 1] as usize]
-                        {
-                            let (a, b) = self.edges[e as usize];
-                            let (d2, q) = seg_dist2(p, a, b);
-                            if d2 < best {
-                                best = d2;
-                                best_q = q;
-                            }
-                        }
-                    }
-                    i += step;
-                }
-            }
-            // Everything not yet searched is at least this far away.
-            let lx = (fx - (ci - ring) as f64).min((ci + ring + 1) as f64 - fx);
-            let ly = (fy - (cj - ring) as f64).min((cj + ring + 1) as f64 - fy);
-            let reach = lx.min(ly).max(0.0) * self.cell;
-            if best.is_finite() && reach * reach >= best {
-                break;
-            }
-            // Every cell of the grid has been searched (p may be far outside it).
-            let all = ci - ring <= 0
-                && cj - ring <= 0
-                && ci + ring >= self.nx as isize - 1
-                && cj + ring >= self.ny as isize - 1;
-            if all && best.is_finite() {
-                break;
-            }
-            ring += 1;
-            if ring > max_ring + 2 {
-                break;
-            }
-        }
-        if !best.is_finite() {
-            // p far outside the grid: fall back to a full scan.
-            for &(a, b) in &self.edges {
-                let (d2, q) = seg_dist2(p, a, b);
-                if d2 < best {
-                    best = d2;
-                    best_q = q;
-                }
-            }
-        }
-        (best.sqrt(), best_q)
     }
 
     /// Distance from `p` to the nearest edge.

@@ -1,6 +1,7 @@
 //! Shapes: lines and cubic Béziers, closed contours, regions (an outline and its
 //! counters), built-in glyphs, fonts and SVG path data. Knows nothing of fields.
 
+mod bvh;
 mod contour;
 mod distance;
 pub mod font;

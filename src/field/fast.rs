@@ -1,0 +1,179 @@
+//! Field evaluation whose cost does not grow with N: local (Taylor) expansions
+//! of the far charges, built lazily per box of a grid, and direct sums for the
+//! near ones (issue 13).
+//!
+//! With F(z) = Σ cₙ log(z − qₙ) (complex), u = −(1/2π) Re F and
+//! ∇u = −(1/2π) conj(F′). For a box centred at z_B and a charge q with
+//! |q − z_B| ≥ κρ (ρ the box's half-diagonal), every z in the box has
+//! w = (z − z_B)/(z_B − q) with |w| ≤ 1/κ, and
+//! log(z − q) = log(z_B − q) + Σ_{k≥1} (−1)^{k+1} w^k / k.
+//! Summed over the far charges, F_far(z) = Σ_k a_k (z − z_B)^k with
+//! a_0 = Σ c log(z_B − q), a_k = Σ c (−1)^{k+1} / (k (z_B − q)^k). Truncated at
+//! order p the error in F is at most C κ^{−(p+1)} / (1 − 1/κ) and in F′ at most
+//! C κ^{−p} / ((1 − 1/κ) κρ), C = Σ_far |c|; p is chosen per box so both are
+//! below [`ABS_TOL`].
+
+use crate::geometry::Vec2;
+use std::sync::OnceLock;
+
+/// Far charges are at least this many box half-diagonals from the box centre.
+pub const KAPPA: f64 = 3.0;
+
+/// Bound on the truncation error of F and of F′ (per mm) in each box.
+pub const ABS_TOL: f64 = 1e-15;
+
+/// Largest expansion order (a box needing more evaluates directly).
+pub const MAX_ORDER: usize = 90;
+
+/// A minimal complex number (only what the expansions need).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct C {
+    re: f64,
+    im: f64,
+}
+
+impl C {
+    fn new(re: f64, im: f64) -> C {
+        C { re, im }
+    }
+    fn mul(self, o: C) -> C {
+        C::new(
+            self.re * o.re - self.im * o.im,
+            self.re * o.im + self.im * o.re,
+        )
+    }
+    fn add(self, o: C) -> C {
+        C::new(self.re + o.re, self.im + o.im)
+    }
+    fn scale(self, k: f64) -> C {
+        C::new(self.re * k, self.im * k)
+    }
+    fn inv(self) -> C {
+        let d = self.re * self.re + self.im * self.im;
+        C::new(self.re / d, -self.im / d)
+    }
+}
+
+/// One box: the near charges (summed directly) and the far charges' local
+/// expansion about the centre (`a[0]` holds only Re a₀ = Σ c log|z_B − q|).
+#[derive(Debug)]
+struct Cell {
+    centre: Vec2,
+    near: Vec<usize>,
+    a: Vec<C>,
+}
+
+/// The lazily built boxes over a rectangle; points outside it are evaluated
+/// directly by the caller.
+#[derive(Debug)]
+pub struct Accel {
+    lo: Vec2,
+    size: f64,
+    nx: usize,
+    ny: usize,
+    cells: Vec<OnceLock<Option<Cell>>>,
+}
+
+impl Accel {
+    /// Boxes of side `size` (mm) over [lo, hi]; at most 2²⁰ boxes (the side
+    /// grows to keep within that).
+    pub fn new(lo: Vec2, hi: Vec2, size: f64) -> Accel {
+        let ext = hi - lo;
+        let mut size = size.max(1e-6);
+        while (ext.x / size).ceil() * (ext.y / size).ceil() > (1u64 << 20) as f64 {
+            size *= 2.0;
+        }
+        let nx = ((ext.x / size).ceil() as usize).max(1);
+        let ny = ((ext.y / size).ceil() as usize).max(1);
+        Accel {
+            lo,
+            size,
+            nx,
+            ny,
+            cells: (0..nx * ny).map(|_| OnceLock::new()).collect(),
+        }
+    }
+
+    fn cell_of(&self, p: Vec2) -> Option<usize> {
+        let fx = (p.x - self.lo.x) / self.size;
+        let fy = (p.y - self.lo.y) / self.size;
+        if !(fx >= 0.0 && fy >= 0.0 && fx < self.nx as f64 && fy < self.ny as f64) {
+            return None;
+        }
+        Some(fy as usize * self.nx + fx as usize)
+    }
+
+    /// Σ c log|P − q| and Σ c (P − q)/|P − q|² (the raw sums of `Field`), or
+    /// None outside the boxes or where a box could not be expanded.
+    pub fn sums(&self, charges: &[Vec2], coef: &[f64], p: Vec2) -> Option<(f64, Vec2)> {
+        let k = self.cell_of(p)?;
+        let cell = self.cells[k]
+            .get_or_init(|| self.build(k, charges, coef))
+            .as_ref()?;
+        // Far part: Horner on a and on its derivative.
+        let t = C::new(p.x - cell.centre.x, p.y - cell.centre.y);
+        let n = cell.a.len();
+        let (mut f, mut df) = (cell.a[n - 1], C::default());
+        for j in (0..n - 1).rev() {
+            df = df.mul(t).add(f);
+            f = f.mul(t).add(cell.a[j]);
+        }
+        // Re F_far is the potential sum, conj(F′_far) the gradient sum.
+        let (mut s, mut gx, mut gy) = (f.re, df.re, -df.im);
+        for &i in &cell.near {
+            let d = p - charges[i];
+            let r2 = d.norm2();
+            s += 0.5 * coef[i] * r2.ln();
+            let w = coef[i] / r2;
+            gx += w * d.x;
+            gy += w * d.y;
+        }
+        Some((s, Vec2::new(gx, gy)))
+    }
+
+    fn build(&self, k: usize, charges: &[Vec2], coef: &[f64]) -> Option<Cell> {
+        let (i, j) = (k % self.nx, k / self.nx);
+        let centre =
+            self.lo + Vec2::new((i as f64 + 0.5) * self.size, (j as f64 + 0.5) * self.size);
+        let rho = self.size * std::f64::consts::FRAC_1_SQRT_2;
+        let reach = KAPPA * rho;
+        let mut near = Vec::new();
+        let mut far_abs = 0.0;
+        for (n, (q, c)) in charges.iter().zip(coef).enumerate() {
+            if q.dist(centre) < reach {
+                near.push(n);
+            } else {
+                far_abs += c.abs();
+            }
+        }
+        let order = order_for(far_abs, reach)?;
+        let mut a = vec![C::default(); order + 1];
+        for (n, (q, c)) in charges.iter().zip(coef).enumerate() {
+            if q.dist(centre) < reach {
+                continue;
+            }
+            let d = C::new(centre.x - q.x, centre.y - q.y);
+            a[0].re += 0.5 * c * d.re.mul_add(d.re, d.im * d.im).ln();
+            let inv = d.inv();
+            let mut pw = inv;
+            for (k, ak) in a.iter_mut().enumerate().skip(1) {
+                let sign = if k % 2 == 1 { 1.0 } else { -1.0 };
+                *ak = ak.add(pw.scale(sign * c / k as f64));
+                pw = pw.mul(inv);
+            }
+            let _ = n;
+        }
+        Some(Cell { centre, near, a })
+    }
+}
+
+/// The smallest order p whose truncation bounds (module docs) are below
+/// [`ABS_TOL`] for far charges of total |c| `far_abs` at least `reach` away;
+/// None past [`MAX_ORDER`].
+fn order_for(far_abs: f64, reach: f64) -> Option<usize> {
+    if far_abs == 0.0 {
+        return Some(0);
+    }
+    let lead = far_abs / (1.0 - 1.0 / KAPPA) * (1.0f64).max(1.0 / reach);
+    (0..=MAX_ORDER).find(|&p| lead * KAPPA.powi(-(p as i32)) <= ABS_TOL)
+}
