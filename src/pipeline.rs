@@ -466,20 +466,26 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let linked = link_levels(&planned.cuts, &planned.params);
     // Arcs within tol/2 of the traced rings, before the gouge check (as for a profile).
     let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
-    // Gouge check, level by level, against that level's Γ(s_k) as polygons.
+    // Gouge check, level by level (in parallel), against that level's Γ(s_k)
+    // as polygons; the first failing level in order is the one reported.
+    let reports: Vec<GougeReport> = {
+        use rayon::prelude::*;
+        toolpath
+            .sections
+            .par_iter()
+            .zip(&planned.cuts)
+            .map(|(section, cut)| {
+                let part = DistanceIndex::new(&cut.part);
+                let one = Toolpath {
+                    start: toolpath.start,
+                    sections: vec![section.clone()],
+                };
+                gouge::check(&one, &part, params.radius, job.stock.top)
+            })
+            .collect()
+    };
     let mut min_clearance = f64::INFINITY;
-    for ((section, cut), info) in toolpath
-        .sections
-        .iter()
-        .zip(&planned.cuts)
-        .zip(planned.info.iter_mut())
-    {
-        let part = DistanceIndex::new(&cut.part);
-        let one = Toolpath {
-            start: toolpath.start,
-            sections: vec![section.clone()],
-        };
-        let rep = gouge::check(&one, &part, params.radius, job.stock.top);
+    for (rep, info) in reports.iter().zip(planned.info.iter_mut()) {
         if !rep.passes(tol) {
             return Err(PipelineError::Gouge {
                 clearance: rep.min_clearance,

@@ -110,22 +110,35 @@ impl Bvh {
         me as u32
     }
 
-    /// The nearest point of the segments to `p` as (squared distance, point),
-    /// or None with no segments.
+    /// The nearest point of the segments to `p` as (squared distance, point,
+    /// segment index), or None with no segments. `hint`, the index of a segment
+    /// likely to be near (the previous query's answer, for a walk along the
+    /// part), only seeds the bound the search prunes with.
     pub fn nearest(
         &self,
         edges: &[(Vec2, Vec2)],
         p: Vec2,
+        hint: Option<u32>,
         dist2: impl Fn(Vec2, Vec2, Vec2) -> (f64, Vec2),
-    ) -> Option<(f64, Vec2)> {
+    ) -> Option<(f64, Vec2, u32)> {
         if self.nodes.is_empty() {
             return None;
         }
-        let mut best = (f64::INFINITY, p);
-        // (node, lower bound of its squared distance); depth is O(log n).
-        let mut stack: Vec<(u32, f64)> = Vec::with_capacity(64);
-        stack.push((0, box_dist2(p, self.nodes[0].lo, self.nodes[0].hi)));
-        while let Some((k, bound)) = stack.pop() {
+        let mut best = (f64::INFINITY, p, 0u32);
+        if let Some(h) = hint.filter(|&h| (h as usize) < edges.len()) {
+            let (a, b) = edges[h as usize];
+            let (d2, q) = dist2(p, a, b);
+            best = (d2, q, h);
+        }
+        // (node, lower bound of its squared distance). Median splits make the
+        // depth at most ⌈log₂ n⌉ + 1 and the stack holds at most one node per
+        // level plus one, so 64 entries cover any u32 count of segments.
+        let mut stack = [(0u32, 0.0f64); 64];
+        let mut top = 1;
+        stack[0] = (0, box_dist2(p, self.nodes[0].lo, self.nodes[0].hi));
+        while top > 0 {
+            top -= 1;
+            let (k, bound) = stack[top];
             if bound >= best.0 {
                 continue;
             }
@@ -136,7 +149,7 @@ impl Bvh {
                     let (a, b) = edges[e as usize];
                     let (d2, q) = dist2(p, a, b);
                     if d2 < best.0 {
-                        best = (d2, q);
+                        best = (d2, q, e);
                     }
                 }
                 continue;
@@ -144,15 +157,67 @@ impl Bvh {
             let (l, r) = (n.first, n.count);
             let dl = box_dist2(p, self.nodes[l as usize].lo, self.nodes[l as usize].hi);
             let dr = box_dist2(p, self.nodes[r as usize].lo, self.nodes[r as usize].hi);
-            // The nearer child is searched first (pushed last).
-            if dl <= dr {
-                stack.push((r, dr));
-                stack.push((l, dl));
+            // The nearer child is searched first (pushed last); a child that
+            // cannot beat the best is not pushed at all.
+            let (near, far) = if dl <= dr {
+                ((l, dl), (r, dr))
             } else {
-                stack.push((l, dl));
-                stack.push((r, dr));
+                ((r, dr), (l, dl))
+            };
+            if far.1 < best.0 {
+                stack[top] = far;
+                top += 1;
+            }
+            if near.1 < best.0 {
+                stack[top] = near;
+                top += 1;
             }
         }
-        Some(best)
+        Some((best.0, best.1, best.2))
+    }
+    /// Whether `hit` holds for some segment whose box is within squared
+    /// distance `reach2` of `p` (boxes further away are skipped; `hit` decides
+    /// for each segment reached). `hint` is tried first: for a walk along the
+    /// part the last answer usually decides at once.
+    pub fn any_near(
+        &self,
+        edges: &[(Vec2, Vec2)],
+        p: Vec2,
+        reach2: f64,
+        hint: Option<u32>,
+        hit: impl Fn(Vec2, Vec2) -> bool,
+    ) -> Option<u32> {
+        if let Some(h) = hint.filter(|&h| (h as usize) < edges.len()) {
+            let (a, b) = edges[h as usize];
+            if hit(a, b) {
+                return Some(h);
+            }
+        }
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let mut stack = [0u32; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let n = &self.nodes[stack[top] as usize];
+            if box_dist2(p, n.lo, n.hi) > reach2 {
+                continue;
+            }
+            if n.leaf {
+                let (s, c) = (n.first as usize, n.count as usize);
+                for &e in &self.order[s..s + c] {
+                    let (a, b) = edges[e as usize];
+                    if hit(a, b) {
+                        return Some(e);
+                    }
+                }
+                continue;
+            }
+            stack[top] = n.count;
+            stack[top + 1] = n.first;
+            top += 2;
+        }
+        None
     }
 }

@@ -131,9 +131,48 @@ impl DistanceIndex {
 
     /// Distance from `p` to the nearest edge and the nearest point on it.
     pub fn nearest(&self, p: Vec2) -> (f64, Vec2) {
-        match self.bvh.nearest(&self.edges, p, seg_dist2) {
-            Some((d2, q)) => (d2.sqrt(), q),
+        match self.bvh.nearest(&self.edges, p, None, seg_dist2) {
+            Some((d2, q, _)) => (d2.sqrt(), q),
             None => (f64::INFINITY, p),
+        }
+    }
+
+    /// [`nearest`](Self::nearest) for a walk of nearby queries: `hint` holds
+    /// the edge that answered the last one, which seeds the search's bound
+    /// (most of the tree is then pruned at once), and is updated.
+    pub fn nearest_hinted(&self, p: Vec2, hint: &std::cell::Cell<u32>) -> (f64, Vec2) {
+        match self
+            .bvh
+            .nearest(&self.edges, p, Some(hint.get()), seg_dist2)
+        {
+            Some((d2, q, e)) => {
+                hint.set(e);
+                (d2.sqrt(), q)
+            }
+            None => (f64::INFINITY, p),
+        }
+    }
+
+    /// Whether some edge is closer to `p` than `r`: exactly whether the
+    /// minimum over every edge of the distance (the same `sqrt` of the same
+    /// squared distances as [`nearest`](Self::nearest), which may differ from
+    /// that minimum by rounding where two edges tie) is below `r`. The search
+    /// stops at the first such edge. `hint` is
+    /// tried first and updated, as in [`nearest_hinted`](Self::nearest_hinted).
+    pub fn closer_than(&self, p: Vec2, r: f64, hint: &std::cell::Cell<u32>) -> bool {
+        // Boxes are pruned with a relative margin far above the rounding of
+        // their bound, so no edge that passes the exact test is skipped.
+        let reach2 = r * r * (1.0 + 1e-9) + 1e-300;
+        let hit = |a: Vec2, b: Vec2| seg_dist2(p, a, b).0.sqrt() < r;
+        match self
+            .bvh
+            .any_near(&self.edges, p, reach2, Some(hint.get()), hit)
+        {
+            Some(e) => {
+                hint.set(e);
+                true
+            }
+            None => false,
         }
     }
 
@@ -322,6 +361,51 @@ mod tests {
             assert!((p.dist(q) - d).abs() <= 1e-9 * d.max(1.0));
         }
         assert!(worst <= 1e-12, "grid vs brute force: {worst:e}");
+    }
+
+    /// The tracer's two walk queries, from any hint: `nearest_hinted` gives
+    /// the distance to within rounding, and `closer_than` exactly the verdict
+    /// of the brute-force distance (the min over every edge) compared with r,
+    /// also for radii right at the distance.
+    #[test]
+    fn hinted_queries_agree_with_the_plain_ones() {
+        let mut rng = Lcg(7);
+        let polys = vec![
+            star(Vec2::new(0.0, 0.0), 30.0, 12.0, 7),
+            star(Vec2::new(80.0, 10.0), 5.0, 2.0, 40),
+        ];
+        let idx = DistanceIndex::new(&polys);
+        let hint = std::cell::Cell::new(0);
+        let (mut hits, mut misses) = (0, 0);
+        for k in 0..20_000 {
+            let p = Vec2::new(
+                20.0 + (rng.next() - 0.5) * 160.0,
+                (rng.next() - 0.5) * 160.0,
+            );
+            if k % 5 == 0 {
+                // A hint that is anywhere, or out of range.
+                hint.set((rng.next() * 200.0) as u32);
+            }
+            let d = idx.distance_brute(p);
+            assert!((idx.nearest_hinted(p, &hint).0 - d).abs() <= 1e-12);
+            // Radii below, at and just around the distance itself.
+            for r in [
+                d * 0.5,
+                d,
+                d * (1.0 + 1e-15),
+                d * (1.0 - 1e-15),
+                rng.next() * 40.0,
+            ] {
+                let want = d < r;
+                assert_eq!(idx.closer_than(p, r, &hint), want, "p {p:?} r {r} d {d}");
+                if want {
+                    hits += 1;
+                } else {
+                    misses += 1;
+                }
+            }
+        }
+        assert!(hits > 10_000 && misses > 10_000, "{hits} {misses}");
     }
 
     #[test]

@@ -344,70 +344,86 @@ pub fn fit_polyline(pts: &[Vec2], p: &ArcFitParams) -> Vec<Piece> {
 /// The tool path with every run of straight feed moves at constant Z (same feed)
 /// fitted with arcs. Rapids, plunges and other moves are kept as they are.
 /// Runs with the same points (the passes of one loop) are fitted once, so every
-/// pass gets the same arcs. Sequential and free of hashing: the result depends on
-/// nothing but the input.
+/// pass gets the same arcs. Sections are fitted in parallel (each starts where
+/// the one before it ends, known before any fitting: fitting keeps every
+/// run's ends); the result depends on nothing but the input.
 pub fn fit_toolpath(tp: &Toolpath, p: &ArcFitParams) -> Toolpath {
-    let mut cache: Option<(Vec<Vec2>, Vec<Piece>)> = None;
+    use rayon::prelude::*;
+    let mut starts = Vec::with_capacity(tp.sections.len());
     let mut at = tp.start;
-    let mut sections = Vec::with_capacity(tp.sections.len());
     for s in &tp.sections {
-        let mut moves = Vec::with_capacity(s.moves.len());
-        let mut k = 0;
-        while k < s.moves.len() {
-            // The longest run of level linear moves from `at` with one feed.
-            let feed = match s.moves[k] {
-                Move::Linear { to, feed } if to.z == at.z => feed,
-                m => {
-                    moves.push(m);
-                    at = m.to();
-                    k += 1;
-                    continue;
-                }
-            };
-            let z = at.z;
-            let mut pts = vec![Vec2::new(at.x, at.y)];
-            while let Some(Move::Linear { to, feed: f }) = s.moves.get(k) {
-                if to.z != z || *f != feed {
-                    break;
-                }
-                pts.push(Vec2::new(to.x, to.y));
-                k += 1;
-            }
-            let pieces = match &cache {
-                Some((q, pieces)) if *q == pts => pieces.clone(),
-                _ => {
-                    let pieces = fit_polyline(&pts, p);
-                    cache = Some((pts.clone(), pieces.clone()));
-                    pieces
-                }
-            };
-            for pc in pieces {
-                moves.push(match pc {
-                    Piece::Line { end } => Move::Linear {
-                        to: Vec3::new(end.x, end.y, z),
-                        feed,
-                    },
-                    Piece::Arc { end, arc } => Move::Arc {
-                        to: Vec3::new(end.x, end.y, z),
-                        cx: arc.centre.x,
-                        cy: arc.centre.y,
-                        ccw: arc.ccw,
-                        feed,
-                    },
-                });
-            }
-            let last = pts[pts.len() - 1];
-            at = Vec3::new(last.x, last.y, z);
+        starts.push(at);
+        if let Some(m) = s.moves.last() {
+            at = m.to();
         }
-        sections.push(Section {
-            label: s.label.clone(),
-            z: s.z,
-            moves,
-        });
     }
+    let sections = tp
+        .sections
+        .par_iter()
+        .zip(starts)
+        .map(|(s, at)| fit_section(s, at, p))
+        .collect();
     Toolpath {
         start: tp.start,
         sections,
+    }
+}
+
+/// One section of [`fit_toolpath`], entered at `at`.
+fn fit_section(s: &Section, mut at: Vec3, p: &ArcFitParams) -> Section {
+    let mut cache: Option<(Vec<Vec2>, Vec<Piece>)> = None;
+    let mut moves = Vec::with_capacity(s.moves.len());
+    let mut k = 0;
+    while k < s.moves.len() {
+        // The longest run of level linear moves from `at` with one feed.
+        let feed = match s.moves[k] {
+            Move::Linear { to, feed } if to.z == at.z => feed,
+            m => {
+                moves.push(m);
+                at = m.to();
+                k += 1;
+                continue;
+            }
+        };
+        let z = at.z;
+        let mut pts = vec![Vec2::new(at.x, at.y)];
+        while let Some(Move::Linear { to, feed: f }) = s.moves.get(k) {
+            if to.z != z || *f != feed {
+                break;
+            }
+            pts.push(Vec2::new(to.x, to.y));
+            k += 1;
+        }
+        let pieces = match &cache {
+            Some((q, pieces)) if *q == pts => pieces.clone(),
+            _ => {
+                let pieces = fit_polyline(&pts, p);
+                cache = Some((pts.clone(), pieces.clone()));
+                pieces
+            }
+        };
+        for pc in pieces {
+            moves.push(match pc {
+                Piece::Line { end } => Move::Linear {
+                    to: Vec3::new(end.x, end.y, z),
+                    feed,
+                },
+                Piece::Arc { end, arc } => Move::Arc {
+                    to: Vec3::new(end.x, end.y, z),
+                    cx: arc.centre.x,
+                    cy: arc.centre.y,
+                    ccw: arc.ccw,
+                    feed,
+                },
+            });
+        }
+        let last = pts[pts.len() - 1];
+        at = Vec3::new(last.x, last.y, z);
+    }
+    Section {
+        label: s.label.clone(),
+        z: s.z,
+        moves,
     }
 }
 

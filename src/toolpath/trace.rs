@@ -98,6 +98,9 @@ const BISECT_FRACTION: f64 = 1e-3;
 struct Tracer<'a, N: Navigator> {
     nav: &'a N,
     part: &'a DistanceIndex,
+    /// The edge nearest to the last point asked about (see
+    /// [`DistanceIndex::nearest_hinted`]): the tracer's queries walk along the part.
+    hint: std::cell::Cell<u32>,
     p: TraceParams,
     grad_evals: usize,
     fallbacks: usize,
@@ -106,7 +109,13 @@ struct Tracer<'a, N: Navigator> {
 impl<'a, N: Navigator> Tracer<'a, N> {
     /// Signed contact function: clearance of the disk, distance − r.
     fn g(&self, x: Vec2) -> f64 {
-        self.part.distance(x) - self.p.radius
+        self.part.nearest_hinted(x, &self.hint).0 - self.p.radius
+    }
+
+    /// Whether the disk at `x` overlaps the part (`g(x) < 0`, decided the
+    /// same way but without finding the nearest edge).
+    fn blocked(&self, x: Vec2) -> bool {
+        self.part.closer_than(x, self.p.radius, &self.hint)
     }
 
     fn grad_dir(&mut self, x: Vec2) -> Vec2 {
@@ -122,7 +131,7 @@ impl<'a, N: Navigator> Tracer<'a, N> {
                 break;
             }
             let m = 0.5 * (a + b);
-            if self.g(x + dir * m) >= 0.0 {
+            if !self.blocked(x + dir * m) {
                 a = m;
             } else {
                 b = m;
@@ -154,7 +163,7 @@ impl<'a, N: Navigator> Tracer<'a, N> {
             let mut b = 0.0;
             for k in 1..=64 {
                 let lam = (-g0).max(1e-9) + 0.5 * r * (k - 1) as f64;
-                if self.g(x - n * lam) >= 0.0 {
+                if !self.blocked(x - n * lam) {
                     return Some(self.bisect(x, -n, lam, b));
                 }
                 b = lam;
@@ -179,16 +188,16 @@ impl<'a, N: Navigator> Tracer<'a, N> {
             let a = a0 + sign * k * std::f64::consts::TAU / STEPS as f64;
             Vec2::new(a.cos(), a.sin())
         };
-        let mut prev_blocked = self.g(cur + dir(0.0) * h) < 0.0;
+        let mut prev_blocked = self.blocked(cur + dir(0.0) * h);
         for k in 1..=STEPS {
-            let blocked = self.g(cur + dir(k as f64) * h) < 0.0;
+            let blocked = self.blocked(cur + dir(k as f64) * h);
             if prev_blocked && !blocked {
                 let (mut lo, mut hi) = ((k - 1) as f64, k as f64);
                 // The contact is found to 1e-2 of the tolerance along the circle.
                 let eps = (self.p.tol * 1e-2 / h).min(1e-3) * STEPS as f64 / std::f64::consts::TAU;
                 while hi - lo > eps {
                     let mid = 0.5 * (lo + hi);
-                    if self.g(cur + dir(mid) * h) < 0.0 {
+                    if self.blocked(cur + dir(mid) * h) {
                         lo = mid;
                     } else {
                         hi = mid;
@@ -209,8 +218,8 @@ impl<'a, N: Navigator> Tracer<'a, N> {
     /// it is in contact (|clearance| within a tenth of the tolerance) and keeps both
     /// new chords within half the tolerance.
     fn concave_corner(&self, a: Vec2, b: Vec2, h: f64) -> Option<Vec2> {
-        let (_, wa) = self.part.nearest(a);
-        let (_, wb) = self.part.nearest(b);
+        let (_, wa) = self.part.nearest_hinted(a, &self.hint);
+        let (_, wb) = self.part.nearest_hinted(b, &self.hint);
         let da = (wa - a).perp();
         let db = (wb - b).perp();
         let den = da.cross(db);
@@ -250,6 +259,7 @@ pub fn trace<N: Navigator>(
     let mut t = Tracer {
         nav,
         part,
+        hint: std::cell::Cell::new(0),
         p,
         grad_evals: 0,
         fallbacks: 0,
@@ -299,9 +309,9 @@ pub fn trace<N: Navigator>(
         // direction to the nearest point), or near a concave corner it could seed
         // the compass in the other wall's blocked arc and send the tool back.
         let mut n0 = t.grad_dir(cur);
-        let (d, near) = t.part.nearest(cur);
+        let (d, near) = t.part.nearest_hinted(cur, &t.hint);
         let geo = if d > 0.0 { (near - cur) / d } else { n0 };
-        if n0.norm2() < 0.5 || n0.dot(geo) <= 0.0 || t.g(cur + n0 * h.min(0.5 * r)) >= 0.0 {
+        if n0.norm2() < 0.5 || n0.dot(geo) <= 0.0 || !t.blocked(cur + n0 * h.min(0.5 * r)) {
             n0 = geo;
             t.fallbacks += 1;
         }
