@@ -1,7 +1,7 @@
 //! Speed benchmarks (criterion). Run: `cargo bench --bench pfcam`.
 //! Figures reported in docs/method.md are the medians criterion prints.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use pfcam::field::{self, Boundary, Layout, Prepared};
 use pfcam::geometry::Vec2;
 use std::hint::black_box;
@@ -68,6 +68,122 @@ fn field_eval(c: &mut Criterion) {
     c.bench_function("field: grad u at one point, N = 1210", |b| {
         b.iter(|| f.grad(black_box(p)))
     });
+}
+
+/// Points where the pipeline evaluates: three quarters within 3 mm of the
+/// polygons' vertices (where the tracer works), the rest anywhere in their box
+/// grown by a quarter of its diagonal (fixed seed).
+fn eval_points(polys: &[Vec<Vec2>], count: usize) -> Vec<Vec2> {
+    let verts: Vec<Vec2> = polys.iter().flatten().copied().collect();
+    let (mut lo, mut hi) = (verts[0], verts[0]);
+    for v in &verts {
+        lo = Vec2::new(lo.x.min(v.x), lo.y.min(v.y));
+        hi = Vec2::new(hi.x.max(v.x), hi.y.max(v.y));
+    }
+    let pad = 0.25 * (hi - lo).norm();
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut rnd = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|k| {
+            if k % 4 == 3 {
+                Vec2::new(
+                    lo.x - pad + rnd() * (hi.x - lo.x + 2.0 * pad),
+                    lo.y - pad + rnd() * (hi.y - lo.y + 2.0 * pad),
+                )
+            } else {
+                let v = verts[(rnd() * verts.len() as f64) as usize % verts.len()];
+                v + Vec2::new(rnd() - 0.5, rnd() - 0.5) * 6.0
+            }
+        })
+        .collect()
+}
+
+/// Issue 13's measure: direct-sum kernel pairs replaced per second (N × points
+/// per second, criterion's "elements"), one thread, on mfs-sign's shape field
+/// (N = 2570, as the job solves it) and on a level field (an MFS solve on
+/// Γ(0.99) of that field, laid out as a cavity level is). "warm": the boxes'
+/// expansions already built (as after the first level); "cold": a fresh
+/// accelerated field each iteration, building included; "direct": no
+/// expansions.
+fn field_eval_fast(c: &mut Criterion) {
+    let sign = job("jobs/mfs-sign.toml");
+    let (shape, _) = pfcam::pipeline::job_shape(&sign, &mut |_| {}).unwrap();
+    let flat_tol = sign.operation.tolerance * pfcam::pipeline::FLATTEN_FRACTION;
+    let (solved, _, _) =
+        pfcam::pipeline::solve_shape(&shape, &sign, flat_tol, &mut |_| {}).unwrap();
+    let glyphs: Vec<Vec<Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
+    let shape_field = solved.solution.field;
+    // A level field: Γ(0.99) extracted on a 0.25 mm grid, solved as plan.rs
+    // solves a cavity level.
+    let (lo, hi) = shape.bbox().unwrap();
+    let pad = Vec2::new(8.0, 8.0);
+    let grid = field::isolines::Grid::sample(&shape_field, lo - pad, hi + pad, 0.25, &glyphs);
+    let level = field::isolines::isolines(&grid, 0.99, &shape_field, &glyphs);
+    let contours: Vec<pfcam::geometry::Contour> = level
+        .iter()
+        .filter_map(|p| pfcam::geometry::Contour::polygon(p).ok())
+        .collect();
+    let is_counter: Vec<bool> = level
+        .iter()
+        .map(|p| field::isolines::polygon_area(p) < 0.0)
+        .collect();
+    let loops = is_counter.iter().filter(|c| !**c).count().max(1);
+    let centre = field::centroid(&contours, flat_tol);
+    let prep = Prepared::new(Boundary {
+        contours,
+        is_counter,
+        centre,
+        radius: 20.0 * (hi - lo).norm(),
+        flat_tol,
+    })
+    .unwrap();
+    let n_level = pfcam::levels::plan::LEVEL_N_PER_LOOP * loops
+        + field::setup::OUTER_CHARGES
+        + prep.sinks.len()
+            * (field::setup::SINK_CHARGES + pfcam::levels::plan::LEVEL_N_PER_LOOP);
+    let lf = field::solve_quick(
+        &prep,
+        Layout {
+            n_total: n_level,
+            distance: 1.0,
+            corner_clusters: true,
+            corner_fraction: 0.2,
+            pairs: false,
+        },
+    )
+    .unwrap()
+    .solution
+    .field;
+    let level_field = lf.accelerated_around(lo, hi);
+    let points = eval_points(&glyphs, 4096);
+    let mut g = c.benchmark_group("field_eval");
+    for (name, f) in [("mfs-sign shape field", &shape_field), ("level field", &level_field)] {
+        let n = f.n();
+        g.throughput(Throughput::Elements((n * points.len()) as u64));
+        let sum = |f: &field::Field| {
+            points
+                .iter()
+                .map(|&p| {
+                    let (u, gu) = f.value_grad(p);
+                    u + gu.x + gu.y
+                })
+                .sum::<f64>()
+        };
+        g.bench_function(format!("{name}, N = {n}: u and grad u, warm"), |b| {
+            b.iter(|| sum(black_box(f)))
+        });
+        g.bench_function(format!("{name}, N = {n}: u and grad u, cold"), |b| {
+            b.iter(|| sum(&black_box(f).direct().accelerated_around(lo, hi)))
+        });
+        g.bench_function(format!("{name}, N = {n}: u and grad u, direct"), |b| {
+            let d = f.direct();
+            b.iter(|| sum(black_box(&d)))
+        });
+    }
+    g.finish();
 }
 
 fn job(path: &str) -> pfcam::job::Job {
@@ -186,6 +302,7 @@ criterion_group!(
     simulate_mould,
     letter_i_solve,
     field_eval,
+    field_eval_fast,
     profiles,
     levels,
     surface,

@@ -274,19 +274,11 @@ pub fn solve_shape(
     Ok((solved, report, outer_radius))
 }
 
-/// Boxes of the fast evaluator (`field::fast`) per shape diagonal.
-pub const FAST_BOXES_PER_DIAGONAL: f64 = 100.0;
-
-/// The shape's field with local expansions over its bounding box grown by half
-/// its diagonal on every side (where the levels, the stock and the preview
-/// look), in boxes of 1/[`FAST_BOXES_PER_DIAGONAL`] of the diagonal.
+/// The shape's field with local expansions around its bounding box
+/// ([`field::Field::accelerated_around`]).
 fn accelerate(field: &field::Field, shape: &Shape) -> field::Field {
     match shape.bbox() {
-        Some((lo, hi)) => {
-            let diag = (hi - lo).norm();
-            let pad = crate::geometry::Vec2::new(0.5 * diag, 0.5 * diag);
-            field.accelerated(lo - pad, hi + pad, diag / FAST_BOXES_PER_DIAGONAL)
-        }
+        Some((lo, hi)) => field.accelerated_around(lo, hi),
         None => field.clone(),
     }
 }

@@ -16,6 +16,10 @@
 use crate::geometry::Vec2;
 use std::sync::OnceLock;
 
+/// Boxes per diagonal of the region a field is accelerated over
+/// ([`Field::accelerated_around`](super::Field::accelerated_around)).
+pub const BOXES_PER_DIAGONAL: f64 = 100.0;
+
 /// Far charges are at least this many box half-diagonals from the box centre.
 pub const KAPPA: f64 = 3.0;
 

@@ -128,6 +128,19 @@ impl Field {
         }
     }
 
+    /// [`accelerated`](Self::accelerated) over the box `lo`–`hi` grown by half
+    /// its diagonal on every side (where levels, stock and previews look), in
+    /// boxes of 1/[`BOXES_PER_DIAGONAL`](super::fast::BOXES_PER_DIAGONAL) of
+    /// the diagonal.
+    pub fn accelerated_around(&self, lo: Vec2, hi: Vec2) -> Field {
+        let diag = (hi - lo).norm();
+        if !(diag.is_finite() && diag > 0.0) {
+            return self.clone();
+        }
+        let pad = Vec2::new(0.5 * diag, 0.5 * diag);
+        self.accelerated(lo - pad, hi + pad, diag / super::fast::BOXES_PER_DIAGONAL)
+    }
+
     /// The same field without expansions (every evaluation a direct sum).
     pub fn direct(&self) -> Field {
         Field {

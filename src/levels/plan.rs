@@ -494,8 +494,22 @@ fn cavity_level_field(
             "{label}, s = {s:.6}: its field errs by {e:.2e}, above {bound:.1e} (a hundredth of 1 − s); the cut follows the level's polygon, checked by geometry, but the clearing rings may be uneven there"
         ));
     }
+    // Local expansions over the level's box: the rings and the coverage grid
+    // evaluate this field millions of times (docs/method.md §12).
+    let (lo, hi) = oriented.iter().flatten().fold(
+        (
+            Vec2::new(f64::INFINITY, f64::INFINITY),
+            Vec2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        ),
+        |(l, h), p| {
+            (
+                Vec2::new(l.x.min(p.x), l.y.min(p.y)),
+                Vec2::new(h.x.max(p.x), h.y.max(p.y)),
+            )
+        },
+    );
     Ok(LevelField {
-        field: solved.solution.field,
+        field: solved.solution.field.accelerated_around(lo, hi),
         figures: FieldFigures {
             m: solved.m,
             distance: solved.layout.distance,

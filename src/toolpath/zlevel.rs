@@ -721,7 +721,8 @@ pub fn cavity_paths<N: Navigator + Sync>(
             pairs: false,
         },
     )?;
-    let inv = &solved.solution.field;
+    // Local expansions over the grid's box (docs/method.md §12).
+    let inv = &solved.solution.field.accelerated_around(lo, hi);
     let mut grid = Grid::sample(inv, lo, hi, h, &mask);
     // Inside the sinks the sum is singular at the charges: pin the values to 0.
     for j in 0..grid.ny {
