@@ -83,7 +83,9 @@ fn eval_points(polys: &[Vec<Vec2>], count: usize) -> Vec<Vec2> {
     let pad = 0.25 * (hi - lo).norm();
     let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut rnd = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     (0..count)
@@ -142,8 +144,7 @@ fn field_eval_fast(c: &mut Criterion) {
     .unwrap();
     let n_level = pfcam::levels::plan::LEVEL_N_PER_LOOP * loops
         + field::setup::OUTER_CHARGES
-        + prep.sinks.len()
-            * (field::setup::SINK_CHARGES + pfcam::levels::plan::LEVEL_N_PER_LOOP);
+        + prep.sinks.len() * (field::setup::SINK_CHARGES + pfcam::levels::plan::LEVEL_N_PER_LOOP);
     let lf = field::solve_quick(
         &prep,
         Layout {
@@ -160,7 +161,10 @@ fn field_eval_fast(c: &mut Criterion) {
     let level_field = lf.accelerated_around(lo, hi);
     let points = eval_points(&glyphs, 4096);
     let mut g = c.benchmark_group("field_eval");
-    for (name, f) in [("mfs-sign shape field", &shape_field), ("level field", &level_field)] {
+    for (name, f) in [
+        ("mfs-sign shape field", &shape_field),
+        ("level field", &level_field),
+    ] {
         let n = f.n();
         g.throughput(Throughput::Elements((n * points.len()) as u64));
         let sum = |f: &field::Field| {
