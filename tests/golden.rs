@@ -152,3 +152,41 @@ fn every_job_matches_its_sample() {
         check_golden(&job.name, &g);
     }
 }
+
+/// docs/gcode.md's table of the boss and the mould gives, for `arcs = true`,
+/// the lines, bytes and arcs of exactly the programs in gcode-samples (the
+/// shipped jobs write arcs): re-blessing a sample without re-measuring the
+/// table fails here. (The `arcs = false` columns need a run of each job.)
+#[test]
+fn gcode_doc_table_matches_the_samples() {
+    let doc = fs::read_to_string(root().join("docs/gcode.md")).expect("docs/gcode.md");
+    let mut seen = 0;
+    for (name, row_start) in [
+        ("mfs-sign", "| mfs-sign (boss"),
+        ("mfs-mould", "| mfs-mould (cavity"),
+    ] {
+        let row = doc
+            .lines()
+            .find(|l| l.starts_with(row_start))
+            .unwrap_or_else(|| panic!("docs/gcode.md has no row {row_start}"));
+        let cols: Vec<u64> = row
+            .split('|')
+            .map(str::trim)
+            .filter_map(|c| c.parse().ok())
+            .collect();
+        assert_eq!(cols.len(), 5, "{row}");
+        let text = fs::read_to_string(sample_path(name)).expect("sample");
+        let lines = text.lines().count() as u64;
+        let arcs = text
+            .lines()
+            .filter(|l| l.starts_with("G2 ") || l.starts_with("G3 "))
+            .count() as u64;
+        assert_eq!(
+            (cols[2], cols[3], cols[4]),
+            (lines, text.len() as u64, arcs),
+            "docs/gcode.md's {name} row (lines, bytes, arcs) against gcode-samples/{name}.nc"
+        );
+        seen += 1;
+    }
+    assert_eq!(seen, 2);
+}

@@ -59,23 +59,33 @@ impl C {
 }
 
 /// One box: the near charges (summed directly) and the far charges' local
-/// expansion about the centre (`a[0]` holds only Re a₀ = Σ c log|z_B − q|).
+/// expansion about the centre (`a[0]` holds only Re a₀ = Σ c log|z_B − q|;
+/// its imaginary part, which only Im F would need, is not kept).
 #[derive(Debug)]
 struct Cell {
     centre: Vec2,
-    near: Vec<usize>,
+    near: Vec<u32>,
     a: Vec<C>,
 }
 
-/// The lazily built boxes over a rectangle; points outside it are evaluated
-/// directly by the caller.
+/// One level of the hierarchy: boxes `scale` times the leaves' side.
+#[derive(Debug)]
+struct Level {
+    size: f64,
+    nx: usize,
+    cells: Vec<OnceLock<Option<Cell>>>,
+}
+
+/// The lazily built boxes over a rectangle, in a hierarchy of levels whose
+/// boxes double in side up to one box over everything; points outside it are
+/// evaluated directly by the caller. A box's expansion is its parent's,
+/// re-centred (exact for a polynomial), plus the charges near the parent but
+/// far from it: each box touches only the charges near its parent, not all N.
 #[derive(Debug)]
 pub struct Accel {
     lo: Vec2,
-    size: f64,
-    nx: usize,
-    ny: usize,
-    cells: Vec<OnceLock<Option<Cell>>>,
+    /// `levels[0]` is the single top box, the last level the leaves.
+    levels: Vec<Level>,
 }
 
 impl Accel {
@@ -89,31 +99,42 @@ impl Accel {
         }
         let nx = ((ext.x / size).ceil() as usize).max(1);
         let ny = ((ext.y / size).ceil() as usize).max(1);
-        Accel {
-            lo,
-            size,
-            nx,
-            ny,
-            cells: (0..nx * ny).map(|_| OnceLock::new()).collect(),
+        // Levels up from the leaves, halving the counts, until one box.
+        let mut levels = Vec::new();
+        let (mut s, mut cx, mut cy) = (size, nx, ny);
+        loop {
+            levels.push(Level {
+                size: s,
+                nx: cx,
+                cells: (0..cx * cy).map(|_| OnceLock::new()).collect(),
+            });
+            if cx == 1 && cy == 1 {
+                break;
+            }
+            s *= 2.0;
+            cx = cx.div_ceil(2);
+            cy = cy.div_ceil(2);
         }
+        levels.reverse();
+        Accel { lo, levels }
     }
 
-    fn cell_of(&self, p: Vec2) -> Option<usize> {
-        let fx = (p.x - self.lo.x) / self.size;
-        let fy = (p.y - self.lo.y) / self.size;
-        if !(fx >= 0.0 && fy >= 0.0 && fx < self.nx as f64 && fy < self.ny as f64) {
+    fn leaf_of(&self, p: Vec2) -> Option<(usize, usize)> {
+        let leaves = self.levels.last()?;
+        let ny = leaves.cells.len() / leaves.nx;
+        let fx = (p.x - self.lo.x) / leaves.size;
+        let fy = (p.y - self.lo.y) / leaves.size;
+        if !(fx >= 0.0 && fy >= 0.0 && fx < leaves.nx as f64 && fy < ny as f64) {
             return None;
         }
-        Some(fy as usize * self.nx + fx as usize)
+        Some((fx as usize, fy as usize))
     }
 
     /// Σ c log|P − q| and Σ c (P − q)/|P − q|² (the raw sums of `Field`), or
     /// None outside the boxes or where a box could not be expanded.
     pub fn sums(&self, charges: &[Vec2], coef: &[f64], p: Vec2) -> Option<(f64, Vec2)> {
-        let k = self.cell_of(p)?;
-        let cell = self.cells[k]
-            .get_or_init(|| self.build(k, charges, coef))
-            .as_ref()?;
+        let (i, j) = self.leaf_of(p)?;
+        let cell = self.cell(self.levels.len() - 1, i, j, charges, coef)?;
         // Far part: Horner on a and on its derivative.
         let t = C::new(p.x - cell.centre.x, p.y - cell.centre.y);
         let n = cell.a.len();
@@ -125,34 +146,65 @@ impl Accel {
         // Re F_far is the potential sum, conj(F′_far) the gradient sum.
         let (mut s, mut gx, mut gy) = (f.re, df.re, -df.im);
         for &i in &cell.near {
-            let d = p - charges[i];
+            let (q, c) = (charges[i as usize], coef[i as usize]);
+            let d = p - q;
             let r2 = d.norm2();
-            s += 0.5 * coef[i] * r2.ln();
-            let w = coef[i] / r2;
+            s += 0.5 * c * r2.ln();
+            let w = c / r2;
             gx += w * d.x;
             gy += w * d.y;
         }
         Some((s, Vec2::new(gx, gy)))
     }
 
-    fn build(&self, k: usize, charges: &[Vec2], coef: &[f64]) -> Option<Cell> {
-        let (i, j) = (k % self.nx, k / self.nx);
-        let centre =
-            self.lo + Vec2::new((i as f64 + 0.5) * self.size, (j as f64 + 0.5) * self.size);
-        let rho = self.size * std::f64::consts::FRAC_1_SQRT_2;
-        let reach = KAPPA * rho;
+    /// Box (i, j) of level `l`, built (with its ancestors) on first use.
+    fn cell(&self, l: usize, i: usize, j: usize, charges: &[Vec2], coef: &[f64]) -> Option<&Cell> {
+        let level = &self.levels[l];
+        level.cells[j * level.nx + i]
+            .get_or_init(|| self.build(l, i, j, charges, coef))
+            .as_ref()
+    }
+
+    fn build(&self, l: usize, i: usize, j: usize, charges: &[Vec2], coef: &[f64]) -> Option<Cell> {
+        let size = self.levels[l].size;
+        let centre = self.lo + Vec2::new((i as f64 + 0.5) * size, (j as f64 + 0.5) * size);
+        let reach = KAPPA * size * std::f64::consts::FRAC_1_SQRT_2;
+        // Candidates: every charge at the top; below, the parent's near ones
+        // (a charge near a box is near its parent: the centres are ρ apart and
+        // κρ + ρ ≤ 2κρ for κ ≥ 1).
+        let parent = if l == 0 {
+            None
+        } else {
+            Some(self.cell(l - 1, i / 2, j / 2, charges, coef)?)
+        };
+        let all: Vec<u32>;
+        let candidates: &[u32] = match parent {
+            Some(p) => &p.near,
+            None => {
+                all = (0..charges.len() as u32).collect();
+                &all
+            }
+        };
         let mut near = Vec::new();
-        let mut far_abs = 0.0;
-        for (n, (q, c)) in charges.iter().zip(coef).enumerate() {
-            if q.dist(centre) < reach {
+        let mut new_far_abs = 0.0;
+        for &n in candidates {
+            if charges[n as usize].dist(centre) < reach {
                 near.push(n);
             } else {
-                far_abs += c.abs();
+                new_far_abs += coef[n as usize].abs();
             }
         }
-        let order = order_for(far_abs, reach)?;
+        let inherited = parent.map_or(0, |p| p.a.len() - 1);
+        let order = order_for(new_far_abs, reach)?.max(inherited);
         let mut a = vec![C::default(); order + 1];
-        for (n, (q, c)) in charges.iter().zip(coef).enumerate() {
+        if let Some(p) = parent {
+            a[..p.a.len()].copy_from_slice(&p.a);
+            let d = C::new(centre.x - p.centre.x, centre.y - p.centre.y);
+            taylor_shift(&mut a, d);
+            a[0].im = 0.0;
+        }
+        for &n in candidates {
+            let (q, c) = (charges[n as usize], coef[n as usize]);
             if q.dist(centre) < reach {
                 continue;
             }
@@ -165,9 +217,20 @@ impl Accel {
                 *ak = ak.add(pw.scale(sign * c / k as f64));
                 pw = pw.mul(inv);
             }
-            let _ = n;
         }
         Some(Cell { centre, near, a })
+    }
+}
+
+/// Re-centre the polynomial Σ a_k t^k at t = d, in place: afterwards
+/// Σ a_k s^k equals the old polynomial at t = s + d (repeated synthetic
+/// division, p²/2 complex multiply-adds).
+fn taylor_shift(a: &mut [C], d: C) {
+    let n = a.len();
+    for i in 0..n {
+        for k in (i..n - 1).rev() {
+            a[k] = a[k].add(d.mul(a[k + 1]));
+        }
     }
 }
 
