@@ -403,7 +403,9 @@ fn cmd_run(
     }
     Ok(Done {
         name: job.name.clone(),
-        levels: output.levels.len().max(1),
+        // As the G-code header counts them: the distinct depths cut (a
+        // profile's passes, a boss's or cavity's z-levels).
+        levels: pfcam::gcode::writer::levels(&output.toolpath).len(),
         machining_s: output.toolpath.stats(job.machine.rapid_rate).time_s,
         warnings: output.warnings.len(),
     })

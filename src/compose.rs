@@ -748,7 +748,13 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
         .checks
         .iter()
         .map(|c| c.value - m.field.value(c.p))
-        .fold(0.0, f64::max);
+        .fold(0.0, crate::num::max_or_nan);
+    if deficit.is_nan() {
+        return Err(part_err(
+            &m.name,
+            "its field is not a number (NaN) on its boundary: this is a pfcam bug, please report it with the job file",
+        ));
+    }
     let tau = (1.5 * deficit).max(MIN_TAU);
     let s = 1.0 - tau;
     let pts: Vec<Vec2> = m.set.material.colloc.iter().map(|c| c.p).collect();

@@ -311,4 +311,20 @@ fn every_job_runs_to_gcode_that_passes() {
     for f in written {
         assert_passes(&f);
     }
+    // Warnings are for what the user must know or act on, once: no shipped
+    // job has more than one, and the only one left is q-mould's summary of
+    // its levels' field errors (it had ten lines saying the same, plus a
+    // "no room inside the finishing loops" where the walls cut everything).
+    for report in files(&out.display().to_string(), "json") {
+        let v: Value = serde_json::from_str(&fs::read_to_string(&report).unwrap()).unwrap();
+        let warnings = v["warnings"].as_array().expect("warnings array");
+        assert!(
+            warnings.len() <= 1
+                && warnings.iter().all(|w| w
+                    .as_str()
+                    .is_some_and(|w| w.contains("levels have fields that err above"))),
+            "{}: {warnings:?}",
+            report.display()
+        );
+    }
 }

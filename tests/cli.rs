@@ -904,6 +904,17 @@ fn a_batch_runs_every_job_and_reports_each() {
         "{table}"
     );
     assert!(text(&o.stderr).contains("1 of 3 jobs failed"));
+    // The levels column counts what the G-code header counts (a profile's
+    // passes: 3 for depth 3 at the default 1 mm stepdown).
+    let header = fs::read_to_string(dir.join("out/a.nc")).expect("a.nc");
+    let in_header: usize = header
+        .lines()
+        .find_map(|l| l.strip_prefix("(levels: "))
+        .and_then(|l| l.split(',').next())
+        .and_then(|n| n.parse().ok())
+        .expect("levels in the header");
+    let in_table: usize = rows[1].split_whitespace().nth(1).unwrap().parse().unwrap();
+    assert_eq!((in_table, in_header), (3, 3), "{table}");
     let written: Vec<String> = files_in(&dir.join("out"))
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())

@@ -130,7 +130,12 @@ impl DistanceIndex {
     }
 
     /// Distance from `p` to the nearest edge and the nearest point on it.
+    /// A point that is not finite is at distance NaN, never a number that
+    /// could pass for a measure.
     pub fn nearest(&self, p: Vec2) -> (f64, Vec2) {
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            return (f64::NAN, p);
+        }
         match self.bvh.nearest(&self.edges, p, None, seg_dist2) {
             Some((d2, q, _)) => (d2.sqrt(), q),
             None => (f64::INFINITY, p),
@@ -141,6 +146,9 @@ impl DistanceIndex {
     /// the edge that answered the last one, which seeds the search's bound
     /// (most of the tree is then pruned at once), and is updated.
     pub fn nearest_hinted(&self, p: Vec2, hint: &std::cell::Cell<u32>) -> (f64, Vec2) {
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            return (f64::NAN, p);
+        }
         match self
             .bvh
             .nearest(&self.edges, p, Some(hint.get()), seg_dist2)

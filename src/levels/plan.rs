@@ -254,14 +254,20 @@ pub fn plan_levels_reporting(
     };
     // Horizontal step between the contours of two levels: the largest distance
     // from the wider contour's points to the narrower one.
+    let gap_nan = std::cell::Cell::new(false);
     let gap = |za: f64, zb: f64| -> f64 {
         let (ca, cb) = (contours_at(s_of(za)), contours_at(s_of(zb)));
         let (wide, narrow) = if job.cavity { (ca, cb) } else { (cb, ca) };
         let idx = DistanceIndex::new(&narrow);
-        wide.iter()
+        let g = wide
+            .iter()
             .flatten()
             .map(|&p| idx.distance(p))
-            .fold(0.0, f64::max)
+            .fold(0.0, crate::num::max_or_nan);
+        if g.is_nan() {
+            gap_nan.set(true);
+        }
+        g
     };
     let max_levels = crate::job::limits::MAX_LEVELS;
     let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, max_levels, &gap)
@@ -271,6 +277,11 @@ pub fn plan_levels_reporting(
                 job.max_scallop
             ))
         })?;
+    if gap_nan.get() {
+        return Err(PlanError::Invalid(
+            "the horizontal step between two levels is not a number (NaN): this is a pfcam bug, please report it with the job file".into(),
+        ));
+    }
     // The levels of the plain stepdown schedule clear everything; the ones added
     // for the scallop bound only the band down to the next of those below.
     let n_rough = ((depth / job.stepdown) - 1e-9).ceil().max(1.0) as usize;
@@ -326,7 +337,7 @@ pub fn plan_levels_reporting(
             let label = format!("level {k} (z {:.3})", job.top + z);
             let mut warnings = Vec::new();
             let level = if job.cavity {
-                cavity_level_field(&oriented, tol, job.outer_radius, s, &label, &mut warnings)?
+                cavity_level_field(&oriented, tol, job.outer_radius, s, &label)?
             } else {
                 let l = boss_level_field(f, s, &job.field_figures);
                 let (e, bound) = (l.figures.max_error, level_error_bound(s));
@@ -352,8 +363,13 @@ pub fn plan_levels_reporting(
                 wide.iter()
                     .flatten()
                     .map(|&q| idx.distance(q))
-                    .fold(0.0, f64::max)
+                    .fold(0.0, crate::num::max_or_nan)
             });
+            if reach.is_some_and(f64::is_nan) {
+                return Err(PlanError::Profile(ProfileError::NotFinite(format!(
+                    "{label}: the band it clears"
+                ))));
+            }
             let (paths, uncut) = if job.cavity {
                 let (p, f) = crate::toolpath::zlevel::cavity_paths(
                     &oriented,
@@ -412,6 +428,9 @@ pub fn plan_levels_reporting(
         info.push(i);
         warnings.extend(w);
     }
+    if job.cavity {
+        warnings.extend(cavity_error_warning(&info));
+    }
     Ok(Planned {
         cuts,
         info,
@@ -419,6 +438,34 @@ pub fn plan_levels_reporting(
         params,
         t_schedule,
     })
+}
+
+/// One line for every cavity level whose field errs above
+/// `level_error_bound` (it was one line per level: ten on q-mould, all saying
+/// the same): how many, the worst, and what it means for the part.
+fn cavity_error_warning(info: &[LevelInfo]) -> Option<String> {
+    let over: Vec<(usize, &LevelInfo)> = info
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.max_error > level_error_bound(l.s))
+        .collect();
+    let (k, worst) = over
+        .iter()
+        .max_by(|a, b| {
+            (a.1.max_error / level_error_bound(a.1.s))
+                .total_cmp(&(b.1.max_error / level_error_bound(b.1.s)))
+        })
+        .copied()?;
+    Some(format!(
+        "{} of {} levels have fields that err above a hundredth of 1 − s (worst: level {}, z {:.3}, s = {:.6}, {:.2e} against {:.1e}): each cut follows its level's polygon and is checked by geometry, so the part is as modelled; only the clearing rings there may be unevenly spaced (every level's error is in the JSON report)",
+        over.len(),
+        info.len(),
+        k + 1,
+        worst.z,
+        worst.s,
+        worst.max_error,
+        level_error_bound(worst.s)
+    ))
 }
 
 /// A level's field and its figures.
@@ -446,16 +493,16 @@ fn boss_level_field(f: &Field, s: f64, shape: &FieldFigures) -> LevelField {
 
 /// A cavity level's field: the mould is outside Γ(s), so the level's problem
 /// is not the shape's and is solved by MFS on Γ(s) (the paper's Section 7).
-/// An error above `level_error_bound` is a warning that names the level
-/// (doubling N twice did not move it: the limit is the level's polygon, whose
-/// vertices are kinks the smooth Γ(s) does not have).
+/// An error above `level_error_bound` is reported once for all levels
+/// ([`cavity_error_warning`]; doubling N twice did not move it: the limit is
+/// the level's polygon, whose vertices are kinks the smooth Γ(s) does not
+/// have); NaN is an error.
 fn cavity_level_field(
     oriented: &[Vec<Vec2>],
     tol: f64,
     outer_radius: f64,
     s: f64,
     label: &str,
-    warnings: &mut Vec<String>,
 ) -> Result<LevelField, PlanError> {
     let contours: Vec<Contour> = oriented
         .iter()
@@ -488,11 +535,10 @@ fn cavity_level_field(
     };
     let solved = field::solve_quick(&prep, base)?;
     let e = solved.solution.max_error;
-    let bound = level_error_bound(s);
-    if e > bound || e.is_nan() {
-        warnings.push(format!(
-            "{label}, s = {s:.6}: its field errs by {e:.2e}, above {bound:.1e} (a hundredth of 1 − s); the cut follows the level's polygon, checked by geometry, but the clearing rings may be uneven there"
-        ));
+    if e.is_nan() {
+        return Err(PlanError::Profile(ProfileError::NotFinite(format!(
+            "{label}, s = {s:.6}: the max boundary error of its field"
+        ))));
     }
     // Local expansions over the level's box: the rings and the coverage grid
     // evaluate this field millions of times (docs/method.md §12).

@@ -73,6 +73,9 @@ pub enum ProfileError {
     /// A field solved for a path (a cavity's inverse problem) failed.
     #[error("{0}")]
     Field(#[from] crate::field::FieldError),
+    /// A measure that must be a number came out NaN.
+    #[error("{0} is not a number (NaN): this is a pfcam bug, please report it with the job file")]
+    NotFinite(String),
 }
 
 /// Z of every pass: equal steps of at most `stepdown`, the last exactly at the depth.

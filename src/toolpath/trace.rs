@@ -244,7 +244,7 @@ impl<'a, N: Navigator> Tracer<'a, N> {
         [0.25, 0.5, 0.75]
             .iter()
             .map(|&t| self.g(a.lerp(b, t)).abs())
-            .fold(0.0, f64::max)
+            .fold(0.0, crate::num::max_or_nan)
     }
 }
 

@@ -449,7 +449,7 @@ fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
     b.iter()
         .flatten()
         .map(|&p| ia.distance(p))
-        .fold(0.0, f64::max)
+        .fold(0.0, crate::num::max_or_nan)
 }
 
 /// The paths of one cavity level. `part` holds the level's Γ(s) loops with the
@@ -669,10 +669,10 @@ pub fn cavity_paths<N: Navigator + Sync>(
             }
         }
     }
+    // No grid point of V lies deeper than h/2 ≤ r from its boundary: the
+    // finishing loops' tool covers all of V, so the walls are the whole cut
+    // (nothing for the user to act on, so no warning).
     if sinks.is_empty() {
-        warnings.push(format!(
-            "{label}: no room inside the finishing loops: only the walls are cut"
-        ));
         let paths = finish_all
             .into_iter()
             .map(|pts| CutPath {
@@ -777,8 +777,13 @@ pub fn cavity_paths<N: Navigator + Sync>(
             let g = if rings.is_empty() {
                 ring_gap(&prev, &set)
             } else {
-                ring_gap(&prev, &set).max(ring_gap(&set, &prev))
+                crate::num::max_or_nan(ring_gap(&prev, &set), ring_gap(&set, &prev))
             };
+            if g.is_nan() {
+                return Err(ProfileError::NotFinite(format!(
+                    "{label}: the distance between two clearing rings"
+                )));
+            }
             if fallback.is_none_or(|f| g < f.1) {
                 fallback = Some((c, g));
             }
@@ -965,6 +970,27 @@ pub fn cavity_paths<N: Navigator + Sync>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A NaN point makes the gap between rings NaN (f64::max would have
+    /// dropped it and read the gap as the others' largest), which
+    /// cavity_paths refuses as a bug instead of placing a ring by it.
+    #[test]
+    fn a_nan_point_makes_the_ring_gap_nan() {
+        let square = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(10.0, 0.0),
+            Vec2::new(10.0, 10.0),
+            Vec2::new(0.0, 10.0),
+        ];
+        let mut inner: Vec<Vec2> = square
+            .iter()
+            .map(|&p| p * 0.5 + Vec2::new(2.5, 2.5))
+            .collect();
+        let gap = ring_gap(std::slice::from_ref(&inner), std::slice::from_ref(&square));
+        assert!((gap - 2.5 * 2f64.sqrt()).abs() < 1e-12, "{gap}");
+        inner[1] = Vec2::new(f64::NAN, 3.0);
+        assert!(ring_gap(&[square], &[inner]).is_nan());
+    }
 
     #[test]
     fn the_farthest_stock_point_can_lie_above_a_bay() {
