@@ -220,7 +220,7 @@ fn levels(c: &mut Criterion) {
     g.sample_size(10);
     let sign = job("jobs/mfs-sign.toml");
     g.bench_function(
-        "mfs-sign boss, 40 levels, end to end (solves, levels, tracing, clearing, arcs, check)",
+        "mfs-sign boss, 55 levels, end to end (solves, levels, tracing, clearing, arcs, check)",
         |b| b.iter(|| pfcam::pipeline::run(black_box(&sign), &mut |_| {}).unwrap()),
     );
     // The full mould: about 40 s a run, so this group alone takes about 8 minutes.

@@ -539,12 +539,14 @@ fn hold_then_abort_resets_and_reports_last_line() {
     op.send(OperatorCommand::Abort).expect("send");
     let err = outcome(&done).expect_err("aborted");
     let GrblError::Aborted {
+        by,
         last_acked,
         resume_from,
     } = err
     else {
         panic!("unexpected {err:?}");
     };
+    assert_eq!(by, "aborted by the operator");
     let last = last_acked.expect("acknowledged lines");
     // Up to 15 acknowledged moves were still in the planner when the hold stopped.
     let resume = resume_from.expect("resume point");
@@ -575,6 +577,7 @@ fn hold_then_abort_resets_and_reports_last_line() {
     drop(s);
     assert_eq!(
         ExitStatus::of(&Err(GrblError::Aborted {
+            by: "aborted by the operator",
             last_acked,
             resume_from
         })),
@@ -675,7 +678,10 @@ fn sigterm_sighup_and_unattended_sigint_hold_reset_and_exit() {
             Some(ExitStatus::Aborted as i32),
             "SIG{signal}: {stderr}"
         );
-        assert!(stderr.contains("aborted"), "{stderr}");
+        assert!(
+            stderr.contains("aborted") && stderr.contains(&format!("SIG{signal}")),
+            "the message names the signal: {stderr}"
+        );
         let s = emu.shared();
         let rt: Vec<u8> = s.realtime.iter().map(|r| r.0).collect();
         assert!(

@@ -404,10 +404,17 @@ fn catch_signals(
 /// without it would leave the machine held with the spindle running. At a
 /// terminal, SIGINT (Ctrl-C) holds and asks; see [`ctrl_c`].
 pub fn signal_command(signal: i32, held: &AtomicBool, interactive: bool) -> OperatorCommand {
-    if signal == signal_hook::consts::SIGINT && interactive {
-        ctrl_c(held)
-    } else {
-        OperatorCommand::Abort
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    match signal {
+        SIGINT if interactive => ctrl_c(held),
+        SIGINT => OperatorCommand::Stop(
+            "aborted: pfcam received SIGINT with no terminal to ask whether to resume",
+        ),
+        SIGTERM => OperatorCommand::Stop(
+            "aborted: pfcam received SIGTERM (the system or a service asked it to stop)",
+        ),
+        SIGHUP => OperatorCommand::Stop("aborted: pfcam received SIGHUP (its terminal closed)"),
+        _ => OperatorCommand::Stop("aborted: pfcam received a signal"),
     }
 }
 
@@ -618,15 +625,17 @@ mod tests {
     fn signals_abort_unless_someone_can_answer_the_prompt() {
         use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
         let held = AtomicBool::new(false);
-        for sig in [SIGTERM, SIGHUP] {
+        for (sig, name) in [(SIGTERM, "SIGTERM"), (SIGHUP, "SIGHUP")] {
             for interactive in [false, true] {
-                assert_eq!(
-                    signal_command(sig, &held, interactive),
-                    OperatorCommand::Abort
+                assert!(
+                    matches!(signal_command(sig, &held, interactive), OperatorCommand::Stop(why) if why.contains(name))
                 );
             }
         }
-        assert_eq!(signal_command(SIGINT, &held, false), OperatorCommand::Abort);
+        assert!(matches!(
+            signal_command(SIGINT, &held, false),
+            OperatorCommand::Stop(why) if why.contains("SIGINT")
+        ));
         assert_eq!(signal_command(SIGINT, &held, true), OperatorCommand::Hold);
         assert_eq!(signal_command(SIGINT, &held, true), OperatorCommand::Abort);
     }
@@ -667,6 +676,7 @@ mod tests {
                 resume_from: None,
             }),
             Err(GrblError::Aborted {
+                by: "aborted by the operator",
                 last_acked: None,
                 resume_from: None,
             }),

@@ -79,9 +79,13 @@ pub enum GrblError {
         /// `--from-line` should resume (conservative; `None`: from the start).
         resume_from: Option<usize>,
     },
-    /// The operator aborted (Ctrl-C → abort): feed hold, then soft reset.
-    #[error("aborted by the operator")]
+    /// The operator aborted (Ctrl-C → abort), or a signal stopped pfcam:
+    /// feed hold, then soft reset. `by` says which, e.g. "aborted by the
+    /// operator" or "aborted: pfcam received SIGTERM (...)".
+    #[error("{by}")]
     Aborted {
+        /// Who or what stopped the stream, as the message says it.
+        by: &'static str,
         /// Last line acknowledged with `ok`.
         last_acked: Option<usize>,
         /// First file line that may not have been fully executed: where
@@ -178,6 +182,7 @@ impl GrblError {
             | GrblError::Aborted {
                 last_acked,
                 resume_from,
+                ..
             }
             | GrblError::LinkLost {
                 last_acked,

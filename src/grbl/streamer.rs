@@ -134,6 +134,9 @@ pub enum OperatorCommand {
     Resume,
     /// Stop: feed hold, then soft reset.
     Abort,
+    /// Stop as `Abort` does, for the reason given (a signal: SIGTERM, SIGHUP,
+    /// SIGINT with nobody at a terminal), which the messages name.
+    Stop(&'static str),
     /// A feed, rapid or spindle override: its real-time byte goes out at once
     /// (GRBL applies it while running or held).
     Override(Override),
@@ -521,6 +524,7 @@ impl Streamer {
                         obs.event(Event::Stopping("check aborted by the operator"));
                         self.stop_machine(&mut r, obs)?;
                         return Err(GrblError::Aborted {
+                            by: "check aborted by the operator",
                             last_acked: r.last_acked,
                             resume_from: None,
                         });
@@ -544,10 +548,15 @@ impl Streamer {
                     Ok(OperatorCommand::Override(o)) => {
                         self.link.send_realtime(o.byte()).map_err(|e| lost(e, &r))?;
                     }
-                    Ok(OperatorCommand::Abort) => {
-                        obs.event(Event::Stopping("aborted by the operator"));
+                    Ok(cmd @ (OperatorCommand::Abort | OperatorCommand::Stop(_))) => {
+                        let by = match cmd {
+                            OperatorCommand::Stop(why) => why,
+                            _ => "aborted by the operator",
+                        };
+                        obs.event(Event::Stopping(by));
                         self.stop_machine(&mut r, obs)?;
                         return Err(GrblError::Aborted {
+                            by,
                             last_acked: r.last_acked,
                             resume_from: self.resume_point(&r, false),
                         });
