@@ -980,3 +980,36 @@ fn progress_counts_each_level_and_never_overruns() {
     );
     assert!(err.contains("s left"), "{err}");
 }
+
+/// The G-code does not depend on the number of threads (issue 13): levels,
+/// arcs and gouge checks run in parallel and the fields' expansions are built
+/// lazily by whichever thread first needs a box, so a boss with a cavity of
+/// its own (the letter A, whose counter is a hole) is run on 1, 2 and 3
+/// threads and must come out byte for byte the same.
+#[test]
+fn the_program_is_the_same_on_any_number_of_threads() {
+    let dir = scratch("threads");
+    fs::write(
+        dir.join("a.toml"),
+        "[shape]\ntext = \"A\"\nheight = 30.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n\
+         [operation]\nkind = \"boss\"\ndepth = 2.0\n[profile]\nkind = \"sigmoid\"\ns1 = 0.98\ns2 = 0.9\n",
+    )
+    .expect("write job");
+    let mut programs = Vec::new();
+    for threads in ["1", "2", "3"] {
+        let out = format!("out{threads}");
+        let o = Command::new(PFCAM)
+            .args(["run", "a.toml", "-o", &out, "-q"])
+            .env("RAYON_NUM_THREADS", threads)
+            .current_dir(&dir)
+            .output()
+            .expect("run pfcam");
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+        programs.push(fs::read(dir.join(&out).join("a.nc")).expect("a.nc"));
+    }
+    assert!(programs[0].len() > 1000);
+    assert!(
+        programs[0] == programs[1] && programs[1] == programs[2],
+        "the program differs with the thread count"
+    );
+}
