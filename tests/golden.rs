@@ -190,3 +190,27 @@ fn gcode_doc_table_matches_the_samples() {
     }
     assert_eq!(seen, 2);
 }
+
+/// The README's first paragraph counts mfs-sign's z-levels: the count in
+/// the shipped program's header (`(levels: 55, ...)`) is the one it states.
+#[test]
+fn readme_level_count_matches_the_sample() {
+    let readme = fs::read_to_string(root().join("README.md")).expect("README.md");
+    let stated: usize = readme
+        .split(" z-levels")
+        .next()
+        .and_then(|before| before.split_whitespace().last())
+        .and_then(|n| n.parse().ok())
+        .expect("README.md states mfs-sign's z-levels as 'N z-levels'");
+    let sample = fs::read_to_string(sample_path("mfs-sign")).expect("sample");
+    let in_header: usize = sample
+        .lines()
+        .find_map(|l| l.strip_prefix("(levels: "))
+        .and_then(|l| l.split(',').next())
+        .and_then(|n| n.parse().ok())
+        .expect("levels in the header");
+    assert_eq!(
+        stated, in_header,
+        "README.md against gcode-samples/mfs-sign.nc"
+    );
+}
