@@ -70,16 +70,30 @@ fn field_eval(c: &mut Criterion) {
     });
 }
 
+/// mfs-sign's job, shape, solved field (as the pipeline solves it), glyph
+/// polygons and flattening tolerance.
+fn sign_field() -> (
+    pfcam::job::Job,
+    pfcam::geometry::Shape,
+    field::Field,
+    Vec<Vec<Vec2>>,
+    f64,
+) {
+    let sign = job("jobs/mfs-sign.toml");
+    let (shape, _) = pfcam::pipeline::job_shape(&sign, &mut |_| {}).unwrap();
+    let flat_tol = sign.operation.tolerance * pfcam::pipeline::FLATTEN_FRACTION;
+    let (solved, _, _) =
+        pfcam::pipeline::solve_shape(&shape, &sign, flat_tol, &mut |_| {}).unwrap();
+    let glyphs: Vec<Vec<Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
+    (sign, shape, solved.solution.field, glyphs, flat_tol)
+}
+
 /// Points where the pipeline evaluates: three quarters within 3 mm of the
 /// polygons' vertices (where the tracer works), the rest anywhere in their box
 /// grown by a quarter of its diagonal (fixed seed).
 fn eval_points(polys: &[Vec<Vec2>], count: usize) -> Vec<Vec2> {
     let verts: Vec<Vec2> = polys.iter().flatten().copied().collect();
-    let (mut lo, mut hi) = (verts[0], verts[0]);
-    for v in &verts {
-        lo = Vec2::new(lo.x.min(v.x), lo.y.min(v.y));
-        hi = Vec2::new(hi.x.max(v.x), hi.y.max(v.y));
-    }
+    let (lo, hi) = pfcam::geometry::polygons_bbox(polys).unwrap();
     let pad = 0.25 * (hi - lo).norm();
     let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut rnd = move || {
@@ -111,13 +125,7 @@ fn eval_points(polys: &[Vec<Vec2>], count: usize) -> Vec<Vec2> {
 /// accelerated field each iteration, building included; "direct": no
 /// expansions.
 fn field_eval_fast(c: &mut Criterion) {
-    let sign = job("jobs/mfs-sign.toml");
-    let (shape, _) = pfcam::pipeline::job_shape(&sign, &mut |_| {}).unwrap();
-    let flat_tol = sign.operation.tolerance * pfcam::pipeline::FLATTEN_FRACTION;
-    let (solved, _, _) =
-        pfcam::pipeline::solve_shape(&shape, &sign, flat_tol, &mut |_| {}).unwrap();
-    let glyphs: Vec<Vec<Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
-    let shape_field = solved.solution.field;
+    let (_, shape, shape_field, glyphs, flat_tol) = sign_field();
     // A level field: Γ(0.99) extracted on a 0.25 mm grid, solved as plan.rs
     // solves a cavity level.
     let (lo, hi) = shape.bbox().unwrap();
@@ -245,14 +253,9 @@ fn levels(c: &mut Criterion) {
 /// `pfcam surface` on mfs-sign without its field solve (benched above): stock,
 /// grid, level crossings, isobands, walls and bottom.
 fn surface(c: &mut Criterion) {
-    let sign = job("jobs/mfs-sign.toml");
-    let (shape, _) = pfcam::pipeline::job_shape(&sign, &mut |_| {}).unwrap();
-    let flat_tol = sign.operation.tolerance * pfcam::pipeline::FLATTEN_FRACTION;
-    let (solved, _, _) =
-        pfcam::pipeline::solve_shape(&shape, &sign, flat_tol, &mut |_| {}).unwrap();
-    let glyphs: Vec<Vec<Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
+    let (sign, _, field, glyphs, _) = sign_field();
     let sj = pfcam::surface::SurfaceJob {
-        field: &solved.solution.field,
+        field: &field,
         glyphs: &glyphs,
         profile: sign.profile.as_ref().unwrap(),
         cavity: false,

@@ -185,15 +185,10 @@ impl Accel {
                 &all
             }
         };
-        let mut near = Vec::new();
-        let mut new_far_abs = 0.0;
-        for &n in candidates {
-            if charges[n as usize].dist(centre) < reach {
-                near.push(n);
-            } else {
-                new_far_abs += coef[n as usize].abs();
-            }
-        }
+        let (near, far): (Vec<u32>, Vec<u32>) = candidates
+            .iter()
+            .partition(|&&n| charges[n as usize].dist(centre) < reach);
+        let new_far_abs: f64 = far.iter().map(|&n| coef[n as usize].abs()).sum();
         let inherited = parent.map_or(0, |p| p.a.len() - 1);
         let order = order_for(new_far_abs, reach)?.max(inherited);
         let mut a = vec![C::default(); order + 1];
@@ -203,11 +198,8 @@ impl Accel {
             taylor_shift(&mut a, d);
             a[0].im = 0.0;
         }
-        for &n in candidates {
+        for &n in &far {
             let (q, c) = (charges[n as usize], coef[n as usize]);
-            if q.dist(centre) < reach {
-                continue;
-            }
             let d = C::new(centre.x - q.x, centre.y - q.y);
             a[0].re += 0.5 * c * d.re.mul_add(d.re, d.im * d.im).ln();
             let inv = d.inv();

@@ -133,31 +133,29 @@ impl DistanceIndex {
     /// A point that is not finite is at distance NaN, never a number that
     /// could pass for a measure.
     pub fn nearest(&self, p: Vec2) -> (f64, Vec2) {
-        if !(p.x.is_finite() && p.y.is_finite()) {
-            return (f64::NAN, p);
-        }
-        match self.bvh.nearest(&self.edges, p, None, seg_dist2) {
-            Some((d2, q, _)) => (d2.sqrt(), q),
-            None => (f64::INFINITY, p),
-        }
+        let (d, q, _) = self.nearest_from(p, None);
+        (d, q)
     }
 
     /// [`nearest`](Self::nearest) for a walk of nearby queries: `hint` holds
     /// the edge that answered the last one, which seeds the search's bound
     /// (most of the tree is then pruned at once), and is updated.
     pub fn nearest_hinted(&self, p: Vec2, hint: &std::cell::Cell<u32>) -> (f64, Vec2) {
-        if !(p.x.is_finite() && p.y.is_finite()) {
-            return (f64::NAN, p);
+        let (d, q, e) = self.nearest_from(p, Some(hint.get()));
+        if let Some(e) = e {
+            hint.set(e);
         }
-        match self
-            .bvh
-            .nearest(&self.edges, p, Some(hint.get()), seg_dist2)
-        {
-            Some((d2, q, e)) => {
-                hint.set(e);
-                (d2.sqrt(), q)
-            }
-            None => (f64::INFINITY, p),
+        (d, q)
+    }
+
+    /// The search behind both: distance, nearest point and the edge found.
+    fn nearest_from(&self, p: Vec2, hint: Option<u32>) -> (f64, Vec2, Option<u32>) {
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            return (f64::NAN, p, None);
+        }
+        match self.bvh.nearest(&self.edges, p, hint, seg_dist2) {
+            Some((d2, q, e)) => (d2.sqrt(), q, Some(e)),
+            None => (f64::INFINITY, p, None),
         }
     }
 

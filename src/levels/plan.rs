@@ -542,20 +542,12 @@ fn cavity_level_field(
     }
     // Local expansions over the level's box: the rings and the coverage grid
     // evaluate this field millions of times (docs/method.md §12).
-    let (lo, hi) = oriented.iter().flatten().fold(
-        (
-            Vec2::new(f64::INFINITY, f64::INFINITY),
-            Vec2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
-        ),
-        |(l, h), p| {
-            (
-                Vec2::new(l.x.min(p.x), l.y.min(p.y)),
-                Vec2::new(h.x.max(p.x), h.y.max(p.y)),
-            )
-        },
-    );
+    let field = match polygons_bbox(oriented) {
+        Some((lo, hi)) => solved.solution.field.accelerated_around(lo, hi),
+        None => solved.solution.field,
+    };
     Ok(LevelField {
-        field: solved.solution.field.accelerated_around(lo, hi),
+        field,
         figures: FieldFigures {
             m: solved.m,
             distance: solved.layout.distance,
