@@ -8,7 +8,7 @@ use crate::levels::plan::{plan_levels_reporting, LevelInfo, LevelJob, LevelProgr
 use crate::toolpath::arcfit::{self, ArcFitParams};
 use crate::toolpath::gouge::{self, GougeReport};
 use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
-use crate::toolpath::zlevel::{link_levels, LevelParams};
+use crate::toolpath::zlevel::{link_levels, LevelCut, LevelParams};
 use crate::toolpath::Toolpath;
 
 /// Singularities per region when `field.singularities = "auto"`: enough for a
@@ -455,7 +455,9 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     };
     let mut planned = plan_with_progress(&lj, progress)?;
     check_coverage(&planned.info, &mut planned.warnings)?;
-    let linked = link_levels(&planned.cuts, &planned.params);
+    // The levels in cutting order; sections[i] is the level order[i].
+    let in_order: Vec<&LevelCut> = planned.order.iter().map(|&k| &planned.cuts[k]).collect();
+    let linked = link_levels(&in_order, &planned.params);
     // Arcs within tol/2 of the traced rings, before the gouge check (as for a profile).
     let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
     // Gouge check, level by level (in parallel), against that level's Γ(s_k)
@@ -465,7 +467,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         toolpath
             .sections
             .par_iter()
-            .zip(&planned.cuts)
+            .zip(&in_order)
             .map(|(section, cut)| {
                 let part = DistanceIndex::new(&cut.part);
                 let one = Toolpath {
@@ -477,7 +479,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
             .collect()
     };
     let mut min_clearance = f64::INFINITY;
-    for (rep, info) in reports.iter().zip(planned.info.iter_mut()) {
+    for (rep, &k) in reports.iter().zip(&planned.order) {
         if !rep.passes(tol) {
             return Err(PipelineError::Gouge {
                 clearance: rep.min_clearance,
@@ -486,7 +488,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
             });
         }
         min_clearance = min_clearance.min(rep.min_clearance);
-        info.min_clearance = rep.min_clearance;
+        planned.info[k].min_clearance = rep.min_clearance;
     }
     solves.push(shape_report);
     for (k, li) in planned.info.iter().enumerate() {

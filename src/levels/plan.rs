@@ -168,8 +168,11 @@ const EMPTY_BOX: (Vec2, Vec2) = (
 pub struct Planned {
     /// The levels with their paths, top down.
     pub cuts: Vec<LevelCut>,
-    /// What each level's solve reported.
+    /// What each level's solve reported, top down.
     pub info: Vec<LevelInfo>,
+    /// The order in which the levels are cut, as indices into `cuts`
+    /// ([`super::cutting_order`]).
+    pub order: Vec<usize>,
     /// Warnings.
     pub warnings: Vec<String>,
     /// Path settings with the stock rectangle.
@@ -283,22 +286,11 @@ pub fn plan_levels_reporting(
         ));
     }
     // The levels of the plain stepdown schedule clear everything; the ones added
-    // for the scallop bound only the band down to the next of those below.
+    // for the scallop bound only the band down to the level below them, which is
+    // cut before them ([`cutting_order`]).
     let n_rough = ((depth / job.stepdown) - 1e-9).ceil().max(1.0) as usize;
-    let rough: Vec<f64> = (0..=n_rough)
-        .map(|k| -depth * k as f64 / n_rough as f64)
-        .collect();
-    let next_rough_below = |z: f64| -> Option<f64> {
-        if rough.iter().any(|&zr| (zr - z).abs() < 1e-9) {
-            None
-        } else {
-            rough
-                .iter()
-                .copied()
-                .filter(|&zr| zr < z)
-                .fold(None, |m: Option<f64>, zr| Some(m.map_or(zr, |m| m.max(zr))))
-        }
-    };
+    let is_rough =
+        |z: f64| (0..=n_rough).any(|k| (-depth * k as f64 / n_rough as f64 - z).abs() < 1e-9);
 
     let t_schedule = t_start.elapsed().as_secs_f64();
     // The stock: the largest level (a boss's base, a cavity's rim) plus the margin.
@@ -309,12 +301,20 @@ pub fn plan_levels_reporting(
     params.stock_hi = bhi + Vec2::new(job.margin, job.margin);
 
     // Every level below the top, in parallel.
-    let levels: Vec<(usize, f64, f64)> = (1..zs.len()).map(|k| (k, zs[k - 1], zs[k])).collect();
+    let levels: Vec<(usize, f64, Option<f64>)> = (1..zs.len())
+        .map(|k| {
+            (
+                k,
+                zs[k],
+                zs.get(k + 1).copied().filter(|_| !is_rough(zs[k])),
+            )
+        })
+        .collect();
     progress.total.store(levels.len(), Ordering::Relaxed);
     type LevelResult = Result<(LevelCut, LevelInfo, Vec<String>), PlanError>;
     let results: Vec<LevelResult> = levels
         .par_iter()
-        .map(|&(k, z_prev, z)| {
+        .map(|&(k, z, z_below)| {
             let s = s_of(z);
             let polys = contours_at(s);
             if polys.is_empty() {
@@ -350,10 +350,10 @@ pub fn plan_levels_reporting(
             };
             let t_solve = t0.elapsed().as_secs_f64();
             // A level added for the scallop bound clears only the band out to the
-            // contour of the next stepdown level below (wider for a boss, narrower
-            // for a cavity): the largest distance between the two.
-            let reach = next_rough_below(z).map(|zr| {
-                let other = contours_at(s_of(zr));
+            // contour of the level below it (wider for a boss, narrower for a
+            // cavity), which is cut first: the largest distance between the two.
+            let reach = z_below.map(|zb| {
+                let other = contours_at(s_of(zb));
                 let (wide, narrow) = if job.cavity {
                     (&polys, &other)
                 } else {
@@ -409,7 +409,6 @@ pub fn plan_levels_reporting(
             Ok((
                 LevelCut {
                     z: job.top + z,
-                    z_prev: job.top + z_prev,
                     s,
                     part: polys,
                     paths,
@@ -419,21 +418,21 @@ pub fn plan_levels_reporting(
             ))
         })
         .collect();
-    let mut cuts = Vec::new();
-    let mut info = Vec::new();
-    let mut warnings = Vec::new();
+    let (mut cuts, mut info, mut warnings) = (Vec::new(), Vec::new(), Vec::new());
     for r in results {
         let (c, i, w) = r?;
         cuts.push(c);
         info.push(i);
         warnings.extend(w);
     }
+    let rough: Vec<bool> = levels.iter().map(|l| l.2.is_none()).collect();
     if job.cavity {
         warnings.extend(cavity_error_warning(&info));
     }
     Ok(Planned {
         cuts,
         info,
+        order: super::cutting_order(&rough),
         warnings,
         params,
         t_schedule,

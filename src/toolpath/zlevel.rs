@@ -72,8 +72,6 @@ pub struct CutPath {
 pub struct LevelCut {
     /// Z of the level (absolute).
     pub z: f64,
-    /// Z of the level above (its floor is already cleared).
-    pub z_prev: f64,
     /// The equipotential value s of the level.
     pub s: f64,
     /// The part at this level, Γ(s), as closed polygons.
@@ -187,10 +185,14 @@ pub fn boss_paths<N: Navigator + Sync>(
     let (lo, hi) = (p.stock_lo - grow, p.stock_hi + grow);
     let dmax = farthest_stock_point(part, &index, p.stock_lo, p.stock_hi, p.stepover);
     let full = ((dmax - 2.0 * r) / p.stepover).ceil().max(0.0) as usize;
-    // A level added for the scallop bound only clears the band out to the contour
-    // of the next stepdown level below, which clears everything beyond it.
+    // A level added for the scallop bound only clears the band, `reach` wide, out
+    // to the contour of the level below, which was cut first: ring j's disk
+    // reaches j·stepover + 2r out, and the outermost engages at most a stepover
+    // of the band.
     let rings = match reach {
-        Some(d) => ((d / p.stepover).ceil() as usize).min(full),
+        Some(d) => ((d / p.stepover).ceil() as usize)
+            .saturating_sub(1)
+            .min(full),
         None => full,
     };
     let outer: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
@@ -255,7 +257,12 @@ pub fn boss_paths<N: Navigator + Sync>(
             ));
             continue;
         }
-        let n_in = ((room - r - p.tol) / p.stepover).floor() as usize;
+        // On a level added for the scallop bound, only the band next to the wall
+        // (the level below cleared the counter inside its own contour).
+        let n_in = (((room - r - p.tol) / p.stepover).floor() as usize).min(match reach {
+            Some(_) => rings,
+            None => usize::MAX,
+        });
         for j in (0..=n_in).rev() {
             let rj = r + j as f64 * p.stepover;
             if rj > room - p.tol {
@@ -287,17 +294,20 @@ pub fn boss_paths<N: Navigator + Sync>(
             });
         }
     }
+    if reach.is_none() {
+        super::bays::clear_bays(part, &index, nav, p, label, &mut paths, warnings)?;
+    }
     Ok(paths)
 }
 
-/// Link the levels, top down, into a tool path, keeping a model of the stock
+/// Link the levels, in the order given, into a tool path, keeping a model of the stock
 /// ([`StockMap`]) as the moves cut it. Between paths of a level the tool moves
 /// sideways at depth when the next path starts within two stepovers, the straight
 /// move keeps clear of the part and the material it crosses is no deeper than a
 /// stepdown; otherwise it retracts to safe Z, rapids over and enters the path
 /// ([`enter`]): a rapid down to a clearance above the material actually left
 /// under the tool, then a ramp from that material's top.
-pub fn link_levels(levels: &[LevelCut], p: &LevelParams) -> Toolpath {
+pub fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
     let start = Vec3::new(0.0, 0.0, p.safe_z);
     let mut stock = StockMap::new(p.stock_lo, p.stock_hi, p.top, p.radius);
     let e = p.entry();
@@ -452,6 +462,18 @@ fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
         .fold(0.0, crate::num::max_or_nan)
 }
 
+/// A cavity level's wall loops as its paths.
+fn wall_paths(loops: Vec<Vec<Vec2>>, label: &str) -> Vec<CutPath> {
+    loops
+        .into_iter()
+        .map(|pts| CutPath {
+            label: format!("{label}: wall"),
+            points: pts,
+            closed: true,
+        })
+        .collect()
+}
+
 /// The paths of one cavity level. `part` holds the level's Γ(s) loops with the
 /// mould's material on their left: pockets clockwise, islands counter-clockwise.
 ///
@@ -558,6 +580,15 @@ pub fn cavity_paths<N: Navigator + Sync>(
     }
     if finish.is_empty() {
         return Ok((Vec::new(), 0.0));
+    }
+    // A band no wider than the tool's radius or the stepover (a level added for
+    // the scallop bound; the level below, cut first, cleared inside its own
+    // contour): the wall loops alone clear it, engaging at most the band's width.
+    // A reachable point of the band lies within r of the wall loops (the
+    // boundary of where the centre may go), so the coverage measure below would
+    // find nothing; `pfcam simulate` checks the part on the stock model instead.
+    if band.is_some_and(|d| d <= r.min(p.stepover)) {
+        return Ok((wall_paths(finish, label), 0.0));
     }
     // A second loop one stepover in from the wall, again by the rolling disk: it
     // keeps the wall's sharp corners, which the equipotential rings would cut by
@@ -673,15 +704,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // finishing loops' tool covers all of V, so the walls are the whole cut
     // (nothing for the user to act on, so no warning).
     if sinks.is_empty() {
-        let paths = finish_all
-            .into_iter()
-            .map(|pts| CutPath {
-                label: format!("{label}: wall"),
-                points: pts,
-                closed: true,
-            })
-            .collect();
-        return Ok((paths, 0.0));
+        return Ok((wall_paths(finish_all, label), 0.0));
     }
     let contours: Vec<crate::geometry::Contour> = oriented
         .iter()
@@ -861,13 +884,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
             });
         }
     }
-    for pts in finish_all {
-        paths.push(CutPath {
-            label: format!("{label}: wall"),
-            points: pts,
-            closed: true,
-        });
-    }
+    paths.extend(wall_paths(finish_all, label));
     // 4. Coverage: reachable points (in V, or within r of V) not within r of a path,
     // on a grid of r/10. Where points are left (between rings that part around a
     // lobe), small loops of radius r/2 are added at them, centred where the tool
