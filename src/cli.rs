@@ -367,6 +367,14 @@ fn cmd_run(
     // Everything is in memory: the G-code first, then its companions. Nothing
     // is written when the program's own simulation finds a collision.
     let gcode = write_gcode_on(&output.toolpath, &job, output.stock);
+    // The limits, before the program's own simulation and before any file.
+    if let Ok(g) = &gcode {
+        let time_s = report.programs.first().map_or(0.0, |p| p.time_s);
+        if let Err(e) = pfcam::estimate::check_program(time_s, g.len(), &job.machine) {
+            progress.finish();
+            return Err(anyhow!(e)).with_context(|| format!("{}: nothing written", path.display()));
+        }
+    }
     progress.event(Progress::Stage {
         name: "simulating the program".into(),
         total: 1,
@@ -392,7 +400,7 @@ fn cmd_run(
         for w in &output.warnings {
             note!("warning: {w}");
         }
-        let mut s = summary(&job, &output, &target);
+        let mut s = summary(&job, &output, &report, out_dir);
         s += &format!(
             "\nwrote {} and {}\n{}",
             svg_target.display(),
@@ -406,7 +414,7 @@ fn cmd_run(
         // As the G-code header counts them: the distinct depths cut (a
         // profile's passes, a boss's or cavity's z-levels).
         levels: pfcam::gcode::writer::levels(&output.toolpath).len(),
-        machining_s: output.toolpath.stats(job.machine.rapid_rate).time_s,
+        machining_s: report.programs.first().map_or(0.0, |p| p.time_s),
         warnings: output.warnings.len(),
     })
 }
@@ -602,8 +610,11 @@ fn cmd_surface(
 }
 
 /// The report printed after a run.
-fn summary(job: &Job, out: &RunOutput, target: &Path) -> String {
-    let mut s = format!("wrote {}\n", target.display());
+fn summary(job: &Job, out: &RunOutput, report: &RunReport, out_dir: &Path) -> String {
+    let mut s = String::new();
+    for p in &report.programs {
+        s += &format!("wrote {}\n", out_dir.join(&p.file).display());
+    }
     s += &format!("glyphs: {}\n", out.glyphs.join(", "));
     for r in &out.solves {
         s += &format!(
@@ -611,14 +622,9 @@ fn summary(job: &Job, out: &RunOutput, target: &Path) -> String {
             r.label, r.n, r.m, r.distance, r.max_error
         );
     }
-    let st = out.toolpath.stats(job.machine.rapid_rate);
-    s += &format!(
-        "path: {:.1} mm cutting, {:.1} mm rapid, estimated time {} (rapids at {} mm/min, acceleration ignored)\n",
-        st.cut_length,
-        st.rapid_length,
-        format_duration(st.time_s),
-        job.machine.rapid_rate
-    );
+    for p in &report.programs {
+        s += &program_line(p, job.machine.rapid_rate);
+    }
     s += &format!(
         "gouge check: min clearance {:.4} mm (tolerance {} mm)",
         out.min_clearance, job.operation.tolerance
@@ -627,6 +633,23 @@ fn summary(job: &Job, out: &RunOutput, target: &Path) -> String {
         s += &format!("\n{} warning(s), see above", out.warnings.len());
     }
     s
+}
+
+/// A program's lengths and time (its header's), its lower bound and their ratio.
+fn program_line(p: &pfcam::report::ProgramReport, rapid_rate: f64) -> String {
+    let ratio = p
+        .time_over_bound
+        .map_or("-".to_string(), |r| format!("{r:.2}"));
+    format!(
+        "program {}: {:.1} mm cutting, {:.1} mm rapid, estimated time {} (rapids at {rapid_rate} mm/min, acceleration ignored); lower bound {} (clearing {}, outlines {}), estimate / bound {ratio}\n",
+        p.file,
+        p.cut_length_mm,
+        p.rapid_length_mm,
+        format_duration(p.time_s),
+        format_duration(p.lower_bound_s),
+        format_duration(p.lower_bound_clearing_s),
+        format_duration(p.lower_bound_outline_s),
+    )
 }
 
 /// Shows `Progress` events: a bar with an ETA when stderr is a terminal;

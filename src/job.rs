@@ -142,6 +142,12 @@ pub struct Machine {
     /// MPos − WPos), mm. With `travel`, `pfcam check` tests every move against the
     /// machine's limits; without it, only the program's size against the travel.
     pub work_offset: Option<[f64; 3]>,
+    /// Longest estimated machining time of a program, hours: a job whose lower
+    /// bound or whose program's estimate passes it stops with an error.
+    pub max_hours: f64,
+    /// Largest G-code file, MB (10⁶ bytes): a program that would be larger is
+    /// not written.
+    pub max_file_mb: f64,
 }
 
 impl Default for Machine {
@@ -152,6 +158,8 @@ impl Default for Machine {
             travel: None,
             work_offset: None,
             coolant: defaults::COOLANT,
+            max_hours: defaults::MAX_HOURS,
+            max_file_mb: defaults::MAX_FILE_MB,
         }
     }
 }
@@ -221,6 +229,11 @@ pub mod defaults {
     pub const POWER: (f64, f64, f64) = (0.999, 0.99, 500.0);
     /// `machine.coolant`: off (most hobby routers have none).
     pub const COOLANT: bool = false;
+    /// `machine.max_hours`: a working day; the longest shipped program
+    /// (mfs-sign) is estimated at under 6 h.
+    pub const MAX_HOURS: f64 = 8.0;
+    /// `machine.max_file_mb`: the largest shipped program (mfs-mould) is 3.8 MB.
+    pub const MAX_FILE_MB: f64 = 100.0;
     /// `output.arcs`: on (GRBL 1.1 cuts arcs well and the file is smaller).
     pub const ARCS: bool = true;
     /// `output.max_arc_radius`, mm: a 1000 mm arc over a 100 mm chord bulges
@@ -526,6 +539,10 @@ pub struct RawMachine {
     /// `work_offset`, mm: [x, y, z]
     #[serde(default, deserialize_with = "exact::opt")]
     pub work_offset: Option<[f64; 3]>,
+    /// `max_hours`, h
+    pub max_hours: Option<f64>,
+    /// `max_file_mb`, MB
+    pub max_file_mb: Option<f64>,
 }
 
 /// `[output]`
@@ -578,6 +595,14 @@ impl RawMachine {
             coolant: m.coolant.unwrap_or(defaults::COOLANT),
             travel,
             work_offset,
+            max_hours: limits::MAX_HOURS.check(
+                "machine.max_hours",
+                m.max_hours.unwrap_or(defaults::MAX_HOURS),
+            )?,
+            max_file_mb: limits::MAX_FILE_MB.check(
+                "machine.max_file_mb",
+                m.max_file_mb.unwrap_or(defaults::MAX_FILE_MB),
+            )?,
         })
     }
 }
@@ -2212,6 +2237,16 @@ depth = 3.0
             err_key(&with("machine", "work_offset = [0, 0, 0]")).0,
             "machine.work_offset"
         );
+        let j = parse(&with("machine", "max_hours = 0.5\nmax_file_mb = 2")).unwrap();
+        assert_eq!((j.machine.max_hours, j.machine.max_file_mb), (0.5, 2.0));
+        for (bad, key) in [
+            ("max_hours = 0", "machine.max_hours"),
+            ("max_hours = 1001", "machine.max_hours"),
+            ("max_file_mb = -1", "machine.max_file_mb"),
+            ("max_file_mb = 10001", "machine.max_file_mb"),
+        ] {
+            assert_eq!(err_key(&with("machine", bad)).0, key, "{bad}");
+        }
     }
 
     #[test]
@@ -2831,6 +2866,8 @@ mod doc_tests {
             "max_arc_radius",
             "travel",
             "work_offset",
+            "max_hours",
+            "max_file_mb",
             "stepover",
             "ramp_angle",
             "margin",

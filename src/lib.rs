@@ -5,6 +5,7 @@
 //! and never panics on user input.
 
 pub mod compose;
+pub mod estimate;
 pub mod field;
 pub mod gcode;
 pub mod geometry;

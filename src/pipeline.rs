@@ -1,5 +1,6 @@
 //! The whole run: job → shape → field → tool path, with the gouge check.
 
+use crate::estimate::{check_bound, profile_bound, LowerBound};
 use crate::field::{self, Boundary, FieldError, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape, ShapeSource};
 use crate::job::extent::check_extent;
@@ -68,6 +69,8 @@ pub struct RunOutput {
     pub shape: Shape,
     /// The solved field (for the preview's equipotential curves and colour map).
     pub field: field::Field,
+    /// A lower bound of the program's machining time, found before the work.
+    pub lower_bound: LowerBound,
 }
 
 /// Progress events for a front end's progress bar.
@@ -116,6 +119,10 @@ pub enum PipelineError {
         /// the uncut share of its reachable area
         share: f64,
     },
+    /// The job's machining time or its program's size passes a limit
+    /// (`machine.max_hours`, `machine.max_file_mb`).
+    #[error("{0}")]
+    Guard(#[from] crate::estimate::GuardError),
     /// A job value that only the built shape shows to be wrong (its size).
     #[error("{0}")]
     Job(#[from] crate::job::JobError),
@@ -300,6 +307,20 @@ pub struct Plan {
     pub params: ProfileParams,
     /// Warnings for the user.
     pub warnings: Vec<String>,
+    /// A lower bound of the machining time ([`profile_lower_bound`]).
+    pub bound: LowerBound,
+}
+
+/// A profile's lower bound: every pass around every outline of the shape.
+pub fn profile_lower_bound(shape: &Shape, job: &Job) -> LowerBound {
+    let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
+    let outlines: Vec<Vec<crate::geometry::Vec2>> = shape
+        .regions
+        .iter()
+        .map(|r| r.outline.flatten(flat_tol))
+        .collect();
+    let passes = profile::pass_depths(job.stock.top, job.operation.depth, job.tool.stepdown).len();
+    profile_bound(&outlines, passes, job.tool.feed)
 }
 
 /// The job's shape in mm, with the reports of any MFS solves spent building it
@@ -356,11 +377,15 @@ pub fn plan(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<Plan, Pipel
 }
 
 /// As `plan`, for a shape already built (the job's shape source is not read).
+/// A profile whose lower bound passes `machine.max_hours` stops before its solve.
 pub fn plan_shape(
     shape: Shape,
     job: &Job,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Plan, PipelineError> {
+    let bound = profile_lower_bound(&shape, job);
+    let t = &job.tool;
+    check_bound(&bound, job.machine.max_hours, t.diameter, t.stepover)?;
     let tol = job.operation.tolerance;
     let flat_tol = tol * FLATTEN_FRACTION;
     let (solved, report, _) = solve_shape(&shape, job, flat_tol, progress)?;
@@ -396,6 +421,7 @@ pub fn plan_shape(
         loops,
         params,
         warnings,
+        bound,
     })
 }
 
@@ -452,6 +478,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
             max_error: solved.solution.max_error,
         },
         params,
+        max_hours: job.machine.max_hours,
     };
     let mut planned = plan_with_progress(&lj, progress)?;
     check_coverage(&planned.info, &mut planned.warnings)?;
@@ -512,6 +539,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         levels: planned.info,
         shape,
         field: solved.solution.field.clone(),
+        lower_bound: planned.bound,
     })
 }
 
@@ -574,7 +602,10 @@ fn plan_with_progress(
                     .into(),
             )
         })?;
-    planned.map_err(|e| PipelineError::Other(e.to_string()))
+    planned.map_err(|e| match e {
+        crate::levels::plan::PlanError::Guard(g) => PipelineError::Guard(g),
+        e => PipelineError::Other(e.to_string()),
+    })
 }
 
 fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
@@ -605,6 +636,7 @@ fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutpu
         t_schedule: 0.0,
         shape: plan.shape,
         field: plan.field,
+        lower_bound: plan.bound,
     })
 }
 

@@ -198,8 +198,54 @@ pub struct RunReport {
     pub levels: Vec<LevelReport>,
     /// Totals.
     pub totals: Totals,
+    /// Each G-code program of the run (one today: `<name>.nc`) with its
+    /// header's lengths and time, and the job's lower bound.
+    pub programs: Vec<ProgramReport>,
     /// Warnings of the run.
     pub warnings: Vec<String>,
+}
+
+/// One G-code program: the lengths and estimated time its header gives, the
+/// lower bound of its machining time and the ratio of the two.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ProgramReport {
+    /// The file, `<name>.nc`.
+    pub file: String,
+    /// Its tool's diameter, mm.
+    pub tool_diameter_mm: f64,
+    /// Feed length, mm (the header's `length: cut`).
+    pub cut_length_mm: f64,
+    /// Rapid length, mm (the header's `rapid`).
+    pub rapid_length_mm: f64,
+    /// Estimated time, s (the header's `estimated time`).
+    pub time_s: f64,
+    /// Lower bound of the machining time, s (docs/job-format.md, `max_hours`).
+    pub lower_bound_s: f64,
+    /// Its clearing part, s.
+    pub lower_bound_clearing_s: f64,
+    /// Its outline part, s.
+    pub lower_bound_outline_s: f64,
+    /// `time_s / lower_bound_s` (null when the bound is 0).
+    pub time_over_bound: Option<f64>,
+}
+
+impl ProgramReport {
+    /// The program of `job` for the finished run `out`.
+    pub fn new(job: &Job, out: &RunOutput) -> ProgramReport {
+        let st = crate::gcode::writer::program_stats(&out.toolpath, job);
+        let b = out.lower_bound;
+        ProgramReport {
+            file: format!("{}.nc", job.name),
+            tool_diameter_mm: job.tool.diameter,
+            cut_length_mm: st.cut_length,
+            rapid_length_mm: st.rapid_length,
+            time_s: st.time_s,
+            lower_bound_s: b.total_s(),
+            lower_bound_clearing_s: b.clearing_s,
+            lower_bound_outline_s: b.outline_s,
+            time_over_bound: (b.total_s() > 0.0).then(|| st.time_s / b.total_s()),
+        }
+    }
 }
 
 /// The stock of a run, in work coordinates (mm): the rectangle, its top and
@@ -372,6 +418,7 @@ impl RunReport {
             solves: out.solves.iter().map(SolveEntry::from).collect(),
             levels,
             totals,
+            programs: vec![ProgramReport::new(job, out)],
             warnings: out.warnings.clone(),
         }
     }

@@ -1013,3 +1013,189 @@ fn the_program_is_the_same_on_any_number_of_threads() {
         "the program differs with the thread count"
     );
 }
+
+/// Issue 14's guard before the work: a large cavity cut with a 0.5 mm tool
+/// has a lower bound past the default `machine.max_hours` (8 h), so the run
+/// stops once the levels' contours are known, before any level is traced
+/// (with `max_hours = 1000` the same job had not finished one of its levels
+/// after 40 s): exit 1, a message naming the key, the bound and its cause,
+/// no file. A stepover finer than the default is named as the cause instead.
+#[test]
+fn a_job_whose_lower_bound_passes_max_hours_stops_before_the_work() {
+    let dir = scratch("max-hours-bound");
+    let job = "[shape]\ntext = \"H\"\nheight = 60.0\n[tool]\ndiameter = 0.5\nstepdown = 0.25\n[operation]\nkind = \"cavity\"\ndepth = 10.0\n[profile]\nkind = \"sigmoid\"\ns1 = 0.97\ns2 = 0.9\n";
+    let fine = job.replace("diameter = 0.5", "diameter = 1.0\nstepover = 0.1");
+    for (name, text_of_job, cause) in [
+        (
+            "small-tool",
+            job.to_string(),
+            "cause: tool too small for the area: use a larger tool.diameter",
+        ),
+        (
+            "fine-stepover",
+            fine,
+            "cause: stepover too small: raise tool.stepover",
+        ),
+    ] {
+        fs::write(dir.join(format!("{name}.toml")), text_of_job).expect("write job");
+        let o = pfcam_bounded(&["run", &format!("{name}.toml"), "-o", "out"], &dir, 30);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{name}: {err}");
+        let last = err.lines().last().unwrap_or("");
+        for n in [
+            &format!("error: {name}.toml: machine.max_hours = 8 h: this job needs at least "),
+            "before any level was traced",
+            cause,
+        ] {
+            assert!(last.contains(n), "{name}: lacks {n:?}: {err}");
+        }
+        assert!(!err.contains("tracing the levels"), "{name}: {err}");
+        assert!(files_in(&dir.join("out")).is_empty(), "{name}");
+    }
+}
+
+/// The header's `length:` and `estimated time:` of a G-code file: (cut mm,
+/// rapid mm, time as written).
+fn header_figures(gcode: &str) -> (f64, f64, String) {
+    let find = |prefix: &str| {
+        gcode
+            .lines()
+            .find_map(|l| l.strip_prefix(prefix))
+            .unwrap_or_else(|| panic!("no {prefix:?} in the header"))
+            .to_string()
+    };
+    let length = find("(length: cut ");
+    let (cut, rapid) = length.split_once(" mm, rapid ").expect("length line");
+    let rapid = rapid.strip_suffix(" mm)").expect("length line");
+    let time = find("(estimated time: ");
+    let time = time.split(',').next().expect("time").to_string();
+    (
+        cut.parse().expect("cut"),
+        rapid.parse().expect("rapid"),
+        time,
+    )
+}
+
+/// The JSON report and the summary give each program's cut and rapid length
+/// and time, equal to its G-code header's, with the lower bound below them
+/// (a profile and a boss of the shipped jobs).
+#[test]
+fn the_report_gives_each_program_its_header_figures_and_bound() {
+    let dir = scratch("programs-json");
+    for name in ["letter-i", "q-sign"] {
+        let o = pfcam(
+            &["run", &shipped_job(&format!("{name}.toml")), "-o", "out"],
+            &dir,
+        );
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        let nc = fs::read_to_string(dir.join(format!("out/{name}.nc"))).expect("nc");
+        let (cut, rapid, time) = header_figures(&nc);
+        let json: serde_json::Value = serde_json::from_str(
+            &fs::read_to_string(dir.join(format!("out/{name}.json"))).expect("json"),
+        )
+        .expect("parse json");
+        let programs = json["programs"].as_array().expect("programs");
+        assert_eq!(programs.len(), 1, "{name}");
+        let p = &programs[0];
+        let num = |k: &str| {
+            p[k].as_f64()
+                .unwrap_or_else(|| panic!("{name}: {k} in {p}"))
+        };
+        assert_eq!(p["file"], format!("{name}.nc"));
+        assert!(
+            (num("cut_length_mm") - cut).abs() <= 0.05,
+            "{name}: {p} against {cut}"
+        );
+        assert!(
+            (num("rapid_length_mm") - rapid).abs() <= 0.05,
+            "{name}: {p} against {rapid}"
+        );
+        assert_eq!(pfcam::gcode::format_duration(num("time_s")), time, "{name}");
+        let bound = num("lower_bound_s");
+        assert!(bound > 0.0 && bound <= num("time_s"), "{name}: {p}");
+        let parts = num("lower_bound_clearing_s") + num("lower_bound_outline_s");
+        assert!((parts - bound).abs() <= 1e-9 * bound, "{name}: {p}");
+        assert!(
+            (num("time_over_bound") - num("time_s") / bound).abs() < 1e-9,
+            "{name}: {p}"
+        );
+        // The old totals stay.
+        assert!(json["totals"]["time_s"].as_f64().is_some(), "{name}");
+        let summary = text(&o.stdout);
+        let line = format!(
+            "program {name}.nc: {cut:.1} mm cutting, {rapid:.1} mm rapid, estimated time {time} "
+        );
+        assert!(summary.contains(&line), "{name}: lacks {line:?}: {summary}");
+        assert!(summary.contains("; lower bound "), "{summary}");
+    }
+}
+
+/// Issue 14's guards after the work, on a shipped job: a `machine.max_file_mb`
+/// one byte under its program's size, or a `machine.max_hours` between its
+/// lower bound and its estimate, stops the run with exit 1 and a message
+/// naming the key and the figure, and writes nothing (an earlier run's files
+/// are left as they were); a limit equal to the size passes.
+#[test]
+fn a_program_past_max_file_mb_or_max_hours_is_not_written() {
+    let dir = scratch("max-file-mb");
+    let job = fs::read_to_string(shipped_job("letter-i.toml")).expect("job");
+    assert!(!job.contains("[machine]"), "the test appends the table");
+    fs::write(dir.join("letter-i.toml"), &job).expect("write");
+    let o = pfcam(&["run", "letter-i.toml", "-o", "before", "-q"], &dir);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let nc = fs::read(dir.join("before/letter-i.nc")).expect("nc");
+    let json: serde_json::Value =
+        serde_json::from_slice(&fs::read(dir.join("before/letter-i.json")).expect("json"))
+            .expect("json");
+    let p = &json["programs"][0];
+    let (time_s, bound_s) = (
+        p["time_s"].as_f64().unwrap(),
+        p["lower_bound_s"].as_f64().unwrap(),
+    );
+    assert!(bound_s < time_s, "{p}");
+    let size = nc.len() as f64;
+    let limited = |table: &str| {
+        fs::write(
+            dir.join("letter-i.toml"),
+            format!("{job}\n[machine]\n{table}\n"),
+        )
+        .expect("write");
+    };
+    let hours = (bound_s + time_s) / 2.0 / 3600.0;
+    for (table, needles) in [
+        (
+            format!("max_file_mb = {}", (size - 1.0) / 1e6),
+            vec![
+                "letter-i.toml: nothing written: machine.max_file_mb = ".to_string(),
+                format!("the G-code would be {:.6} MB", size / 1e6),
+            ],
+        ),
+        (
+            format!("max_hours = {hours}"),
+            vec![
+                format!("letter-i.toml: nothing written: machine.max_hours = {hours} h"),
+                format!(
+                    "the program's estimated time is {}",
+                    pfcam::gcode::format_duration(time_s)
+                ),
+            ],
+        ),
+    ] {
+        limited(&table);
+        for out in ["new", "before"] {
+            let o = pfcam(&["run", "letter-i.toml", "-o", out], &dir);
+            let err = text(&o.stderr);
+            assert_eq!(o.status.code(), Some(1), "{table}: {err}");
+            for n in &needles {
+                assert!(err.contains(n.as_str()), "{table}: lacks {n:?}: {err}");
+            }
+        }
+        assert!(files_in(&dir.join("new")).is_empty(), "{table}");
+        assert_eq!(files_in(&dir.join("before")).len(), 3, "{table}");
+        assert_eq!(fs::read(dir.join("before/letter-i.nc")).expect("nc"), nc);
+    }
+    limited(&format!("max_file_mb = {}", size / 1e6));
+    let o = pfcam(&["run", "letter-i.toml", "-o", "new", "-q"], &dir);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert_eq!(fs::read(dir.join("new/letter-i.nc")).expect("nc"), nc);
+}

@@ -357,6 +357,13 @@ pub fn levels(tp: &Toolpath) -> Vec<f64> {
     zs
 }
 
+/// Lengths and estimated time of the program [`write_gcode_on`] writes for
+/// `tp`: its arcs legalised as the writer does, so these are the header's
+/// figures.
+pub fn program_stats(tp: &Toolpath, job: &Job) -> crate::toolpath::PathStats {
+    arcfit::legalize(tp, &arc_limits(job)).stats(job.machine.rapid_rate)
+}
+
 /// The arc limits the writer applies for `job`: `output.arcs`,
 /// `output.max_arc_radius`, arcs at least [`MIN_ARC_CHORD`] long, and arcs
 /// turned into lines within half the job tolerance.

@@ -147,6 +147,10 @@ pub const SPINDLE_DWELL: Range = Range::closed(0.0, 600.0, "s");
 pub const TRAVEL: Range = Range::open(0.0, 10_000.0, "mm");
 /// `machine.work_offset`, each axis.
 pub const WORK_OFFSET: Range = Range::closed(-10_000.0, 10_000.0, "mm");
+/// `machine.max_hours`: six weeks of machining at most.
+pub const MAX_HOURS: Range = Range::open(0.0, 1000.0, "h");
+/// `machine.max_file_mb`: 10 GB, far beyond what GRBL streams in a day.
+pub const MAX_FILE_MB: Range = Range::open(0.0, 10_000.0, "MB");
 /// `output.max_arc_radius`.
 pub const MAX_ARC_RADIUS: Range = Range::open(0.0, 100_000.0, "mm");
 
@@ -177,6 +181,8 @@ pub const KEYS: &[(&str, Range)] = &[
     ("machine.spindle_dwell", SPINDLE_DWELL),
     ("machine.travel", TRAVEL),
     ("machine.work_offset", WORK_OFFSET),
+    ("machine.max_hours", MAX_HOURS),
+    ("machine.max_file_mb", MAX_FILE_MB),
     ("output.max_arc_radius", MAX_ARC_RADIUS),
 ];
 

@@ -4,6 +4,7 @@
 //! the offset lines"), and the paths of each level traced in that level's field.
 
 use super::{schedule, DepthProfile};
+use crate::estimate::{check_bound, level_area, levels_bound, GuardError, LowerBound};
 use crate::field::isolines::{isolines, polygon_area, Grid};
 use crate::field::{self, Boundary, Field, FieldError, Layout, Prepared};
 use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
@@ -74,6 +75,9 @@ pub struct LevelJob<'a> {
     pub field_figures: FieldFigures,
     /// Path settings (the stock rectangle is filled in by the planner).
     pub params: LevelParams,
+    /// `machine.max_hours`: the job stops before any level is traced when its
+    /// lower bound ([`crate::estimate::levels_bound`]) passes it.
+    pub max_hours: f64,
 }
 
 /// One solve's figures.
@@ -180,6 +184,8 @@ pub struct Planned {
     /// Seconds spent sampling the grid, extracting contours and choosing the
     /// z schedule (wall clock).
     pub t_schedule: f64,
+    /// The lower bound of the machining time, from the levels' contours.
+    pub bound: LowerBound,
 }
 
 /// How far planning has got, for a progress display on another thread: the
@@ -299,6 +305,16 @@ pub fn plan_levels_reporting(
     let mut params = job.params;
     params.stock_lo = blo - Vec2::new(job.margin, job.margin);
     params.stock_hi = bhi + Vec2::new(job.margin, job.margin);
+    let stock = (!job.cavity).then_some((params.stock_lo, params.stock_hi));
+    let area_at = |zrel: f64| level_area(&contours_at(s_of(zrel)), stock);
+    let bound = levels_bound(
+        &rough[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
+        &zs[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
+        2.0 * params.radius,
+        params.stepover,
+        params.feed,
+    );
+    check_bound(&bound, job.max_hours, 2.0 * params.radius, params.stepover)?;
 
     // Every level below the top, in parallel.
     let levels: Vec<(usize, f64, Option<f64>)> = (1..zs.len())
@@ -436,6 +452,7 @@ pub fn plan_levels_reporting(
         warnings,
         params,
         t_schedule,
+        bound,
     })
 }
 
@@ -564,6 +581,9 @@ pub enum PlanError {
     /// A level's paths.
     #[error("{0}")]
     Profile(#[from] ProfileError),
+    /// The job's lower bound passes `machine.max_hours`.
+    #[error("{0}")]
+    Guard(#[from] GuardError),
     /// Anything else, in words.
     #[error("{0}")]
     Invalid(String),
