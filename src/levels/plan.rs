@@ -295,8 +295,10 @@ pub fn plan_levels_reporting(
     // for the scallop bound only the band down to the level below them, which is
     // cut before them ([`cutting_order`]).
     let n_rough = ((depth / job.stepdown) - 1e-9).ceil().max(1.0) as usize;
-    let is_rough =
-        |z: f64| (0..=n_rough).any(|k| (-depth * k as f64 / n_rough as f64 - z).abs() < 1e-9);
+    let rough_z: Vec<f64> = (0..=n_rough)
+        .map(|k| -depth * k as f64 / n_rough as f64)
+        .collect();
+    let is_rough = |z: f64| rough_z.iter().any(|&zr| (zr - z).abs() < 1e-9);
 
     let t_schedule = t_start.elapsed().as_secs_f64();
     // The stock: the largest level (a boss's base, a cavity's rim) plus the margin.
@@ -308,7 +310,7 @@ pub fn plan_levels_reporting(
     let stock = (!job.cavity).then_some((params.stock_lo, params.stock_hi));
     let area_at = |zrel: f64| level_area(&contours_at(s_of(zrel)), stock);
     let bound = levels_bound(
-        &rough[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
+        &rough_z[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
         &zs[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
         2.0 * params.radius,
         params.stepover,
