@@ -13,6 +13,8 @@ use pfcam::toolpath::{Move, Section, Toolpath, Vec3};
 use std::fs;
 use std::path::{Path, PathBuf};
 
+mod doc_figures;
+
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
@@ -191,6 +193,17 @@ fn gcode_doc_table_matches_the_samples() {
     assert_eq!(seen, 2);
 }
 
+/// The level count in the header of the sample `name` (`(levels: 55, ...)`).
+fn header_levels(name: &str) -> usize {
+    let sample = fs::read_to_string(sample_path(name)).expect("sample");
+    sample
+        .lines()
+        .find_map(|l| l.strip_prefix("(levels: "))
+        .and_then(|l| l.split(',').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("levels in the header of {name}.nc"))
+}
+
 /// The README's first paragraph counts mfs-sign's z-levels: the count in
 /// the shipped program's header (`(levels: 55, ...)`) is the one it states.
 #[test]
@@ -202,15 +215,59 @@ fn readme_level_count_matches_the_sample() {
         .and_then(|before| before.split_whitespace().last())
         .and_then(|n| n.parse().ok())
         .expect("README.md states mfs-sign's z-levels as 'N z-levels'");
-    let sample = fs::read_to_string(sample_path("mfs-sign")).expect("sample");
-    let in_header: usize = sample
-        .lines()
-        .find_map(|l| l.strip_prefix("(levels: "))
-        .and_then(|l| l.split(',').next())
-        .and_then(|n| n.parse().ok())
-        .expect("levels in the header");
     assert_eq!(
-        stated, in_header,
+        stated,
+        header_levels("mfs-sign"),
         "README.md against gcode-samples/mfs-sign.nc"
     );
+}
+
+/// docs/gcode.md shows the first and last lines of the mfs-profile program:
+/// they are the sample's, so the header's counts, lengths and time it quotes
+/// are the ones `pfcam run jobs/mfs-profile.toml` writes.
+#[test]
+fn gcode_doc_program_is_the_sample() {
+    let doc = doc_figures::read("docs/gcode.md");
+    let block = doc_figures::after(&doc, "docs/gcode.md", "## The program")
+        .split("```\n")
+        .nth(1)
+        .expect("docs/gcode.md: the program block under ## The program");
+    let (head, tail) = block
+        .split_once("...\n")
+        .expect("the block elides the middle with ...");
+    let sample = fs::read_to_string(sample_path("mfs-profile")).expect("sample");
+    let head: Vec<&str> = head.lines().collect();
+    let tail: Vec<&str> = tail.lines().collect();
+    assert!(head.len() >= 12, "the header is shown: {head:?}");
+    let lines: Vec<&str> = sample.lines().collect();
+    assert_eq!(
+        head,
+        lines[..head.len()],
+        "docs/gcode.md's program against the start of gcode-samples/mfs-profile.nc"
+    );
+    assert_eq!(
+        tail,
+        lines[lines.len() - tail.len()..],
+        "docs/gcode.md's program against the end of gcode-samples/mfs-profile.nc"
+    );
+}
+
+/// The README's table of shipped jobs gives each boss's and cavity's z-levels:
+/// the count in its sample's header. (A profile's row counts its one outline
+/// level, whose passes the header lists as levels; it is not checked here.)
+#[test]
+fn readme_jobs_table_levels_match_the_samples() {
+    let readme = doc_figures::read("README.md");
+    let mut checked = 0;
+    for name in ["mfs-sign", "mfs-mould", "q-sign", "q-mould"] {
+        let cells = doc_figures::table_row(&readme, "README.md", &format!("`jobs/{name}.toml`"));
+        let stated: usize = cells[2].parse().expect("a level count");
+        assert_eq!(
+            stated,
+            header_levels(name),
+            "README.md's {name} row against gcode-samples/{name}.nc"
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 4);
 }
