@@ -356,3 +356,62 @@ fn local_expansions_match_the_direct_sums() {
     doc_figures::assert_figure(what, &stated[2], worst(|m| m.1));
     doc_figures::assert_figure(what, &stated[3], worst(|m| m.2));
 }
+
+#[allow(dead_code)] // its `main` is the example's command line
+#[path = "../examples/ring_charges.rs"]
+mod ring_charges;
+
+/// docs/method.md §3 and §3a say what a ring with fewer charges leaves on its
+/// circle, measured by `examples/ring_charges.rs`: the same measurement here
+/// must give the doc's figures.
+#[test]
+fn ring_charge_counts_leave_what_the_docs_say() {
+    let doc = doc_figures::read("docs/method.md");
+    let on_ring = |ch, n, pairs, outer, counts: &[usize]| -> Vec<f64> {
+        let (_, _, solves) = ring_charges::measure(ch, n, pairs, outer, counts);
+        solves.iter().map(|s| s.on_ring).collect()
+    };
+    // §3: the plain layout's outer ring with 4 charges, letter I, N = 516.
+    let plain = on_ring('I', 516, false, true, &[4, 8]);
+    for (marker, value) in [
+        ("4 charges left a floor of", plain[0]),
+        ("(8 leave", plain[1]),
+    ] {
+        let stated = doc_figures::number_after(&doc, "docs/method.md", marker);
+        doc_figures::assert_figure("docs/method.md §3, outer ring", &stated, value);
+    }
+    // §3a: the paired layout's outer ring of 8 and of 16, letter I, N = 800.
+    let paired = on_ring('I', 800, true, true, &[8, 16]);
+    for (marker, value) in [("8 left a floor of", paired[0]), ("16 give", paired[1])] {
+        let stated = doc_figures::number_after(&doc, "docs/method.md", marker);
+        doc_figures::assert_figure("docs/method.md §3a, outer ring", &stated, value);
+    }
+    // §3a: the letter A's sink ring of 6 charges, N = 396.
+    let sink = on_ring('A', 396, true, false, &[6]);
+    let stated =
+        doc_figures::number_after(&doc, "docs/method.md", "with 6, the letter A stayed at");
+    doc_figures::assert_figure("docs/method.md §3a, sink ring of 6", &stated, sink[0]);
+}
+
+/// docs/method.md §6: without corner clusters (f = 0, the plain layout) the
+/// distance search of §4 leaves the letter I at the errors it quotes
+/// (`cargo run --release --example conv -- I 0 78,148,272`).
+#[test]
+fn uniform_placement_errors_are_the_docs() {
+    let doc = doc_figures::read("docs/method.md");
+    let stated =
+        doc_figures::numbers_after(&doc, "docs/method.md", "(f = 0), the same search gives", 3);
+    let prep = Prepared::new(field::paper_boundary('I').unwrap()).unwrap();
+    for (figure, n) in stated.iter().zip([78, 148, 272]) {
+        let uniform = Layout {
+            n_total: n,
+            distance: 1.0,
+            corner_clusters: false,
+            corner_fraction: 0.0,
+            pairs: false,
+        };
+        let solved = field::solve_with(&prep, uniform, None).unwrap();
+        let what = format!("docs/method.md §6, uniform placement at N = {n}");
+        doc_figures::assert_figure(&what, figure, solved.solution.max_error);
+    }
+}
