@@ -145,6 +145,7 @@ fn every_job_matches_its_sample() {
         .collect();
     jobs.sort();
     assert!(!jobs.is_empty());
+    let mut quoting = 0;
     for path in jobs {
         let job = load_job(&path).unwrap_or_else(|e| panic!("{e}"));
         let out = pfcam::pipeline::run(&job, &mut |_| {})
@@ -152,7 +153,115 @@ fn every_job_matches_its_sample() {
         let g = pfcam::gcode::write_gcode_on(&out.toolpath, &job, out.stock)
             .unwrap_or_else(|e| panic!("{e}"));
         check_golden(&job.name, &g);
+        quoting += usize::from(check_run_figures(&job.name, &out));
     }
+    assert_eq!(
+        quoting, 4,
+        "mfs-profile, mfs-sign, q-mould and mfs-mould are quoted"
+    );
+}
+
+/// The figures of a run that README.md and docs/method.md quote, against
+/// this run (`pfcam run JOB` prints them): mfs-profile's tracer fallbacks,
+/// mfs-sign's field (max boundary
+/// error, N) and min clearance, the cavity levels whose field errs above
+/// (1 − s)/100 on q-mould and mfs-mould, and mfs-mould's uncut share.
+/// Returns whether the docs quote this job.
+fn check_run_figures(name: &str, out: &pfcam::pipeline::RunOutput) -> bool {
+    let method = doc_figures::read("docs/method.md");
+    // A cavity level warns when its field errs above (1 − s)/100 (§9).
+    let warned: Vec<(f64, f64, f64)> = out
+        .levels
+        .iter()
+        .map(|l| (l.max_error, (1.0 - l.s) / 100.0, l.s))
+        .filter(|(e, bound, _)| e > bound)
+        .collect();
+    let range = |f: fn(&(f64, f64, f64)) -> f64| {
+        let v = warned.iter().map(f);
+        (
+            v.clone().fold(f64::INFINITY, f64::min),
+            v.fold(0.0, f64::max),
+        )
+    };
+    match name {
+        "mfs-profile" => {
+            // §7: the tracer's fallbacks, and the N of the shape's field.
+            let stated =
+                doc_figures::numbers_after(&method, "docs/method.md", "On mfs-profile it is", 2);
+            let what = "docs/method.md §7, mfs-profile's fallbacks at N";
+            assert_eq!(stated[0].parse().ok(), Some(out.fallbacks), "{what}");
+            assert_eq!(
+                stated[1].parse().ok(),
+                out.solves.first().map(|s| s.n),
+                "{what}"
+            );
+        }
+        "mfs-sign" => {
+            let readme = doc_figures::read("README.md");
+            let shape = out
+                .solves
+                .iter()
+                .find(|s| !s.label.starts_with("level"))
+                .expect("the shape's solve");
+            let what = "README.md, mfs-sign's field";
+            let stated = doc_figures::number_after(&readme, "README.md", "max boundary error of");
+            doc_figures::assert_figure(what, &stated, shape.max_error);
+            let n = doc_figures::number_after(&readme, "README.md", "with N =");
+            assert_eq!(n.parse().ok(), Some(shape.n), "{what}: N");
+            let stated = doc_figures::number_after(
+                &method,
+                "docs/method.md",
+                "Measured on mfs-sign: min clearance",
+            );
+            doc_figures::assert_figure("docs/method.md §8", &stated, out.min_clearance);
+        }
+        "q-mould" | "mfs-mould" => {
+            // "On q-mould 10 of the 12 ...", "on mfs-mould 1 of the 26 ..."
+            let rule = doc_figures::after(&method, "docs/method.md", "**The level rule.**");
+            let marker = format!("n {name} ");
+            let stated = doc_figures::numbers_after(rule, "docs/method.md", &marker, 2);
+            let at = rule.find(&marker).expect("found just above");
+            let what = format!("docs/method.md §9, {name}'s warning levels");
+            assert_eq!(stated[0].parse().ok(), Some(warned.len()), "{what}");
+            assert_eq!(stated[1].parse().ok(), Some(out.levels.len()), "{what}");
+            let (errors, bounds) = (range(|w| w.0), range(|w| w.1));
+            if name == "q-mould" {
+                // "(errors A to B against bounds C to D"
+                let figures =
+                    doc_figures::numbers_after(&rule[at..], "docs/method.md", "(errors", 4);
+                for (f, v) in figures.iter().zip([errors.0, errors.1, bounds.0, bounds.1]) {
+                    doc_figures::assert_figure(&what, f, v);
+                }
+            } else {
+                // "(E against B at s = S"
+                let figures = doc_figures::numbers_after(&rule[at..], "docs/method.md", " (", 3);
+                for (f, v) in figures.iter().zip([errors.1, bounds.1, range(|w| w.2).1]) {
+                    doc_figures::assert_figure(&what, f, v);
+                }
+                // §9's coverage: the worst uncut share over all levels, in %.
+                let stated =
+                    doc_figures::number_after(&method, "docs/method.md", "On mfs-mould it is");
+                let worst = out
+                    .levels
+                    .iter()
+                    .filter_map(|l| l.uncut)
+                    .fold(0.0, f64::max);
+                doc_figures::assert_figure(
+                    "docs/method.md §9, uncut share",
+                    &stated,
+                    100.0 * worst,
+                );
+                let levels = doc_figures::number_after(&method, "docs/method.md", "% on all");
+                assert_eq!(
+                    levels.parse().ok(),
+                    Some(out.levels.len()),
+                    "docs/method.md §9"
+                );
+            }
+        }
+        _ => return false,
+    }
+    true
 }
 
 /// docs/gcode.md's table of the boss and the mould gives, for `arcs = true`,
