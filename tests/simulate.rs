@@ -428,6 +428,23 @@ fn every_sample_simulates() {
             let figure = doc_figures::first_number(cell).expect(cell);
             doc_figures::assert_figure(&what, &figure, value);
         }
+        // The notes under the table name the lines of some of these figures.
+        let line_after = |marker: &str| -> usize {
+            let n = doc_figures::number_after(&doc, "docs/simulate.md", marker);
+            n.parse().expect(marker)
+        };
+        let notes: &[(&str, usize)] = match name.as_str() {
+            "letter-a.nc" => &[("(`letter-a.nc` line", r.max_axial.line)],
+            "mfs-sign.nc" => &[
+                ("on `mfs-sign.nc`** (line", r.steepest_entry_deg.line),
+                ("axial 1.188 mm on `mfs-sign.nc`** (line", r.max_axial.line),
+            ],
+            "q-mould.nc" => &[("on `q-mould.nc`, line", r.steepest_entry_deg.line)],
+            _ => &[],
+        };
+        for &(marker, line) in notes {
+            assert_eq!(line_after(marker), line, "docs/simulate.md: `{marker}`");
+        }
         if name == "mfs-mould.nc" {
             // The simulation bench's sample: its lines, feed and cells.
             let stated = doc_figures::numbers_after(
