@@ -233,16 +233,45 @@ fn kernel_is_the_fundamental_solution() {
 
 /// The shape field of a profile job with `svg_path` at `origin`.
 fn shape_error(svg_path: &str, origin: [f64; 2]) -> f64 {
-    let text = format!(
-        "[shape]\nsvg_path = \"{svg_path}\"\norigin = [{}, {}]\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 1.0\n",
+    let shape = format!(
+        "svg_path = \"{svg_path}\"\norigin = [{}, {}]",
         origin[0], origin[1]
     );
-    let job = pfcam::job::parse_job(&text, "shape", std::path::Path::new(".")).unwrap();
-    let (shape, _) = pfcam::pipeline::job_shape(&job, &mut |_| {}).unwrap();
+    profile_field(&shape).0
+}
+
+/// The max boundary error and N of the shape field of a profile job whose
+/// `[shape]` table is `shape` (paths relative to the crate root).
+fn profile_field(shape: &str) -> (f64, usize) {
+    let text = format!("[shape]\n{shape}\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 1.0\n");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let job = pfcam::job::parse_job(&text, "shape", root).unwrap();
+    let (shape_, _) = pfcam::pipeline::job_shape(&job, &mut |_| {}).unwrap();
     let tol = job.operation.tolerance * pfcam::pipeline::FLATTEN_FRACTION;
-    let (_, report, _) = pfcam::pipeline::solve_shape(&shape, &job, tol, &mut |_| {})
-        .unwrap_or_else(|e| panic!("{svg_path} at {origin:?}: {e}"));
-    report.max_error
+    let (_, report, _) = pfcam::pipeline::solve_shape(&shape_, &job, tol, &mut |_| {})
+        .unwrap_or_else(|e| panic!("{shape}: {e}"));
+    (report.max_error, report.n)
+}
+
+/// docs/method.md §2: "Hello" in DejaVu Serif, a profile job at the default
+/// N, solves to the error and N it quotes.
+#[test]
+fn hello_in_dejavu_serif_solves_as_the_docs_say() {
+    let (error, n) = profile_field("text = \"Hello\"\nfont = \"tests/data/DejaVuSerif.ttf\"");
+    eprintln!("Hello in DejaVu Serif: max boundary error {error:.2e} at N = {n}");
+    let doc = doc_figures::read("docs/method.md");
+    let stated = doc_figures::numbers_after(
+        &doc,
+        "docs/method.md",
+        "\"Hello\" in DejaVu Serif solves to",
+        2,
+    );
+    doc_figures::assert_figure("docs/method.md §2, Hello", &stated[0], error);
+    assert_eq!(
+        stated[1].parse().ok(),
+        Some(n),
+        "docs/method.md §2, Hello's N"
+    );
 }
 
 /// Issue 12: a plain rectangle and an L shape were refused as ill-conditioned
