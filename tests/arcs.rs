@@ -14,6 +14,8 @@ use std::f64::consts::TAU;
 use std::fs;
 use std::path::{Path, PathBuf};
 
+mod doc_figures;
+
 /// The profile jobs in `jobs/`. (Boss and cavity jobs are fitted too, but the
 /// traced path these tests compare with is the profile planner's; their arcs are
 /// checked by the gouge check of every level in tests/levels.rs and by
@@ -224,6 +226,7 @@ fn written_arcs(g: &str) -> Vec<(String, Vec2, Vec2, Vec2)> {
 
 #[test]
 fn grbl_reads_back_every_arc_on_its_circle() {
+    let mut radii_differ = 0.0f64;
     for job in jobs() {
         let out = pipeline::run(&job, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));
         let g = write_gcode(&out.toolpath, &job).unwrap_or_else(|e| panic!("{e}"));
@@ -247,6 +250,7 @@ fn grbl_reads_back_every_arc_on_its_circle() {
         }
         for (line, s, e, c) in &arcs {
             let (r1, r2) = (s.dist(*c), e.dist(*c));
+            radii_differ = radii_differ.max((r1 - r2).abs());
             assert!(
                 (r1 - r2).abs() < 0.002,
                 "{}: {line}: radii {r1} {r2}",
@@ -256,8 +260,12 @@ fn grbl_reads_back_every_arc_on_its_circle() {
             assert!(s.dist(*e) >= MIN_ARC_CHORD - 0.002, "{line}");
         }
     }
+    // docs/gcode.md quotes the largest difference of the written radii.
+    let doc = doc_figures::read("docs/gcode.md");
+    let stated =
+        doc_figures::number_after(&doc, "docs/gcode.md", "the written radii differ by at most");
+    doc_figures::assert_figure("docs/gcode.md, written radii", &stated, radii_differ);
 }
-
 #[test]
 fn arcs_off_gives_lines_only() {
     let mut job = jobs().remove(0);
@@ -464,33 +472,45 @@ fn hausdorff_to_exact(job: &Job, tp: &Toolpath) -> f64 {
 /// `cargo test --release --test arcs -- --nocapture exact_offset`.
 #[test]
 fn fitted_path_is_within_tolerance_of_the_exact_offset() {
+    let doc = doc_figures::read("docs/gcode.md");
+    let table = doc_figures::after(
+        &doc,
+        "docs/gcode.md",
+        "The whole budget, measured against the exact offset",
+    );
     println!("| job | traced | `arcs = false` | `arcs = true` |");
     println!("|---|---|---|---|");
     for mut job in jobs() {
+        let cells = doc_figures::table_row(table, "docs/gcode.md", &job.name);
+        let what = format!("docs/gcode.md's exact-offset row of {}", job.name);
         let plan = pipeline::plan(&job, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));
         let traced = profile::link(&plan.loops, &plan.params);
-        let mut row = vec![
-            job.name.clone(),
-            format!("{:.4}", hausdorff_to_exact(&job, &traced)),
-        ];
-        for arcs in [false, true] {
+        let h = hausdorff_to_exact(&job, &traced);
+        doc_figures::assert_figure(&what, cells[1], h);
+        let mut row = vec![job.name.clone(), format!("{h:.4}")];
+        for (arcs, cell) in [(false, cells[2]), (true, cells[3])] {
             job.output.arcs = arcs;
             let fitted = fit_toolpath(&traced, &ArcFitParams::for_job(&job));
             let h = hausdorff_to_exact(&job, &fitted);
             assert!(h <= job.operation.tolerance, "{}: {h}", job.name);
+            doc_figures::assert_figure(&what, cell, h);
             row.push(format!("{h:.4}"));
         }
         println!("| {} |", row.join(" | "));
     }
 }
 
-/// The table of `docs/gcode.md`:
-/// `cargo test --release --test arcs -- --ignored --nocapture`.
+/// docs/gcode.md's table of the profile jobs (lines and bytes traced, with
+/// `arcs = false` and with `arcs = true`, arcs, deviation, clearance) and the
+/// ratios and clearance loss it draws from it are what the jobs give now:
+/// `cargo test --release --test arcs -- --nocapture measure_every_job` prints
+/// the table.
 #[test]
-#[ignore]
 fn measure_every_job() {
+    let doc = doc_figures::read("docs/gcode.md");
     println!("| job | traced: lines | bytes | `arcs = false`: lines | bytes | `arcs = true`: lines | bytes | arcs | max deviation, off / on (mm) | min clearance, traced / off / on (mm) |");
     println!("|---|---|---|---|---|---|---|---|---|---|");
+    let (mut line_ratios, mut byte_ratios, mut clearance_loss) = (Vec::new(), Vec::new(), 0.0f64);
     for mut job in jobs() {
         let plan = pipeline::plan(&job, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));
         let part = DistanceIndex::new(&plan.polys);
@@ -498,28 +518,73 @@ fn measure_every_job() {
         let clearance = |tp: &Toolpath| {
             gouge::check(tp, &part, plan.params.radius, plan.params.top).min_clearance
         };
-        let mut row = vec![job.name.clone()];
         job.output.arcs = false;
         let g = write_gcode(&traced, &job).unwrap_or_else(|e| panic!("{e}"));
-        row.push(g.lines().count().to_string());
-        row.push(g.len().to_string());
-        let mut devs = Vec::new();
-        let mut clear = vec![format!("{:.4}", clearance(&traced))];
+        let mut counts = vec![g.lines().count(), g.len()];
+        let (mut devs, mut clear) = (Vec::new(), vec![clearance(&traced)]);
         let mut n_arcs = 0;
         for arcs in [false, true] {
             job.output.arcs = arcs;
             let fitted = fit_toolpath(&traced, &ArcFitParams::for_job(&job));
             let g = write_gcode(&fitted, &job).unwrap_or_else(|e| panic!("{e}"));
-            row.push(g.lines().count().to_string());
-            row.push(g.len().to_string());
+            counts.extend([g.lines().count(), g.len()]);
             let (dev, a, _) = deviation(&traced, &fitted);
-            devs.push(format!("{dev:.4}"));
-            clear.push(format!("{:.4}", clearance(&fitted)));
+            devs.push(dev);
+            clear.push(clearance(&fitted));
             n_arcs = a;
         }
-        row.push(n_arcs.to_string());
-        row.push(devs.join(" / "));
-        row.push(clear.join(" / "));
+        counts.push(n_arcs);
+        line_ratios.push(counts[0] as f64 / counts[4] as f64);
+        byte_ratios.push(counts[1] as f64 / counts[5] as f64);
+        clearance_loss = clearance_loss.max(clear[0] - clear[2]);
+        let f4 = |v: &[f64]| {
+            v.iter()
+                .map(|x| format!("{x:.4}"))
+                .collect::<Vec<_>>()
+                .join(" / ")
+        };
+        let row: Vec<String> = std::iter::once(job.name.clone())
+            .chain(counts.iter().map(usize::to_string))
+            .chain([f4(&devs), f4(&clear)])
+            .collect();
         println!("| {} |", row.join(" | "));
+
+        let cells = doc_figures::table_row(&doc, "docs/gcode.md", &job.name);
+        assert_eq!(cells.len(), 10, "docs/gcode.md's {} row", job.name);
+        let stated: Vec<usize> = cells[1..8].iter().map(|c| c.parse().expect(c)).collect();
+        assert_eq!(
+            stated, counts,
+            "docs/gcode.md's {} row (lines, bytes, arcs) against the job",
+            job.name
+        );
+        for (cell, values) in [(cells[8], &devs), (cells[9], &clear)] {
+            let figures: Vec<&str> = cell.split(" / ").collect();
+            assert_eq!(figures.len(), values.len(), "{cell}");
+            for (f, v) in figures.iter().zip(values.iter()) {
+                doc_figures::assert_figure(&format!("docs/gcode.md, {}", job.name), f, *v);
+            }
+        }
     }
+    let range = |v: &[f64]| {
+        (
+            v.iter().copied().fold(f64::INFINITY, f64::min),
+            v.iter().copied().fold(0.0, f64::max),
+        )
+    };
+    let stated =
+        doc_figures::numbers_after(&doc, "docs/gcode.md", "With arcs the profile files have", 4);
+    let ((l0, l1), (b0, b1)) = (range(&line_ratios), range(&byte_ratios));
+    for (figure, value) in stated.iter().zip([l0, l1, b0, b1]) {
+        doc_figures::assert_figure(
+            "docs/gcode.md, fewer lines and bytes with arcs",
+            figure,
+            value,
+        );
+    }
+    let stated = doc_figures::number_after(&doc, "docs/gcode.md", "clearance loses up to");
+    doc_figures::assert_figure(
+        "docs/gcode.md, clearance lost to arcs",
+        &stated,
+        clearance_loss,
+    );
 }

@@ -8,6 +8,8 @@ use cavalier_contours::polyline::{BooleanOp as CcOp, PlineSource, PlineSourceMut
 use pfcam::compose::{self, Model};
 use pfcam::geometry::{BoolOp, Composition, Part, PartSource, Vec2};
 
+mod doc_figures;
+
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Vec2> {
     vec![
         Vec2::new(x0, y0),
@@ -146,7 +148,10 @@ fn boundary(m: &Model) -> Vec<Vec<Vec2>> {
     m.polygons(1e-6)
 }
 
-fn report(what: &str, built: &compose::Built, d: f64, size: f64) {
+/// Print the composite's solves and its distance to the exact Boolean, and hold
+/// them to the row `doc_row` of docs/method.md §10's table (composite N, max
+/// boundary error, Hausdorff distance and its share of the size).
+fn report(what: &str, doc_row: &str, built: &compose::Built, d: f64, size: f64) {
     for r in &built.reports {
         println!(
             "  {:<40} N {:>4} M {:>4} max error {:.2e} ({:.2} s)",
@@ -157,6 +162,20 @@ fn report(what: &str, built: &compose::Built, d: f64, size: f64) {
         "{what}: Hausdorff to the exact Boolean {d:.4} ({:.3} % of the size {size:.0})",
         100.0 * d / size
     );
+    let doc = doc_figures::read("docs/method.md");
+    let table = doc_figures::after(&doc, "docs/method.md", "Measured against the exact Boolean");
+    let cells = doc_figures::table_row(table, "docs/method.md", doc_row);
+    let composite = built.reports.last().expect("the composite's solve");
+    let what = format!("docs/method.md §10, {doc_row}");
+    assert_eq!(
+        cells[1].parse::<usize>().ok(),
+        Some(composite.n),
+        "{what}: N"
+    );
+    doc_figures::assert_figure(&what, cells[2], composite.max_error);
+    let stated = doc_figures::numbers_after(cells[3], "docs/method.md", "", 2);
+    doc_figures::assert_figure(&what, &stated[0], d);
+    doc_figures::assert_figure(&what, &stated[1], 100.0 * d / size);
 }
 
 #[test]
@@ -182,7 +201,12 @@ fn union_intersection_subtraction_of_two_rectangles() {
         assert_eq!(got.len(), n_loops, "{bop:?}");
         assert_eq!(want.len(), n_loops, "{bop:?}");
         let (d, at) = hausdorff_at(&got, &want, 0.25);
-        report(&format!("{bop:?}"), &built, d, size);
+        let doc_row = match bop {
+            BoolOp::Union => "rectangles 100×60 overlapping by 40×30, union",
+            BoolOp::Intersect => "the same, intersection",
+            _ => "the same, subtraction",
+        };
+        report(&format!("{bop:?}"), doc_row, &built, d, size);
         println!("  worst at ({:.2}, {:.2})", at.x, at.y);
         assert!(d < max_dist * size, "{bop:?}: {d}");
         // The composite's field is 1 on its boundary to its measured error.
@@ -211,7 +235,13 @@ fn a_disk_minus_a_smaller_disk_has_the_hole() {
     // The exact result: the outer circle and the hole.
     let want = vec![a.clone(), b.clone()];
     let d = hausdorff(&got, &want, 0.25);
-    report("disk − disk", &built, d, 100.0);
+    report(
+        "disk − disk",
+        "disk r 50 minus disk r 20 (off centre)",
+        &built,
+        d,
+        100.0,
+    );
     assert!(d < 0.0005 * 100.0, "{d}");
     // The hole is void, the ring is material.
     assert!(!built.model.csg.contains(Vec2::new(10.0, 5.0)));
@@ -253,13 +283,19 @@ fn inversion_twice_gives_back_the_field_and_its_curves() {
             }
         }
     }
+    let mut worst = 0.0f64;
     for s in [0.85, 0.95, 0.97] {
         let c1 = compose::level_curves(&m, s, &frame).expect("levels");
         let c2 = compose::level_curves(&back, s, &frame).expect("levels");
         let d = hausdorff(&c1, &c2, 0.5);
         println!("Γ({s}) of m1 and of invert(invert(m1)): Hausdorff {d:.2e}");
         assert!(d < 1e-6 * 300.0, "s = {s}: {d}");
+        worst = worst.max(d);
     }
+    let doc = doc_figures::read("docs/method.md");
+    let stated =
+        doc_figures::number_after(&doc, "docs/method.md", "of its double inversion agree to");
+    doc_figures::assert_figure("docs/method.md §10, double inversion", &stated, worst);
 }
 
 /// The paper's letter Q (Section 5): m1 the rectangle, m2 = Γ(0.85) and m3 =
@@ -322,7 +358,22 @@ fn the_paper_q_is_the_boolean_of_its_ovals_and_tail() {
             );
         }
     }
-    report("Q", &built, d, 300.0);
+    // docs/method.md §10 quotes the error of the tail m4's field once split.
+    let m4 = built
+        .reports
+        .iter()
+        .find(|r| r.label.starts_with("m4:"))
+        .expect("m4's solve");
+    let doc = doc_figures::read("docs/method.md");
+    let stated = doc_figures::number_after(&doc, "docs/method.md", "reversed lobe); split,");
+    doc_figures::assert_figure("docs/method.md §10, m4 split", &stated, m4.max_error);
+    report(
+        "Q",
+        "the paper's Q against the exact Boolean of its curves m2, m5, m3",
+        &built,
+        d,
+        300.0,
+    );
     println!("  worst at ({:.2}, {:.2})", at.x, at.y);
     // Measured 0.59 (0.20 %), at the notch where the tail leaves the outer oval.
     assert!(d < 0.005 * 300.0, "{d}");

@@ -328,3 +328,26 @@ fn every_job_runs_to_gcode_that_passes() {
         );
     }
 }
+
+/// docs/grbl.md shows what `pfcam check` prints for the travel example (its
+/// lines, bounds, lengths and time): the same command prints it now, report
+/// on standard output, then the closing error on standard error.
+#[test]
+fn grbl_doc_check_example_is_what_the_command_prints() {
+    let doc = fs::read_to_string(Path::new(ROOT).join("docs/grbl.md")).expect("docs/grbl.md");
+    let prompt = "$ pfcam check ";
+    let at = doc
+        .find(prompt)
+        .expect("docs/grbl.md shows a `$ pfcam check` run");
+    let mut block = doc[at..].lines();
+    let command = block.next().expect("the command line");
+    let shown: Vec<&str> = block.take_while(|l| !l.starts_with("```")).collect();
+    let args: Vec<&str> = command[prompt.len()..].split_whitespace().collect();
+    let o = pfcam(&["check"].into_iter().chain(args).collect::<Vec<_>>());
+    let printed = text(&o.stdout) + &text(&o.stderr);
+    assert_eq!(
+        shown,
+        printed.lines().collect::<Vec<_>>(),
+        "docs/grbl.md's `{command}` against what it prints"
+    );
+}

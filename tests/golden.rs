@@ -13,6 +13,8 @@ use pfcam::toolpath::{Move, Section, Toolpath, Vec3};
 use std::fs;
 use std::path::{Path, PathBuf};
 
+mod doc_figures;
+
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
@@ -143,6 +145,7 @@ fn every_job_matches_its_sample() {
         .collect();
     jobs.sort();
     assert!(!jobs.is_empty());
+    let mut quoting = 0;
     for path in jobs {
         let job = load_job(&path).unwrap_or_else(|e| panic!("{e}"));
         let out = pfcam::pipeline::run(&job, &mut |_| {})
@@ -150,7 +153,115 @@ fn every_job_matches_its_sample() {
         let g = pfcam::gcode::write_gcode_on(&out.toolpath, &job, out.stock)
             .unwrap_or_else(|e| panic!("{e}"));
         check_golden(&job.name, &g);
+        quoting += usize::from(check_run_figures(&job.name, &out));
     }
+    assert_eq!(
+        quoting, 4,
+        "mfs-profile, mfs-sign, q-mould and mfs-mould are quoted"
+    );
+}
+
+/// The figures of a run that README.md and docs/method.md quote, against
+/// this run (`pfcam run JOB` prints them): mfs-profile's tracer fallbacks,
+/// mfs-sign's field (max boundary
+/// error, N) and min clearance, the cavity levels whose field errs above
+/// (1 − s)/100 on q-mould and mfs-mould, and mfs-mould's uncut share.
+/// Returns whether the docs quote this job.
+fn check_run_figures(name: &str, out: &pfcam::pipeline::RunOutput) -> bool {
+    let method = doc_figures::read("docs/method.md");
+    // A cavity level warns when its field errs above (1 − s)/100 (§9).
+    let warned: Vec<(f64, f64, f64)> = out
+        .levels
+        .iter()
+        .map(|l| (l.max_error, (1.0 - l.s) / 100.0, l.s))
+        .filter(|(e, bound, _)| e > bound)
+        .collect();
+    let range = |f: fn(&(f64, f64, f64)) -> f64| {
+        let v = warned.iter().map(f);
+        (
+            v.clone().fold(f64::INFINITY, f64::min),
+            v.fold(0.0, f64::max),
+        )
+    };
+    match name {
+        "mfs-profile" => {
+            // §7: the tracer's fallbacks, and the N of the shape's field.
+            let stated =
+                doc_figures::numbers_after(&method, "docs/method.md", "On mfs-profile it is", 2);
+            let what = "docs/method.md §7, mfs-profile's fallbacks at N";
+            assert_eq!(stated[0].parse().ok(), Some(out.fallbacks), "{what}");
+            assert_eq!(
+                stated[1].parse().ok(),
+                out.solves.first().map(|s| s.n),
+                "{what}"
+            );
+        }
+        "mfs-sign" => {
+            let readme = doc_figures::read("README.md");
+            let shape = out
+                .solves
+                .iter()
+                .find(|s| !s.label.starts_with("level"))
+                .expect("the shape's solve");
+            let what = "README.md, mfs-sign's field";
+            let stated = doc_figures::number_after(&readme, "README.md", "max boundary error of");
+            doc_figures::assert_figure(what, &stated, shape.max_error);
+            let n = doc_figures::number_after(&readme, "README.md", "with N =");
+            assert_eq!(n.parse().ok(), Some(shape.n), "{what}: N");
+            let stated = doc_figures::number_after(
+                &method,
+                "docs/method.md",
+                "Measured on mfs-sign: min clearance",
+            );
+            doc_figures::assert_figure("docs/method.md §8", &stated, out.min_clearance);
+        }
+        "q-mould" | "mfs-mould" => {
+            // "On q-mould 10 of the 12 ...", "on mfs-mould 1 of the 26 ..."
+            let rule = doc_figures::after(&method, "docs/method.md", "**The level rule.**");
+            let marker = format!("n {name} ");
+            let stated = doc_figures::numbers_after(rule, "docs/method.md", &marker, 2);
+            let at = rule.find(&marker).expect("found just above");
+            let what = format!("docs/method.md §9, {name}'s warning levels");
+            assert_eq!(stated[0].parse().ok(), Some(warned.len()), "{what}");
+            assert_eq!(stated[1].parse().ok(), Some(out.levels.len()), "{what}");
+            let (errors, bounds) = (range(|w| w.0), range(|w| w.1));
+            if name == "q-mould" {
+                // "(errors A to B against bounds C to D"
+                let figures =
+                    doc_figures::numbers_after(&rule[at..], "docs/method.md", "(errors", 4);
+                for (f, v) in figures.iter().zip([errors.0, errors.1, bounds.0, bounds.1]) {
+                    doc_figures::assert_figure(&what, f, v);
+                }
+            } else {
+                // "(E against B at s = S"
+                let figures = doc_figures::numbers_after(&rule[at..], "docs/method.md", " (", 3);
+                for (f, v) in figures.iter().zip([errors.1, bounds.1, range(|w| w.2).1]) {
+                    doc_figures::assert_figure(&what, f, v);
+                }
+                // §9's coverage: the worst uncut share over all levels, in %.
+                let stated =
+                    doc_figures::number_after(&method, "docs/method.md", "On mfs-mould it is");
+                let worst = out
+                    .levels
+                    .iter()
+                    .filter_map(|l| l.uncut)
+                    .fold(0.0, f64::max);
+                doc_figures::assert_figure(
+                    "docs/method.md §9, uncut share",
+                    &stated,
+                    100.0 * worst,
+                );
+                let levels = doc_figures::number_after(&method, "docs/method.md", "% on all");
+                assert_eq!(
+                    levels.parse().ok(),
+                    Some(out.levels.len()),
+                    "docs/method.md §9"
+                );
+            }
+        }
+        _ => return false,
+    }
+    true
 }
 
 /// docs/gcode.md's table of the boss and the mould gives, for `arcs = true`,
@@ -191,6 +302,17 @@ fn gcode_doc_table_matches_the_samples() {
     assert_eq!(seen, 2);
 }
 
+/// The level count in the header of the sample `name` (`(levels: 55, ...)`).
+fn header_levels(name: &str) -> usize {
+    let sample = fs::read_to_string(sample_path(name)).expect("sample");
+    sample
+        .lines()
+        .find_map(|l| l.strip_prefix("(levels: "))
+        .and_then(|l| l.split(',').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("levels in the header of {name}.nc"))
+}
+
 /// The README's first paragraph counts mfs-sign's z-levels: the count in
 /// the shipped program's header (`(levels: 55, ...)`) is the one it states.
 #[test]
@@ -202,15 +324,59 @@ fn readme_level_count_matches_the_sample() {
         .and_then(|before| before.split_whitespace().last())
         .and_then(|n| n.parse().ok())
         .expect("README.md states mfs-sign's z-levels as 'N z-levels'");
-    let sample = fs::read_to_string(sample_path("mfs-sign")).expect("sample");
-    let in_header: usize = sample
-        .lines()
-        .find_map(|l| l.strip_prefix("(levels: "))
-        .and_then(|l| l.split(',').next())
-        .and_then(|n| n.parse().ok())
-        .expect("levels in the header");
     assert_eq!(
-        stated, in_header,
+        stated,
+        header_levels("mfs-sign"),
         "README.md against gcode-samples/mfs-sign.nc"
     );
+}
+
+/// docs/gcode.md shows the first and last lines of the mfs-profile program:
+/// they are the sample's, so the header's counts, lengths and time it quotes
+/// are the ones `pfcam run jobs/mfs-profile.toml` writes.
+#[test]
+fn gcode_doc_program_is_the_sample() {
+    let doc = doc_figures::read("docs/gcode.md");
+    let block = doc_figures::after(&doc, "docs/gcode.md", "## The program")
+        .split("```\n")
+        .nth(1)
+        .expect("docs/gcode.md: the program block under ## The program");
+    let (head, tail) = block
+        .split_once("...\n")
+        .expect("the block elides the middle with ...");
+    let sample = fs::read_to_string(sample_path("mfs-profile")).expect("sample");
+    let head: Vec<&str> = head.lines().collect();
+    let tail: Vec<&str> = tail.lines().collect();
+    assert!(head.len() >= 12, "the header is shown: {head:?}");
+    let lines: Vec<&str> = sample.lines().collect();
+    assert_eq!(
+        head,
+        lines[..head.len()],
+        "docs/gcode.md's program against the start of gcode-samples/mfs-profile.nc"
+    );
+    assert_eq!(
+        tail,
+        lines[lines.len() - tail.len()..],
+        "docs/gcode.md's program against the end of gcode-samples/mfs-profile.nc"
+    );
+}
+
+/// The README's table of shipped jobs gives each boss's and cavity's z-levels:
+/// the count in its sample's header. (A profile's row counts its one outline
+/// level, whose passes the header lists as levels; it is not checked here.)
+#[test]
+fn readme_jobs_table_levels_match_the_samples() {
+    let readme = doc_figures::read("README.md");
+    let mut checked = 0;
+    for name in ["mfs-sign", "mfs-mould", "q-sign", "q-mould"] {
+        let cells = doc_figures::table_row(&readme, "README.md", &format!("`jobs/{name}.toml`"));
+        let stated: usize = cells[2].parse().expect("a level count");
+        assert_eq!(
+            stated,
+            header_levels(name),
+            "README.md's {name} row against gcode-samples/{name}.nc"
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 4);
 }

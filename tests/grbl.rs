@@ -3,6 +3,7 @@
 //! The emulator (`tests/grbl/emulator.rs`, test support only) fails a test when the
 //! streamer overflows its 128-byte receive buffer. Every wait here is bounded.
 
+mod doc_figures;
 #[path = "grbl/emulator.rs"]
 mod emulator;
 
@@ -170,6 +171,11 @@ fn whole_job_streams_in_order_within_the_buffer() {
     assert!(report.max_in_flight <= 128);
     // The planner is the bottleneck here: the receive buffer stays nearly full.
     assert!(report.mean_fill > 0.7, "mean fill {}", report.mean_fill);
+    assert_eq!(
+        Some(report.acked),
+        doc_lines("planner-bound emulator (`speedup` 150)"),
+        "docs/grbl.md's line count"
+    );
     println!(
         "throttled emulator: {} lines in {:.2} s = {:.0} lines/s, mean buffer fill {:.1}%, max {} bytes",
         report.acked,
@@ -201,6 +207,11 @@ fn fast_emulator_keeps_the_buffer_mostly_full() {
     let report = r.expect("stream completes");
     assert_eq!(emu.lines(), file_blocks(&a));
     assert_no_overflow(&emu);
+    assert_eq!(
+        Some(report.acked),
+        doc_lines("fast emulator (planner never full)"),
+        "docs/grbl.md's line count"
+    );
     println!(
         "fast emulator: {} lines in {:.2} s = {:.0} lines/s, mean buffer fill {:.1}%",
         report.acked,
@@ -1224,4 +1235,30 @@ fn push_messages_are_shown_not_counted_as_acks() {
     assert!(events.iter().any(|e| e.contains("[PRB:")), "{events:?}");
     assert_eq!(report.acked, 104);
     assert_eq!(emu.lines(), file_blocks(&a));
+}
+
+/// The lines docs/grbl.md's throughput table gives for the emulator `row`.
+fn doc_lines(row: &str) -> Option<usize> {
+    let doc = doc_figures::read("docs/grbl.md");
+    doc_figures::table_row(&doc, "docs/grbl.md", row)[1]
+        .parse()
+        .ok()
+}
+
+/// docs/grbl.md counts the tests of this file.
+#[test]
+fn docs_count_the_tests_of_this_file() {
+    let me = std::fs::read_to_string(file!()).expect("tests/grbl.rs");
+    let tests = me.lines().filter(|l| l.trim() == "#[test]").count();
+    let doc = doc_figures::read("docs/grbl.md");
+    let stated = doc_figures::number_after(
+        &doc,
+        "docs/grbl.md",
+        "`cargo test --release --test grbl` runs",
+    );
+    assert_eq!(
+        stated.parse().ok(),
+        Some(tests),
+        "docs/grbl.md's test count"
+    );
 }

@@ -15,6 +15,8 @@ use pfcam::grbl::protocol::{parse_response, Response, StatusReport, WorkOffset};
 use pfcam::job::{echo, extent, parse_job};
 use std::path::Path;
 
+mod doc_figures;
+
 /// Marsaglia's xorshift64: small, fast, and the same on every machine.
 struct XorShift(u64);
 
@@ -363,4 +365,67 @@ fn grbl_responses_parse_the_same_with_blanks() {
         }
     }
     assert!(statuses > 100, "only {statuses} status reports survived");
+}
+
+/// docs/shapes.md's figures of the test font (DejaVu Serif): the cap height
+/// (the top of its H) of so many units per em, and its A–V kerning in units
+/// and in mm at a 50 mm cap height, as the font and pfcam's reader give them.
+#[test]
+fn shapes_doc_font_figures_are_the_test_fonts() {
+    use pfcam::geometry::font::{self, FontFile};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/DejaVuSerif.ttf");
+    let file = FontFile::open(&path).expect("DejaVu Serif");
+    let face = file.face().expect("face");
+    let cap = font::cap_height(&face, "DejaVu Serif").expect("cap height");
+    let a = font::glyph(&face, "DejaVu Serif", 'A').expect("A");
+    let v = font::glyph(&face, "DejaVu Serif", 'V').expect("V");
+    let kern = font::kerning(&face, a.id, v.id);
+    let shift = -kern * 50.0 / cap;
+    eprintln!(
+        "cap height {cap} of {} units per em; A–V kerning {kern} units, {shift:.3} mm at 50 mm",
+        face.units_per_em()
+    );
+    let doc = doc_figures::read("docs/shapes.md");
+    let what = "docs/shapes.md, DejaVu Serif";
+    let stated = doc_figures::numbers_after(&doc, "docs/shapes.md", "the top of its H,", 2);
+    doc_figures::assert_figure(what, &stated[0], cap);
+    doc_figures::assert_figure(what, &stated[1], f64::from(face.units_per_em()));
+    let stated = doc_figures::number_after(&doc, "docs/shapes.md", "Serif kerns A–V by");
+    doc_figures::assert_figure(what, &stated, kern);
+    let stated = doc_figures::number_after(&doc, "docs/shapes.md", "which moves the V");
+    doc_figures::assert_figure(what, &stated, shift);
+}
+
+#[allow(dead_code)] // its `main` is the example's command line
+#[path = "../examples/segment_errors.rs"]
+mod segment_errors;
+
+/// docs/shapes.md's table of `Segment`'s measured errors: the first five rows
+/// are what `examples/segment_errors.rs` measures now.
+#[test]
+fn shapes_doc_segment_errors_are_measured() {
+    let e = segment_errors::measure();
+    let doc = doc_figures::read("docs/shapes.md");
+    let row = |first: &str, n: usize| {
+        let cells = doc_figures::table_row(&doc, "docs/shapes.md", first);
+        doc_figures::numbers_after(cells[2], "docs/shapes.md", "", n)
+    };
+    let what = "docs/shapes.md, Segment's errors";
+    for (rows, values) in [
+        (
+            row("`Segment::deriv`, `deriv2`", 2),
+            vec![e.deriv, e.deriv2],
+        ),
+        (row("`Segment::length`", 1), vec![e.length]),
+        (row("`t_at_length`", 1), vec![e.t_at_length]),
+        (row("`Segment::area_term` (cubic)", 1), vec![e.area_term]),
+        (
+            row("`flatten_into(tol)`", 2),
+            vec![e.flatten.0, e.flatten.1],
+        ),
+    ] {
+        for (figure, value) in rows.iter().zip(values) {
+            doc_figures::assert_figure(what, figure, value);
+        }
+    }
 }

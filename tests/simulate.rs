@@ -7,6 +7,8 @@ use pfcam::simulate::{simulate, JobFacts, Kind, PartModel, SimOptions, Simulatio
 use std::path::Path;
 use std::process::Command;
 
+mod doc_figures;
+
 const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
 
 fn data(name: &str) -> String {
@@ -374,6 +376,8 @@ fn samples() -> Vec<std::path::PathBuf> {
 /// measure of the file, and its figures are printed (`--nocapture`).
 #[test]
 fn every_sample_simulates() {
+    let doc = doc_figures::read("docs/simulate.md");
+    let mut bench_sample = false;
     for p in samples() {
         let text = std::fs::read_to_string(&p).unwrap();
         let s = run(&text, &SimOptions::default());
@@ -401,7 +405,69 @@ fn every_sample_simulates() {
             r.deep_slots,
             100.0 * r.air_share
         );
+        // docs/simulate.md's table of the shipped samples: this sample's row.
+        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        let cells = doc_figures::table_row(&doc, "docs/simulate.md", &name);
+        let what = format!("docs/simulate.md's row of {name}");
+        let rapids = doc_figures::numbers_after(cells[1], "docs/simulate.md", "", 3);
+        assert_eq!(
+            rapids[0].parse().ok(),
+            Some(r.rapids_into_material),
+            "{what}"
+        );
+        doc_figures::assert_figure(&what, &rapids[1], r.worst_rapid.value);
+        assert_eq!(rapids[2].parse().ok(), Some(r.worst_rapid.line), "{what}");
+        assert_eq!(cells[2].parse().ok(), Some(r.straight_plunges), "{what}");
+        assert_eq!(cells[6].parse().ok(), Some(r.deep_slots), "{what}");
+        for (cell, value) in [
+            (cells[3], r.steepest_entry_deg.value),
+            (cells[4], r.max_axial.value),
+            (cells[5], 100.0 * r.max_radial.value),
+            (cells[7], 100.0 * r.air_share),
+        ] {
+            let figure = doc_figures::first_number(cell).expect(cell);
+            doc_figures::assert_figure(&what, &figure, value);
+        }
+        // The notes under the table name the lines of some of these figures.
+        let line_after = |marker: &str| -> usize {
+            let n = doc_figures::number_after(&doc, "docs/simulate.md", marker);
+            n.parse().expect(marker)
+        };
+        let notes: &[(&str, usize)] = match name.as_str() {
+            "letter-a.nc" => &[("(`letter-a.nc` line", r.max_axial.line)],
+            "mfs-sign.nc" => &[
+                ("on `mfs-sign.nc`** (line", r.steepest_entry_deg.line),
+                ("axial 1.188 mm on `mfs-sign.nc`** (line", r.max_axial.line),
+            ],
+            "q-mould.nc" => &[("on `q-mould.nc`, line", r.steepest_entry_deg.line)],
+            _ => &[],
+        };
+        for &(marker, line) in notes {
+            assert_eq!(line_after(marker), line, "docs/simulate.md: `{marker}`");
+        }
+        if name == "mfs-mould.nc" {
+            // The simulation bench's sample: its lines, feed and cells.
+            let stated = doc_figures::numbers_after(
+                &doc,
+                "docs/simulate.md",
+                "`cargo bench --bench pfcam -- \"simulate mfs-mould\"` (",
+                5,
+            );
+            let what = "docs/simulate.md, the simulation bench's sample";
+            assert_eq!(
+                stated[0].parse().ok(),
+                Some(text.lines().count()),
+                "{what}: lines"
+            );
+            doc_figures::assert_figure(what, &stated[1], r.feed_length / 1000.0);
+            let [nx, ny] = r.stock.cells;
+            assert_eq!(stated[2].parse().ok(), Some(nx), "{what}: cells across");
+            assert_eq!(stated[3].parse().ok(), Some(ny), "{what}: cells up");
+            doc_figures::assert_figure(what, &stated[4], (nx * ny) as f64 / 1e6);
+            bench_sample = true;
+        }
     }
+    assert!(bench_sample, "gcode-samples/mfs-mould.nc was simulated");
 }
 
 /// Issue 11's "done when": no golden sample rapids into material or plunges
@@ -536,6 +602,8 @@ fn every_job_sample_is_within_its_part() {
         .collect();
     jobs.sort();
     assert!(jobs.len() >= 7, "{jobs:?}");
+    let doc = doc_figures::read("docs/simulate.md");
+    let mut quoted_runs = 0;
     for path in jobs {
         let job = pfcam::job::load_job(&path).unwrap();
         let sample = root.join(format!("gcode-samples/{}.nc", job.name));
@@ -550,7 +618,27 @@ fn every_job_sample_is_within_its_part() {
         );
         let r = &s.report;
         let p = r.part.as_ref().expect("compared with the part");
-        eprintln!("{}: {}", job.name, r.summary().lines().last().unwrap_or(""));
+        let summary = r.summary().lines().last().unwrap_or("").to_string();
+        eprintln!("{}: {summary}", job.name);
+        // docs/simulate.md quotes what `pfcam simulate SAMPLE --job JOB` prints
+        // for the bosses and cavities, and the profiles' max gouge.
+        let command = format!(
+            "$ pfcam simulate gcode-samples/{0}.nc --job jobs/{0}.toml",
+            job.name
+        );
+        if let Some(at) = doc.find(&command) {
+            let quoted = doc[at..].lines().nth(1).expect("the command's output");
+            assert_eq!(quoted, summary, "docs/simulate.md, `{command}`");
+            quoted_runs += 1;
+        } else if job.operation.kind == pfcam::job::OperationKind::Profile {
+            let stated = doc_figures::number_after(
+                &doc,
+                "docs/simulate.md",
+                "`letter-s`, `mfs-profile`): max gouge",
+            );
+            let what = format!("docs/simulate.md, the profiles' max gouge ({})", job.name);
+            doc_figures::assert_figure(&what, &stated, p.max_gouge.value);
+        }
         assert!(r.is_clean(), "{}: {:?}", job.name, r.findings.first());
         assert_eq!(p.gouged_cells, 0, "{}: {p:?}", job.name);
         assert!(
@@ -560,4 +648,8 @@ fn every_job_sample_is_within_its_part() {
         );
         assert_eq!(p.left_share_over_scallop, 0.0, "{}: {p:?}", job.name);
     }
+    assert_eq!(
+        quoted_runs, 4,
+        "docs/simulate.md quotes the four bosses and cavities"
+    );
 }

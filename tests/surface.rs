@@ -15,6 +15,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod doc_figures;
+
 const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
 
 /// Every job in jobs/ of the given kind (the directory is read, not listed here).
@@ -237,7 +239,126 @@ fn check_job(job: &Job) -> (usize, f64) {
         err,
         s.crossings.len()
     );
+    let figures = Figures {
+        triangles: mesh.triangles.len(),
+        vertices: mesh.vertices.len(),
+        stl_bytes: bytes.len(),
+        levels: s.levels.len(),
+        grid: [s.grid.0, s.grid.1],
+        crossings: [moved, s.crossings.len()],
+        worst_off_level: worst,
+        volume: v,
+        volume_error: err,
+        raised,
+    };
+    figures.check_the_docs(name);
     (mesh.triangles.len(), err)
+}
+
+/// What `check_job` measures of a job's mesh, for the docs that quote it.
+struct Figures {
+    triangles: usize,
+    vertices: usize,
+    stl_bytes: usize,
+    levels: usize,
+    grid: [usize; 2],
+    /// Crossings moved off their level by more than 1e-9, of all crossings.
+    crossings: [usize; 2],
+    worst_off_level: f64,
+    volume: f64,
+    volume_error: f64,
+    raised: f64,
+}
+
+impl Figures {
+    /// README.md and docs/method.md §9 ("The modelled surface") quote
+    /// mfs-sign's mesh, q-sign's volume and the letter I's: the figures
+    /// there are this job's (`cargo test --release --test surface --
+    /// --nocapture` prints them).
+    fn check_the_docs(&self, name: &str) {
+        let method = doc_figures::read("docs/method.md");
+        let surface = doc_figures::after(&method, "docs/method.md", "### The modelled surface");
+        let count = |marker: &str, n: usize| -> Vec<usize> {
+            doc_figures::numbers_after(surface, "docs/method.md", marker, n)
+                .iter()
+                .map(|f| f.parse().expect(f))
+                .collect()
+        };
+        let figure = |what: &str, marker: &str, value: f64| {
+            let stated = doc_figures::number_after(surface, "docs/method.md", marker);
+            doc_figures::assert_figure(
+                &format!("docs/method.md §9, {name}'s {what}"),
+                &stated,
+                value,
+            );
+        };
+        match name {
+            "mfs-sign" => {
+                let readme = doc_figures::read("README.md");
+                let stated = doc_figures::numbers_after(&readme, "README.md", "For mfs-sign:", 2);
+                let what = "README.md, mfs-sign's STL";
+                assert_eq!(stated[0].parse().ok(), Some(self.triangles), "{what}");
+                doc_figures::assert_figure(what, &stated[1], self.stl_bytes as f64 / 1e6);
+                let levels = doc_figures::numbers_after(
+                    surface,
+                    "docs/method.md",
+                    "1/16 of the range apart in s:",
+                    1,
+                );
+                assert_eq!(levels[0].parse().ok(), Some(self.levels), "{name}: levels");
+                assert_eq!(
+                    count("On mfs-sign (0.4 mm grid,", 2),
+                    self.grid,
+                    "{name}: grid"
+                );
+                assert_eq!(
+                    count("this gives", 2),
+                    [self.triangles, self.vertices],
+                    "{name}: mesh"
+                );
+                assert_eq!(
+                    count("On mfs-sign this moves", 2),
+                    self.crossings,
+                    "{name}: crossings"
+                );
+                figure(
+                    "crossings off their level",
+                    "crossings; |u − s_k| ≤",
+                    self.worst_off_level,
+                );
+                figure("volume", "The enclosed volume,", self.volume);
+                let stated =
+                    doc_figures::numbers_after(surface, "docs/method.md", "on a 0.2 mm grid to", 2);
+                doc_figures::assert_figure(
+                    "docs/method.md §9, mfs-sign's volume error",
+                    &stated[0],
+                    self.volume_error,
+                );
+                doc_figures::assert_figure(
+                    "docs/method.md §9, mfs-sign's raised part",
+                    &stated[1],
+                    self.raised,
+                );
+            }
+            "q-sign" | "mfs-mould" => {
+                let marker = if name == "q-sign" {
+                    "(q-sign:"
+                } else {
+                    "the mould, mfs-mould:"
+                };
+                let stated = doc_figures::numbers_after(surface, "docs/method.md", marker, 2);
+                let what = format!("docs/method.md §9, {name}'s volume error and raised part");
+                doc_figures::assert_figure(&what, &stated[0], self.volume_error);
+                doc_figures::assert_figure(&what, &stated[1], self.raised);
+            }
+            "i-boss" => figure(
+                "volume error",
+                "with a linear profile is off by",
+                self.volume_error,
+            ),
+            _ => {}
+        }
+    }
 }
 
 #[test]

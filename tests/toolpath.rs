@@ -7,6 +7,8 @@ use pfcam::job::{parse_job, Direction, Job};
 use pfcam::pipeline::{self, Plan};
 use pfcam::toolpath::{gouge, Move, Section, Toolpath, Vec3};
 
+mod doc_figures;
+
 fn job(text: &str, height: f64) -> Job {
     let toml = format!(
         r#"
@@ -129,6 +131,8 @@ fn check_hausdorff(text: &str) -> f64 {
     let j = job(text, 50.0);
     let p = plan(&j);
     let oracles = oracle_offsets(&p.shape, j.tool.diameter / 2.0);
+    let doc = doc_figures::read("docs/method.md");
+    let table = doc_figures::after(&doc, "docs/method.md", "### Accuracy, measured");
     let mut worst: f64 = 0.0;
     for lp in &p.loops {
         let h = hausdorff(&lp.points, &oracles);
@@ -138,6 +142,11 @@ fn check_hausdorff(text: &str) -> f64 {
             lp.points.len()
         );
         worst = worst.max(h);
+        // docs/method.md §7 quotes every loop's distance: `I`: outside I, ...
+        let label = lp.label.rsplit_once(" (").map_or(&*lp.label, |(l, _)| l);
+        let row = format!("`{text}`: {label}");
+        let cells = doc_figures::table_row(table, "docs/method.md", &row);
+        doc_figures::assert_figure(&format!("docs/method.md, {row}"), cells[1], h);
     }
     assert!(!p.loops.is_empty());
     assert!(worst <= 0.02, "{text}: Hausdorff {worst} mm > 0.02 mm");
