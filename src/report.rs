@@ -33,7 +33,8 @@ pub struct LevelMoves {
 
 /// The levels of a run as its G-code header and report count them: for a boss
 /// or cavity one per planned level (a section of the tool path each, whatever
-/// depths its links and ramps pass through); for a profile, [`split_levels`].
+/// depths its links and ramps pass through), shallowest first; for a profile,
+/// [`split_levels`].
 pub fn run_levels(out: &RunOutput) -> Vec<LevelMoves> {
     if out.levels.is_empty() || out.levels.len() != out.toolpath.sections.len() {
         return split_levels(&out.toolpath);
@@ -50,6 +51,9 @@ pub fn run_levels(out: &RunOutput) -> Vec<LevelMoves> {
         }
         levels.push(LevelMoves { z: sec.z, moves });
     }
+    // Shallowest first, as split_levels gives them: the sections are in
+    // cutting order (levels::cutting_order), which is not z order.
+    levels.sort_by(|a, b| b.z.total_cmp(&a.z));
     levels
 }
 

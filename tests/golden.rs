@@ -380,3 +380,38 @@ fn readme_jobs_table_levels_match_the_samples() {
     }
     assert_eq!(checked, 4);
 }
+
+/// The README's jobs table gives each shipped job's machining time: the
+/// estimate in its sample's header, word for word (the letters share a row,
+/// in the order i, a, s).
+#[test]
+fn readme_jobs_table_times_are_the_headers() {
+    let readme = doc_figures::read("README.md");
+    let rows: [(&str, &[&str]); 6] = [
+        ("`jobs/mfs-sign.toml`", &["mfs-sign"]),
+        ("`jobs/mfs-mould.toml`", &["mfs-mould"]),
+        ("`jobs/mfs-profile.toml`", &["mfs-profile"]),
+        (
+            "`jobs/letter-i.toml`, `letter-a.toml`, `letter-s.toml`",
+            &["letter-i", "letter-a", "letter-s"],
+        ),
+        ("`jobs/q-sign.toml`", &["q-sign"]),
+        ("`jobs/q-mould.toml`", &["q-mould"]),
+    ];
+    for (key, names) in rows {
+        let cells = doc_figures::table_row(&readme, "README.md", key);
+        let want: Vec<String> = names
+            .iter()
+            .map(|name| {
+                let sample = fs::read_to_string(sample_path(name)).expect("sample");
+                sample
+                    .lines()
+                    .find_map(|l| l.strip_prefix("(estimated time: "))
+                    .and_then(|l| l.split(',').next())
+                    .unwrap_or_else(|| panic!("an estimated time in {name}.nc"))
+                    .to_string()
+            })
+            .collect();
+        assert_eq!(cells[3], want.join(", "), "README.md's {key} row");
+    }
+}

@@ -688,4 +688,13 @@ fn preview_header_and_report_count_the_same_levels() {
         "{name}: {header}"
     );
     assert_eq!(svg.matches("data-z=").count(), header, "{name}");
+    // And the same depths, shallowest to deepest, though the sections are in
+    // cutting order (a slab's stepdown level first).
+    let range = g
+        .lines()
+        .find_map(|l| l.strip_prefix("(levels: "))
+        .and_then(|l| l.split_once(", z "))
+        .and_then(|(_, r)| r.strip_suffix(')'))
+        .expect("a z range");
+    assert!(svg.contains(&format!("z {range} mm")), "{name}: z {range}");
 }

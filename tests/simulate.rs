@@ -435,10 +435,7 @@ fn every_sample_simulates() {
         };
         let notes: &[(&str, usize)] = match name.as_str() {
             "letter-a.nc" => &[("(`letter-a.nc` line", r.max_axial.line)],
-            "mfs-sign.nc" => &[
-                ("on `mfs-sign.nc`** (line", r.steepest_entry_deg.line),
-                ("axial 1.188 mm on `mfs-sign.nc`** (line", r.max_axial.line),
-            ],
+            "mfs-sign.nc" => &[("on `mfs-sign.nc`** (line", r.steepest_entry_deg.line)],
             "q-mould.nc" => &[("on `q-mould.nc`, line", r.steepest_entry_deg.line)],
             _ => &[],
         };
