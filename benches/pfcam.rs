@@ -202,41 +202,47 @@ fn job(path: &str) -> pfcam::job::Job {
     pfcam::job::load_job(std::path::Path::new(path)).unwrap()
 }
 
-fn profiles(c: &mut Criterion) {
-    let mut g = c.benchmark_group("jobs");
+/// Every shipped job end to end (`pipeline::run` and the G-code text; `pfcam
+/// run` also simulates the program, draws the preview and writes the files).
+/// Before timing, each job's machining time against its lower bound (issue
+/// 14: within 1.5× is the aim) is printed once, from the same run's report.
+fn shipped(c: &mut Criterion) {
+    let mut paths: Vec<std::path::PathBuf> = std::fs::read_dir("jobs")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    let mut g = c.benchmark_group("shipped");
     g.sample_size(10);
-    let i = job("jobs/letter-i.toml");
-    g.bench_function(
-        "letter I profile (solve + trace + gouge check), tol 0.01 mm",
-        |b| b.iter(|| pfcam::pipeline::run(black_box(&i), &mut |_| {}).unwrap()),
-    );
-    let mfs = job("jobs/mfs-profile.toml");
-    g.bench_function(
-        "mfs-profile end to end (solve + trace + arcs + check + G-code)",
-        |b| {
+    for path in paths {
+        let j = pfcam::job::load_job(&path).unwrap();
+        let out = pfcam::pipeline::run(&j, &mut |_| {}).unwrap();
+        let p = pfcam::report::ProgramReport::new(&j, &out);
+        eprintln!(
+            "{}: estimated {:.0} s, lower bound {:.0} s (clearing {:.0} s, outlines {:.0} s), ratio {:.2}",
+            j.name,
+            p.time_s,
+            p.lower_bound_s,
+            p.lower_bound_clearing_s,
+            p.lower_bound_outline_s,
+            p.time_over_bound.unwrap_or(f64::NAN)
+        );
+        g.bench_function(format!("{} end to end", j.name), |b| {
             b.iter(|| {
-                let out = pfcam::pipeline::run(black_box(&mfs), &mut |_| {}).unwrap();
-                pfcam::gcode::write_gcode(&out.toolpath, &mfs).unwrap()
+                let out = pfcam::pipeline::run(black_box(&j), &mut |_| {}).unwrap();
+                pfcam::gcode::write_gcode(&out.toolpath, &j).unwrap()
             })
-        },
-    );
+        });
+    }
     g.finish();
 }
 
-fn levels(c: &mut Criterion) {
+/// The letter I's mould: the cavity code on a small job, quick enough to run
+/// often.
+fn letter_i_mould(c: &mut Criterion) {
     let mut g = c.benchmark_group("levels");
     g.sample_size(10);
-    let sign = job("jobs/mfs-sign.toml");
-    g.bench_function(
-        "mfs-sign boss, 55 levels, end to end (solves, levels, tracing, clearing, arcs, check)",
-        |b| b.iter(|| pfcam::pipeline::run(black_box(&sign), &mut |_| {}).unwrap()),
-    );
-    // The full mould: about 40 s a run, so this group alone takes about 8 minutes.
-    let full_mould = job("jobs/mfs-mould.toml");
-    g.bench_function("mfs-mould cavity, 26 levels, end to end", |b| {
-        b.iter(|| pfcam::pipeline::run(black_box(&full_mould), &mut |_| {}).unwrap())
-    });
-    // The same code on the letter I's mould, quick enough to run often.
     let mould = pfcam::job::parse_job(
         "[shape]\ntext = \"I\"\nheight = 50.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n\
          [operation]\nkind = \"cavity\"\ndepth = 2.0\nmax_scallop = 2.0\n[profile]\nkind = \"linear\"\ns_bottom = 0.97\n",
@@ -273,26 +279,19 @@ fn surface(c: &mut Criterion) {
     g.finish();
 }
 
-/// The paper's letter Q: its composition alone (eight MFS solves), and the whole
-/// boss and mould jobs.
+/// The paper's letter Q: its composition alone (eight MFS solves; the whole
+/// boss and mould jobs are in `shipped`).
 fn letter_q(c: &mut Criterion) {
     let sign = job("jobs/q-sign.toml");
-    let mould = job("jobs/q-mould.toml");
     let mut g = c.benchmark_group("letter Q");
     g.sample_size(10);
     g.bench_function("Q from its parts (m1..m6, Q: eight solves)", |b| {
         b.iter(|| pfcam::pipeline::job_shape(black_box(&sign), &mut |_| {}).unwrap())
     });
-    g.bench_function("q-sign boss, end to end", |b| {
-        b.iter(|| pfcam::pipeline::run(black_box(&sign), &mut |_| {}).unwrap())
-    });
-    g.bench_function("q-mould cavity, end to end", |b| {
-        b.iter(|| pfcam::pipeline::run(black_box(&mould), &mut |_| {}).unwrap())
-    });
     g.finish();
 }
 
-/// `pfcam simulate` of the largest sample (124 260 lines, 250 m of feed) at 0.1 mm cells.
+/// `pfcam simulate` of the largest sample (docs/simulate.md gives its size) at 0.1 mm cells.
 fn simulate_mould(c: &mut Criterion) {
     let text = std::fs::read_to_string("gcode-samples/mfs-mould.nc").unwrap();
     let opts = pfcam::simulate::SimOptions::default();
@@ -310,8 +309,8 @@ criterion_group!(
     letter_i_solve,
     field_eval,
     field_eval_fast,
-    profiles,
-    levels,
+    shipped,
+    letter_i_mould,
     surface,
     letter_q
 );
