@@ -2,6 +2,7 @@
 //! estimates and the gouge check all read (see `docs/architecture.md`).
 
 pub mod arcfit;
+pub mod band;
 pub mod bays;
 pub mod entry;
 pub mod gouge;

@@ -590,6 +590,14 @@ pub fn cavity_paths<N: Navigator + Sync>(
     if band.is_some_and(|d| d <= r.min(p.stepover)) {
         return Ok((wall_paths(finish, label), 0.0));
     }
+    // A wider band, up to a few stepovers: offset rings, then the walls; the
+    // offsets cover the band by construction, and `pfcam simulate` measures it.
+    if let Some(d) = band.filter(|&d| d <= super::band::MAX_BAND_STEPOVERS * p.stepover) {
+        if let Some(mut paths) = super::band::band_rings(part, &index, nav, p, label, d)? {
+            paths.extend(wall_paths(finish, label));
+            return Ok((paths, 0.0));
+        }
+    }
     // A second loop one stepover in from the wall, again by the rolling disk: it
     // keeps the wall's sharp corners, which the equipotential rings would cut by
     // more than the tool can bridge (the measured uncut area sat in those corners).
