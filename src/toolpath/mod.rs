@@ -4,6 +4,7 @@
 pub mod arcfit;
 pub mod band;
 pub mod bays;
+pub mod dropcutter;
 pub mod entry;
 pub mod gouge;
 pub mod profile;

@@ -1,0 +1,1499 @@
+//! Drop-cutter: the lowest tool-tip z at which a flat, ball or bull-nose end
+//! mill, its axis vertical through (x, y), touches a triangle mesh without any
+//! triangle entering it. The finisher of the modelled surface S2
+//! ([`crate::surface`]) drops the tool along its passes with this.
+//!
+//! # The tool and the problem
+//!
+//! A [`Cutter`] has radius r and corner radius rc (flat 0, ball r, bull
+//! 0 < rc < r); write a = r − rc for the radius of its flat bottom. Its lower
+//! surface, at horizontal distance ρ from the axis and with the tip at z = t, is
+//! t + p(ρ) where
+//!
+//! ```text
+//! p(ρ) = 0                                 for 0 ≤ ρ ≤ a,
+//! p(ρ) = rc − sqrt(rc² − (ρ − a)²)          for a < ρ ≤ r,
+//! ```
+//!
+//! and above p(r) = rc the tool is a vertical cylinder of radius r (the shank is
+//! taken as infinitely long). The solid tool is {(q, z) : |q − c| ≤ r,
+//! z ≥ t + p(|q − c|)}, c the axis. A part point P = (q, z) with ρ = |q − c| ≤ r
+//! is outside the tool's interior iff z ≤ t + p(ρ), i.e. t ≥ z − p(ρ); points with
+//! ρ > r never meet the tool. So the drop against a point set S is
+//!
+//! ```text
+//! t*(S) = max { f(P) : P ∈ S, ρ(P) ≤ r },   f(P) = z(P) − p(ρ(P)),
+//! ```
+//!
+//! and against a mesh it is the max over its triangles. Every number returned
+//! here is f at a point of a triangle inside the footprint (up to rounding), so
+//! it never lies above the true drop; the three tests below together reach the
+//! maximum, so it never lies below it (by more than the stated tolerances).
+//!
+//! # Why vertices, edges and the facet suffice
+//!
+//! p is convex and non-decreasing on [0, r] (p = 0 up to a, then p′ = s/√(rc² − s²)
+//! ≥ 0, p″ = rc²/(rc² − s²)^{3/2} > 0 with s = ρ − a, and p′(a⁺) = 0), and
+//! q ↦ |q − c| is convex, so q ↦ p(|q − c|) is convex (a convex non-decreasing
+//! function of a convex function). On a triangle T, z is affine in q, so f is
+//! **concave** on the XY projection of T ∩ disc. Its maximum over the compact
+//! convex set T ∩ D (D the footprint disc) lies
+//!
+//! * in the relative interior of T: then it is the maximum of f over the whole
+//!   plane of T within D (concavity), found by the **facet test**;
+//! * on an edge of T (relative interior or end): the **edge test** maximises f
+//!   along the edge clipped to D; the ends of the edge are its vertices, the
+//!   **vertex test**.
+//!
+//! A maximum in the interior of T on the footprint's rim ρ = r needs no test of
+//! its own: for rc > 0, p′(ρ) → ∞ as ρ → r, so moving inwards raises f and the
+//! rim is never a maximum unless T is vertical, and then T's interior points lie
+//! below points of its edges on the same vertical; for rc = 0, f = z is affine
+//! and its maximum over D is the facet test's rim point.
+//!
+//! # The three tests (derivations)
+//!
+//! Coordinates are taken relative to the axis (c = 0) for the whole test, so a
+//! translation of mesh and axis together changes nothing but rounding.
+//!
+//! **Vertex** V with ρ = |V_xy| ≤ r: t = V_z − p(ρ).
+//!
+//! **Facet.** Let n = (n_x, n_y, n_z) be T's unit normal with n_z > 0 and
+//! n_xy = |(n_x, n_y)| = sin θ, n_z = cos θ, θ the tilt. In XY the plane is
+//! z = z₀ + g·q with g = −(n_x, n_y)/n_z, |g| = tan θ. A critical point of the
+//! concave f = z₀ + g·q − p(|q|) has g = p′(ρ) q/ρ: q points along
+//! u = −(n_x, n_y)/n_xy (uphill) and p′(ρ) = tan θ, i.e. with s = ρ − a,
+//! s/√(rc² − s²) = tan θ, s = rc sin θ. So the contact is at
+//!
+//! ```text
+//! ρ_c = a + rc·n_xy,   q_c = ρ_c·u,   p(ρ_c) = rc − rc·cos θ = rc·(1 − n_z),
+//! ```
+//!
+//! which is also the point of the tool's surface whose normal is parallel to n.
+//! (Flat: ρ_c = r, the rim point uphill, the maximum of an affine function over
+//! the disc. Horizontal facet, n_xy = 0: any point of the flat bottom; q_c = 0.)
+//! The contact's height Z on the plane n·X = n·V₀ is
+//! Z = (n·V₀ − n_x q_x − n_y q_y)/n_z and the tip is t = Z − rc·(1 − n_z).
+//! For a ball (a = 0, rc = r) on a plane tilted by θ whose height under the axis
+//! is z_c this gives t = z_c + ρ_c tan θ − r(1 − cos θ) = z_c + r(1/cos θ − 1).
+//! The contact counts only if X = (q_c, Z) lies in T, tested in 3-D with the
+//! signs of n·((V_{i+1} − V_i) × (X − V_i)), so the test does not degrade on
+//! steep facets whose XY projection is a sliver.
+//!
+//! **Edge** A→B, d = B − A, L = |d_xy| > 0 (a vertical edge's best point is its
+//! top vertex), ê = d_xy/L. The XY line lies at distance δ = |A_xy × ê| from the
+//! axis; σ = q·ê measures along it from the foot of the perpendicular, so
+//! ρ(σ) = √(δ² + σ²), and the edge is σ ∈ [σ_A, σ_A + L], σ_A = A_xy·ê. Inside
+//! the footprint |σ| ≤ H = √(r² − δ²) (no contact if δ > r). Along the edge
+//! z(σ) = A_z + m(σ − σ_A), m = d_z/L, and h(σ) = z(σ) − p(ρ(σ)) is concave
+//! (as above) on the clipped interval [lo, hi] = [max(−H, σ_A), min(H, σ_A + L)].
+//!
+//! * Flat: h = z is affine; its maximum is at lo or hi, whichever is higher.
+//! * Ball: in the vertical plane of the edge the sphere's section is a circle of
+//!   radius H about the foot, h(σ) = z(σ) − r + √(H² − σ²); h′ = 0 at
+//!   σ* = H·m/√(1 + m²) = H·d_z/|d|, where √(H² − σ*²) = H·L/|d|, so
+//!   t = z(σ*) + H·L/|d| − r. If σ* is outside [lo, hi], concavity puts the
+//!   maximum at the nearer end.
+//! * Bull nose: the torus–line contact is a quartic with no simple closed form.
+//!   h′(σ) = m − p′(ρ)·σ/ρ is non-increasing (concavity), so the maximum is found
+//!   by bisection on the sign of h′ over [lo, hi]. For a bracket [l, u] with
+//!   h′(l) ≥ 0 ≥ h′(u), concavity gives max h ≤ h(l) + h′(l)(u − l) and
+//!   max h ≤ h(u) − h′(u)(u − l), so the error of max(h(l), h(u)) is at most
+//!   min(h′(l), −h′(u))·(u − l); bisection stops when that is ≤ [`EDGE_TOL`]
+//!   (1e-10 mm) or after [`EDGE_MAX_ITER`] steps. Near the optimum the bound
+//!   shrinks as h″·(u − l)², so ~35–45 steps are typical.
+//!
+//! # Numerics
+//!
+//! * Facets with n_z < [`NZ_MIN`] (1e-12) skip the facet test: there the
+//!   contact's height is 1/n_z times as sensitive as the axis position, an
+//!   ill-conditioned question. Such a triangle's XY projection is a strip
+//!   narrower than diam(T)·n_z/n_xy < diam(T)·1e-12, so it is dropped on as
+//!   the vertical triangle it is within that distance of (whose drop the edge
+//!   and vertex tests give exactly: on a vertical triangle the highest point
+//!   above any XY point is on its boundary).
+//! * Slivers with |N| ≤ [`SLIVER`]·ℓ² (N the cross product of the two shorter
+//!   edges, ℓ the longest edge) skip the facet test: their normal's direction
+//!   is only known to ~1e-16/[`SLIVER`] rad, and every point of them lies within
+//!   |N|/ℓ ≤ 1e-8·ℓ of the longest edge, so they are dropped on as the segment
+//!   they nearly are.
+//! * The drop against a mesh first runs the vertex tests of every triangle
+//!   near the axis, then the edge and facet tests of those whose highest corner
+//!   minus p(distance from the axis to their bounding box) still exceeds the
+//!   best tip so far; each edge is skipped the same way. These bounds only
+//!   skip what cannot win, so the result is the max over all triangles (to
+//!   rounding: a shared edge tested from its two triangles may differ by an
+//!   ulp).
+
+use rayon::prelude::*;
+
+/// Most grid cells a [`MeshIndex`] builds; a finer requested cell is coarsened
+/// (doubled) until the grid fits. 4 million cells is 32 MB of offsets, and the
+/// finisher's cells (about the tool radius) over any stock a GRBL machine can
+/// hold stay far below it.
+pub const MAX_CELLS: usize = 4_000_000;
+
+/// Bucket entries allowed per triangle on average (plus [`MAX_CELLS`]) before
+/// the cell is coarsened: a cell much smaller than the triangles would store
+/// each triangle many times and gain nothing.
+pub const MAX_ENTRIES_PER_TRIANGLE: usize = 16;
+
+/// Bull-nose edge test: the bisection stops once the error of the value it
+/// returns is proven ≤ this, mm (well below the 1e-7 mm the finisher needs, and
+/// above what rounding lets a bracket of width ~1e-15·r prove).
+pub const EDGE_TOL: f64 = 1e-10;
+
+/// Bull-nose edge test: most bisection steps. The bracket starts ≤ 2r wide and
+/// halves each step; 100 steps take it below 2r·1e-30, past double precision,
+/// so the cap only guards against a NaN or an unforeseen stall.
+pub const EDGE_MAX_ITER: u32 = 100;
+
+/// Facets whose unit normal has n_z below this are treated as vertical (no
+/// facet test, see the module notes).
+pub const NZ_MIN: f64 = 1e-12;
+
+/// Relative area below which a triangle is a sliver and gets no facet test:
+/// |N| ≤ SLIVER·ℓ². 1e-8 = √(machine ε) balances the two errors (normal
+/// direction ~ε/SLIVER, distance to the longest edge ≤ SLIVER·ℓ).
+pub const SLIVER: f64 = 1e-8;
+
+/// A cutter: radius r and corner radius rc (flat 0, ball r, bull 0 < rc < r),
+/// mm.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cutter {
+    /// Radius r, mm (half the diameter).
+    pub radius: f64,
+    /// Corner radius rc, mm: 0 for a flat end mill, r for a ball, in between for
+    /// a bull nose.
+    pub corner: f64,
+}
+
+/// A cutter that cannot be used.
+#[derive(Debug, thiserror::Error, Clone, Copy, PartialEq)]
+pub enum CutterError {
+    /// The radius is not finite and positive.
+    #[error("cutter radius {0} mm must be finite and > 0")]
+    Radius(f64),
+    /// The corner radius is outside [0, radius].
+    #[error("cutter corner radius {corner} mm must lie in [0, {radius}] (the radius)")]
+    Corner {
+        /// corner radius, mm
+        corner: f64,
+        /// radius, mm
+        radius: f64,
+    },
+}
+
+/// One contact: the tip height and the part point that sets it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// Tool-tip z, mm.
+    pub tip: f64,
+    /// The touching point, mm (absolute from [`Cutter::drop_contact`]; relative
+    /// to the axis in XY inside the tests of one triangle).
+    pub point: [f64; 3],
+}
+
+impl Contact {
+    #[cfg(test)]
+    fn better(a: Option<Contact>, b: Option<Contact>) -> Option<Contact> {
+        match (a, b) {
+            (Some(x), Some(y)) => Some(if y.tip > x.tip { y } else { x }),
+            (x, None) => x,
+            (None, y) => y,
+        }
+    }
+}
+
+impl Cutter {
+    /// A flat end mill of radius `r`.
+    pub fn flat(r: f64) -> Cutter {
+        Cutter {
+            radius: r,
+            corner: 0.0,
+        }
+    }
+
+    /// A ball end mill of radius `r`.
+    pub fn ball(r: f64) -> Cutter {
+        Cutter {
+            radius: r,
+            corner: r,
+        }
+    }
+
+    /// A bull-nose end mill of radius `r` and corner radius `rc`.
+    pub fn bull(r: f64, rc: f64) -> Cutter {
+        Cutter {
+            radius: r,
+            corner: rc,
+        }
+    }
+
+    /// Ok when r is finite and > 0 and 0 ≤ rc ≤ r. [`Cutter::drop`] returns
+    /// None for a cutter that fails this; check it where the cutter is read.
+    pub fn validate(&self) -> Result<(), CutterError> {
+        let (r, rc) = (self.radius, self.corner);
+        if !(r.is_finite() && r > 0.0) {
+            return Err(CutterError::Radius(r));
+        }
+        if !(rc.is_finite() && (0.0..=r).contains(&rc)) {
+            return Err(CutterError::Corner {
+                corner: rc,
+                radius: r,
+            });
+        }
+        Ok(())
+    }
+
+    /// Radius of the flat bottom, a = r − rc, mm.
+    fn flat_radius(&self) -> f64 {
+        self.radius - self.corner
+    }
+
+    /// Height p(ρ) of the lower surface above the tip at horizontal distance ρ
+    /// from the axis, mm (see the module notes); ρ beyond r gives p(r) = rc.
+    pub fn profile(&self, rho: f64) -> f64 {
+        let rc = self.corner;
+        let s = rho - self.flat_radius();
+        if s <= 0.0 {
+            return 0.0;
+        }
+        let s = s.min(rc);
+        // (rc − s)(rc + s) rather than rc² − s²: no cancellation near the rim.
+        rc - ((rc - s) * (rc + s)).sqrt()
+    }
+
+    /// The lowest tip z at which the cutter, axis vertical through (x, y),
+    /// touches a triangle of `mesh` without any triangle entering it; None when
+    /// no triangle lies under the cutter's footprint (or the cutter fails
+    /// [`Cutter::validate`], or x or y is not finite).
+    pub fn drop(&self, mesh: &MeshIndex, x: f64, y: f64) -> Option<f64> {
+        self.drop_contact(mesh, x, y).map(|k| k.tip)
+    }
+
+    /// [`Cutter::drop`] with the part point that sets the tip (one of them
+    /// when several touch at once).
+    pub fn drop_contact(&self, mesh: &MeshIndex, x: f64, y: f64) -> Option<Contact> {
+        if self.validate().is_err() || !(x.is_finite() && y.is_finite()) {
+            return None;
+        }
+        let r = self.radius;
+        let range = mesh.cell_range(x - r, x + r, y - r, y + r)?;
+        let c = [x, y];
+        // Pass 1: vertices only, cheap, to get a good lower bound that lets
+        // pass 2 skip most triangles (a triangle can give at most
+        // z_max − p(distance from the axis to its bounding box)).
+        let mut best: Option<Contact> = None;
+        let mut floor = f64::NEG_INFINITY;
+        mesh.for_each_near(c, r, range, |t, _| {
+            for v in t.relative(c) {
+                if let Some(k) = self.vertex(v) {
+                    if k.tip > floor {
+                        floor = k.tip;
+                        best = Some(k);
+                    }
+                }
+            }
+        });
+        // Pass 2: edges and facets of the triangles that may still beat it.
+        mesh.for_each_near(c, r, range, |t, box_dist| {
+            if t.zmax - self.profile(box_dist) <= floor {
+                return;
+            }
+            if let Some(k) = self.triangle_edges_facet(t, &t.relative(c), floor) {
+                if k.tip > floor {
+                    floor = k.tip;
+                    best = Some(k);
+                }
+            }
+        });
+        best.map(|k| Contact {
+            tip: k.tip,
+            point: [k.point[0] + x, k.point[1] + y, k.point[2]],
+        })
+    }
+
+    /// [`Cutter::drop`] at every point, in parallel (rayon), in order.
+    pub fn drop_many(&self, mesh: &MeshIndex, pts: &[(f64, f64)]) -> Vec<Option<f64>> {
+        pts.par_iter()
+            .map(|&(x, y)| self.drop(mesh, x, y))
+            .collect()
+    }
+
+    /// The drop against one triangle (all three tests), with the contact;
+    /// None when the triangle does not meet the footprint.
+    #[cfg(test)]
+    fn drop_triangle(&self, t: &Tri, x: f64, y: f64) -> Option<Contact> {
+        let rel = t.relative([x, y]);
+        let mut best = None;
+        for v in &rel {
+            best = Contact::better(best, self.vertex(*v));
+        }
+        let floor = best.map_or(f64::NEG_INFINITY, |k| k.tip);
+        Contact::better(best, self.triangle_edges_facet(t, &rel, floor))
+    }
+
+    /// Edge and facet tests of one triangle (vertices relative to the axis),
+    /// skipping any edge that cannot give more than `floor`.
+    fn triangle_edges_facet(&self, t: &Tri, rel: &[[f64; 3]; 3], floor: f64) -> Option<Contact> {
+        let mut best = self.facet(t, rel);
+        let mut floor = best.map_or(floor, |k| k.tip.max(floor));
+        for i in 0..3 {
+            if let Some(k) = self.edge(rel[i], rel[(i + 1) % 3], floor) {
+                if k.tip > floor {
+                    floor = k.tip;
+                    best = Some(k);
+                }
+            }
+        }
+        best
+    }
+
+    /// Vertex test: t = V_z − p(ρ) when ρ ≤ r.
+    fn vertex(&self, v: [f64; 3]) -> Option<Contact> {
+        let rho = v[0].hypot(v[1]);
+        (rho <= self.radius).then(|| Contact {
+            tip: v[2] - self.profile(rho),
+            point: v,
+        })
+    }
+
+    /// Facet test (module notes): the contact at ρ_c = a + rc·n_xy uphill, if it
+    /// lies inside the triangle.
+    fn facet(&self, t: &Tri, rel: &[[f64; 3]; 3]) -> Option<Contact> {
+        if t.orient == 0.0 {
+            return None;
+        }
+        let [nx, ny, nz] = t.n;
+        let nxy = nx.hypot(ny);
+        let (qx, qy) = if nxy > 0.0 {
+            let rho = self.flat_radius() + self.corner * nxy;
+            (-nx / nxy * rho, -ny / nxy * rho)
+        } else {
+            (0.0, 0.0)
+        };
+        let v0 = rel[0];
+        let zc = (nx * v0[0] + ny * v0[1] + nz * v0[2] - nx * qx - ny * qy) / nz;
+        let x = [qx, qy, zc];
+        for i in 0..3 {
+            let a = rel[i];
+            let b = rel[(i + 1) % 3];
+            let e = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let w = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
+            let side = t.orient * dot(t.n, cross(e, w));
+            if side.is_nan() || side < 0.0 {
+                return None;
+            }
+        }
+        let tip = zc - self.corner * (1.0 - nz);
+        tip.is_finite().then_some(Contact { tip, point: x })
+    }
+
+    /// Edge test (module notes) for the segment a→b relative to the axis;
+    /// None when it misses the footprint, is vertical, or cannot give more than
+    /// `floor`.
+    fn edge(&self, a: [f64; 3], b: [f64; 3], floor: f64) -> Option<Contact> {
+        let s = EdgeFrame::new(a, b, self.radius)?;
+        // Upper bound for pruning: the higher clipped end's z minus p at the
+        // smallest ρ on [lo, hi] (p is non-decreasing).
+        let sig_min = 0.0f64.clamp(s.lo, s.hi);
+        let bound = s.z(s.lo).max(s.z(s.hi)) - self.profile(s.delta.hypot(sig_min));
+        if bound <= floor {
+            return None;
+        }
+        if self.corner == 0.0 {
+            let sig = if s.dz > 0.0 { s.hi } else { s.lo };
+            return Some(s.contact(sig, s.z(sig)));
+        }
+        if self.flat_radius() == 0.0 {
+            let d3 = s.len.hypot(s.dz);
+            let sig = s.h * s.dz / d3;
+            if (s.lo..=s.hi).contains(&sig) {
+                let tip = s.z(sig) + s.h * s.len / d3 - self.radius;
+                return Some(Contact {
+                    tip,
+                    point: s.point(sig),
+                });
+            }
+            let sig = sig.clamp(s.lo, s.hi);
+            return Some(s.contact(sig, self.h(&s, sig)));
+        }
+        Some(self.edge_search(&s).0)
+    }
+
+    /// h(σ) = z(σ) − p(ρ(σ)) along an edge.
+    fn h(&self, s: &EdgeFrame, sig: f64) -> f64 {
+        s.z(sig) - self.profile(s.delta.hypot(sig))
+    }
+
+    /// h′(σ) = m − p′(ρ)·σ/ρ along an edge (±∞ on the rim).
+    fn dh(&self, s: &EdgeFrame, sig: f64) -> f64 {
+        let m = s.dz / s.len;
+        let rho = s.delta.hypot(sig);
+        let rc = self.corner;
+        let q = rho - self.flat_radius();
+        if q <= 0.0 {
+            return m;
+        }
+        let q = q.min(rc);
+        let w = ((rc - q) * (rc + q)).sqrt();
+        if w > 0.0 {
+            m - q * sig / (rho * w)
+        } else if sig > 0.0 {
+            f64::NEG_INFINITY
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Bisection on the sign of h′ over [lo, hi] (module notes). Returns the
+    /// contact, the proven bound on its error (mm) and the steps taken.
+    fn edge_search(&self, s: &EdgeFrame) -> (Contact, f64, u32) {
+        let (mut l, mut u) = (s.lo, s.hi);
+        let mut dl = self.dh(s, l);
+        let mut du = self.dh(s, u);
+        if dl.is_nan() || dl <= 0.0 {
+            return (s.contact(l, self.h(s, l)), 0.0, 0);
+        }
+        if du.is_nan() || du >= 0.0 {
+            return (s.contact(u, self.h(s, u)), 0.0, 0);
+        }
+        let mut steps = 0;
+        let mut bound = dl.min(-du) * (u - l);
+        while bound > EDGE_TOL && steps < EDGE_MAX_ITER {
+            let mid = 0.5 * (l + u);
+            if mid <= l || mid >= u {
+                break;
+            }
+            steps += 1;
+            let dm = self.dh(s, mid);
+            if dm > 0.0 {
+                (l, dl) = (mid, dm);
+            } else if dm < 0.0 {
+                (u, du) = (mid, dm);
+            } else {
+                (l, u, dl, du) = (mid, mid, 0.0, 0.0);
+            }
+            bound = dl.min(-du) * (u - l);
+            if u == l {
+                bound = 0.0;
+            }
+        }
+        let (hl, hu) = (self.h(s, l), self.h(s, u));
+        let k = if hu > hl {
+            s.contact(u, hu)
+        } else {
+            s.contact(l, hl)
+        };
+        (k, bound, steps)
+    }
+}
+
+/// An edge in the frame of the edge test: σ along the XY line from the foot of
+/// the perpendicular from the axis, the clipped interval [lo, hi].
+#[derive(Clone, Copy, Debug)]
+struct EdgeFrame {
+    a: [f64; 3],
+    d: [f64; 3],
+    /// |d_xy|
+    len: f64,
+    dz: f64,
+    /// σ of a
+    sig_a: f64,
+    /// XY distance from the axis to the line
+    delta: f64,
+    /// half chord √(r² − δ²)
+    h: f64,
+    lo: f64,
+    hi: f64,
+}
+
+impl EdgeFrame {
+    fn new(a: [f64; 3], b: [f64; 3], r: f64) -> Option<EdgeFrame> {
+        let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let len = d[0].hypot(d[1]);
+        if len.is_nan() || len <= 0.0 {
+            return None;
+        }
+        let (ex, ey) = (d[0] / len, d[1] / len);
+        let delta = (a[0] * ey - a[1] * ex).abs();
+        if delta.is_nan() || delta > r {
+            return None;
+        }
+        let h = ((r - delta) * (r + delta)).sqrt();
+        let sig_a = a[0] * ex + a[1] * ey;
+        let lo = (-h).max(sig_a);
+        let hi = h.min(sig_a + len);
+        if lo.is_nan() || hi.is_nan() || lo > hi {
+            return None;
+        }
+        Some(EdgeFrame {
+            a,
+            d,
+            len,
+            dz: d[2],
+            sig_a,
+            delta,
+            h,
+            lo,
+            hi,
+        })
+    }
+
+    /// Edge parameter t ∈ [0, 1] of σ.
+    fn t(&self, sig: f64) -> f64 {
+        ((sig - self.sig_a) / self.len).clamp(0.0, 1.0)
+    }
+
+    fn z(&self, sig: f64) -> f64 {
+        self.a[2] + self.t(sig) * self.dz
+    }
+
+    fn point(&self, sig: f64) -> [f64; 3] {
+        let t = self.t(sig);
+        [
+            self.a[0] + t * self.d[0],
+            self.a[1] + t * self.d[1],
+            self.a[2] + t * self.d[2],
+        ]
+    }
+
+    fn contact(&self, sig: f64, tip: f64) -> Contact {
+        Contact {
+            tip,
+            point: self.point(sig),
+        }
+    }
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// A triangle with what every drop needs precomputed.
+#[derive(Clone, Copy, Debug)]
+struct Tri {
+    v: [[f64; 3]; 3],
+    lo: [f64; 2],
+    hi: [f64; 2],
+    zmax: f64,
+    /// Unit normal with n_z ≥ 0.
+    n: [f64; 3],
+    /// +1 or −1: the sign of n·((v1 − v0) × (v2 − v0)); 0 when the triangle
+    /// gets no facet test (near vertical or a sliver).
+    orient: f64,
+    /// Grid cell of `lo`.
+    cell0: [u32; 2],
+}
+
+impl Tri {
+    fn new(v: [[f64; 3]; 3]) -> Tri {
+        let lo = [
+            v[0][0].min(v[1][0]).min(v[2][0]),
+            v[0][1].min(v[1][1]).min(v[2][1]),
+        ];
+        let hi = [
+            v[0][0].max(v[1][0]).max(v[2][0]),
+            v[0][1].max(v[1][1]).max(v[2][1]),
+        ];
+        let zmax = v[0][2].max(v[1][2]).max(v[2][2]);
+        // The cross product of the two edges at the corner opposite the longest
+        // edge (the two shorter ones) is the most accurate.
+        let e = [sub(v[2], v[1]), sub(v[0], v[2]), sub(v[1], v[0])];
+        let l2 = e.map(|x| dot(x, x));
+        let k = if l2[0] >= l2[1] && l2[0] >= l2[2] {
+            0
+        } else if l2[1] >= l2[2] {
+            1
+        } else {
+            2
+        };
+        // Edge e[k] is opposite corner k; the cross product at corner k has
+        // the same orientation as (v1 − v0) × (v2 − v0).
+        let a = sub(v[(k + 1) % 3], v[k]);
+        let b = sub(v[(k + 2) % 3], v[k]);
+        let nn = cross(a, b);
+        let len = dot(nn, nn).sqrt();
+        let lmax2 = l2[k];
+        let mut n = [0.0, 0.0, 1.0];
+        let mut orient = 0.0;
+        if len > SLIVER * lmax2 && len.is_finite() {
+            let s = if nn[2] < 0.0 { -1.0 } else { 1.0 };
+            n = nn.map(|c| s * c / len);
+            if n[2] >= NZ_MIN {
+                orient = s;
+            }
+        }
+        Tri {
+            v,
+            lo,
+            hi,
+            zmax,
+            n,
+            orient,
+            cell0: [0, 0],
+        }
+    }
+
+    /// Corners with XY relative to `c`.
+    fn relative(&self, c: [f64; 2]) -> [[f64; 3]; 3] {
+        self.v.map(|p| [p[0] - c[0], p[1] - c[1], p[2]])
+    }
+}
+
+/// Triangles bucketed on a uniform XY grid (each triangle in every cell its XY
+/// bounding box, grown by nothing, touches).
+#[derive(Clone, Debug)]
+pub struct MeshIndex {
+    tris: Vec<Tri>,
+    /// Lower-left corner of the grid, mm.
+    origin: [f64; 2],
+    /// Cell side, mm.
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    /// Cell k = j·nx + i holds `items[start[k]..start[k + 1]]`.
+    start: Vec<usize>,
+    items: Vec<u32>,
+    skipped: usize,
+}
+
+impl MeshIndex {
+    /// Bucket `triangles` on a grid of square cells of side `cell` mm. A cell
+    /// that is not finite and positive is replaced by twice the mean XY extent
+    /// of the triangles (so a triangle touches about four cells); any cell is
+    /// doubled until the grid has at most [`MAX_CELLS`] cells and at most
+    /// [`MAX_ENTRIES_PER_TRIANGLE`]·n + [`MAX_CELLS`] entries. For drops a cell
+    /// near the tool radius is a good choice. Triangles with a coordinate that
+    /// is not finite are left out and counted in [`MeshIndex::skipped`].
+    pub fn new(triangles: Vec<[[f64; 3]; 3]>, cell: f64) -> MeshIndex {
+        let total = triangles.len();
+        let mut tris: Vec<Tri> = triangles
+            .into_iter()
+            .filter(|t| t.iter().flatten().all(|c| c.is_finite()))
+            .map(Tri::new)
+            .collect();
+        let skipped = total - tris.len();
+        let mut index = MeshIndex {
+            tris: Vec::new(),
+            origin: [0.0, 0.0],
+            cell: 1.0,
+            nx: 0,
+            ny: 0,
+            start: vec![0],
+            items: Vec::new(),
+            skipped,
+        };
+        if tris.is_empty() {
+            return index;
+        }
+        let mut lo = [f64::INFINITY; 2];
+        let mut hi = [f64::NEG_INFINITY; 2];
+        let mut extent = 0.0;
+        for t in &tris {
+            for k in 0..2 {
+                lo[k] = lo[k].min(t.lo[k]);
+                hi[k] = hi[k].max(t.hi[k]);
+            }
+            extent += (t.hi[0] - t.lo[0]).max(t.hi[1] - t.lo[1]);
+        }
+        let span = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let mut cell = if cell.is_finite() && cell > 0.0 {
+            cell
+        } else {
+            2.0 * extent / tris.len() as f64
+        };
+        // A mesh of points (all extents 0) or a cell below rounding of the
+        // coordinates: take a cell the grid can still resolve.
+        let floor =
+            (span * 1e-9).max(lo.iter().chain(&hi).fold(0.0f64, |m, c| m.max(c.abs())) * 1e-12);
+        cell = cell.max(floor).max(f64::MIN_POSITIVE);
+        let cells_along = |w: f64, cell: f64| (w / cell).floor() + 1.0;
+        let n = tris.len();
+        let entry_cap = MAX_ENTRIES_PER_TRIANGLE * n + MAX_CELLS;
+        loop {
+            let nxf = cells_along(hi[0] - lo[0], cell);
+            let nyf = cells_along(hi[1] - lo[1], cell);
+            if nxf * nyf > MAX_CELLS as f64 {
+                cell *= 2.0;
+                continue;
+            }
+            index.origin = lo;
+            index.cell = cell;
+            index.nx = nxf as usize;
+            index.ny = nyf as usize;
+            let entries: usize = tris
+                .iter()
+                .map(|t| {
+                    let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
+                    let (j0, j1) = (index.cell_y(t.lo[1]), index.cell_y(t.hi[1]));
+                    (i1 - i0 + 1) * (j1 - j0 + 1)
+                })
+                .sum();
+            if entries <= entry_cap || (index.nx == 1 && index.ny == 1) {
+                break;
+            }
+            cell *= 2.0;
+        }
+        // Counting sort into the cells.
+        let mut count = vec![0usize; index.nx * index.ny + 1];
+        for t in &mut tris {
+            let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
+            let (j0, j1) = (index.cell_y(t.lo[1]), index.cell_y(t.hi[1]));
+            // nx, ny ≤ MAX_CELLS < 2³², so these fit.
+            t.cell0 = [i0 as u32, j0 as u32];
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    count[j * index.nx + i + 1] += 1;
+                }
+            }
+        }
+        for k in 1..count.len() {
+            count[k] += count[k - 1];
+        }
+        let mut fill = count.clone();
+        let mut items = vec![0u32; count[count.len() - 1]];
+        for (ti, t) in tris.iter().enumerate() {
+            let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
+            let (j0, j1) = (index.cell_y(t.lo[1]), index.cell_y(t.hi[1]));
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let k = j * index.nx + i;
+                    // More than 2³² triangles would not fit in memory anyway.
+                    items[fill[k]] = ti as u32;
+                    fill[k] += 1;
+                }
+            }
+        }
+        index.start = count;
+        index.items = items;
+        index.tris = tris;
+        index
+    }
+
+    /// Number of triangles indexed.
+    pub fn len(&self) -> usize {
+        self.tris.len()
+    }
+
+    /// True when no triangle was indexed.
+    pub fn is_empty(&self) -> bool {
+        self.tris.is_empty()
+    }
+
+    /// The cell side chosen, mm.
+    pub fn cell(&self) -> f64 {
+        self.cell
+    }
+
+    /// Triangles left out because a coordinate was not finite.
+    pub fn skipped(&self) -> usize {
+        self.skipped
+    }
+
+    fn cell_x(&self, x: f64) -> usize {
+        (((x - self.origin[0]) / self.cell).floor().max(0.0) as usize).min(self.nx - 1)
+    }
+
+    fn cell_y(&self, y: f64) -> usize {
+        (((y - self.origin[1]) / self.cell).floor().max(0.0) as usize).min(self.ny - 1)
+    }
+
+    /// The cells a box [x0, x1] × [y0, y1] touches, or None when it misses the
+    /// grid.
+    fn cell_range(
+        &self,
+        x0: f64,
+        x1: f64,
+        y0: f64,
+        y1: f64,
+    ) -> Option<(usize, usize, usize, usize)> {
+        if self.tris.is_empty() {
+            return None;
+        }
+        let gx1 = self.origin[0] + self.nx as f64 * self.cell;
+        let gy1 = self.origin[1] + self.ny as f64 * self.cell;
+        if x1 < self.origin[0] || y1 < self.origin[1] || x0 > gx1 || y0 > gy1 {
+            return None;
+        }
+        Some((
+            self.cell_x(x0),
+            self.cell_x(x1),
+            self.cell_y(y0),
+            self.cell_y(y1),
+        ))
+    }
+
+    /// Calls `f(triangle, distance from c to its bounding box)` once for every
+    /// triangle in the cells `range` whose bounding box comes within `r` of `c`.
+    /// A triangle in several cells is visited only in the first cell (in each
+    /// direction) that both it and the range cover.
+    fn for_each_near(
+        &self,
+        c: [f64; 2],
+        r: f64,
+        (i0, i1, j0, j1): (usize, usize, usize, usize),
+        mut f: impl FnMut(&Tri, f64),
+    ) {
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let k = j * self.nx + i;
+                for &ti in &self.items[self.start[k]..self.start[k + 1]] {
+                    let t = &self.tris[ti as usize];
+                    if (t.cell0[0] as usize).max(i0) != i || (t.cell0[1] as usize).max(j0) != j {
+                        continue;
+                    }
+                    let dx = (t.lo[0] - c[0]).max(c[0] - t.hi[0]).max(0.0);
+                    let dy = (t.lo[1] - c[1]).max(c[1] - t.hi[1]).max(0.0);
+                    let d = dx.hypot(dy);
+                    if d <= r {
+                        f(t, d);
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Fixed-seed generator (reproducible failures).
+    struct Rng(u64);
+    impl Rng {
+        fn f(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, a: f64, b: f64) -> f64 {
+            a + (b - a) * self.f()
+        }
+        fn unit3(&mut self) -> [f64; 3] {
+            loop {
+                let v = [
+                    self.range(-1.0, 1.0),
+                    self.range(-1.0, 1.0),
+                    self.range(-1.0, 1.0),
+                ];
+                let l = dot(v, v).sqrt();
+                if l > 0.1 && l <= 1.0 {
+                    return v.map(|c| c / l);
+                }
+            }
+        }
+    }
+
+    fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    }
+
+    fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+        a.map(|c| c * s)
+    }
+
+    fn lerp(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
+        add(a, scale(sub(b, a), t))
+    }
+
+    /// f(P) = z − p(ρ) when P is in the footprint.
+    fn f_at(c: &Cutter, p: [f64; 3], x: f64, y: f64) -> Option<f64> {
+        let rho = (p[0] - x).hypot(p[1] - y);
+        (rho <= c.radius).then(|| p[2] - c.profile(rho))
+    }
+
+    /// The brute-force oracle of one triangle: `lo` is the max of f over
+    /// samples (a barycentric grid of 2016 points plus 2000 points on each
+    /// edge), a drop no exact answer may be below; `up` is a proven upper
+    /// bound from the same grid's 3844 cells: on a cell, z ≤ its highest
+    /// corner and ρ ≥ (its nearest corner's ρ) − (its XY diameter), so
+    /// f ≤ z_max − p(that), p being non-decreasing. The gap up − lo is the
+    /// sampling density's bound.
+    fn oracle(c: &Cutter, t: [[f64; 3]; 3], x: f64, y: f64) -> (Option<f64>, Option<f64>) {
+        const N: usize = 62;
+        const E: usize = 2000;
+        let mut lo: Option<f64> = None;
+        let mut up: Option<f64> = None;
+        let take = |v: Option<f64>, m: &mut Option<f64>| {
+            if let Some(v) = v {
+                *m = Some(m.map_or(v, |w| w.max(v)));
+            }
+        };
+        let at = |i: usize, j: usize| {
+            let (u, v) = (i as f64 / N as f64, j as f64 / N as f64);
+            let w = 1.0 - u - v;
+            [0, 1, 2].map(|k| w * t[0][k] + u * t[1][k] + v * t[2][k])
+        };
+        for i in 0..=N {
+            for j in 0..=N - i {
+                take(f_at(c, at(i, j), x, y), &mut lo);
+            }
+        }
+        for k in 0..3 {
+            for s in 0..=E {
+                let p = lerp(t[k], t[(k + 1) % 3], s as f64 / E as f64);
+                take(f_at(c, p, x, y), &mut lo);
+            }
+        }
+        let mut cell = |p: [[f64; 3]; 3]| {
+            let rho = p.map(|q| (q[0] - x).hypot(q[1] - y));
+            let mut diam = 0.0f64;
+            for a in 0..3 {
+                let b = (a + 1) % 3;
+                diam = diam.max((p[a][0] - p[b][0]).hypot(p[a][1] - p[b][1]));
+            }
+            let near = rho[0].min(rho[1]).min(rho[2]) - diam * (1.0 + 1e-9) - 1e-12;
+            if near <= c.radius {
+                let zmax = p[0][2].max(p[1][2]).max(p[2][2]);
+                take(Some(zmax - c.profile(near.max(0.0))), &mut up);
+            }
+        };
+        for i in 0..N {
+            for j in 0..N - i {
+                cell([at(i, j), at(i + 1, j), at(i, j + 1)]);
+                if i + j + 1 < N {
+                    cell([at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+                }
+            }
+        }
+        (lo, up)
+    }
+
+    fn closest_on_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        let d = sub(b, a);
+        let dd = dot(d, d);
+        let t = if dd > 0.0 {
+            (dot(sub(p, a), d) / dd).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        lerp(a, b, t)
+    }
+
+    /// Distance from p to the triangle (3-D).
+    fn dist_to_triangle(p: [f64; 3], t: [[f64; 3]; 3]) -> f64 {
+        let mut best = f64::INFINITY;
+        for k in 0..3 {
+            let q = closest_on_segment(p, t[k], t[(k + 1) % 3]);
+            best = best.min(dot(sub(p, q), sub(p, q)).sqrt());
+        }
+        let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+        let nn = dot(n, n);
+        if nn > 0.0 {
+            let h = dot(sub(p, t[0]), n) / nn;
+            let q = sub(p, scale(n, h));
+            let inside =
+                (0..3).all(|k| dot(n, cross(sub(t[(k + 1) % 3], t[k]), sub(q, t[k]))) >= 0.0);
+            if inside {
+                best = best.min(h.abs() * nn.sqrt());
+            }
+        }
+        best
+    }
+
+    /// The contact is a point of the triangle within the footprint, and the
+    /// tip is f there: so the tip is not above the true drop. The tolerance
+    /// on f allows for p's steepness near the rim (a 1e-12 mm shift of ρ).
+    fn check_witness(c: &Cutter, t: [[f64; 3]; 3], x: f64, y: f64, k: Contact, what: &str) {
+        let p = [k.point[0] + x, k.point[1] + y, k.point[2]];
+        let d = dist_to_triangle(p, t);
+        assert!(d <= 1e-9, "{what}: contact {p:?} is {d:e} off the triangle");
+        let rho = (p[0] - x).hypot(p[1] - y);
+        assert!(rho <= c.radius + 1e-9, "{what}: contact at ρ {rho} > r");
+        let f = p[2] - c.profile(rho);
+        let sens = c.profile((rho + 1e-12).min(c.radius)) - c.profile((rho - 1e-12).max(0.0));
+        assert!(
+            (f - k.tip).abs() <= 1e-9 + sens,
+            "{what}: tip {} but f at the contact is {f}",
+            k.tip
+        );
+    }
+
+    fn random_cutter(g: &mut Rng, shape: usize) -> Cutter {
+        let r = g.range(0.5, 6.0);
+        match shape {
+            0 => Cutter::flat(r),
+            1 => Cutter::ball(r),
+            _ => Cutter::bull(r, r * g.range(0.05, 0.95)),
+        }
+    }
+
+    /// Random triangles of every kind near the origin, at the scale of `r`.
+    fn random_triangle(g: &mut Rng, kind: usize, r: f64) -> [[f64; 3]; 3] {
+        let pt = |g: &mut Rng, zs: f64| {
+            [
+                g.range(-1.6 * r, 1.6 * r),
+                g.range(-1.6 * r, 1.6 * r),
+                g.range(-zs, zs),
+            ]
+        };
+        match kind {
+            // general
+            0 => [pt(g, r), pt(g, r), pt(g, r)],
+            // horizontal
+            1 => {
+                let z = g.range(-r, r);
+                [0, 1, 2].map(|_| {
+                    let mut p = pt(g, 0.0);
+                    p[2] = z;
+                    p
+                })
+            }
+            // steep: slopes up to ~100
+            2 => [pt(g, 80.0 * r), pt(g, 80.0 * r), pt(g, 80.0 * r)],
+            // vertical-ish: a wall tilted by tan θ ∈ [100, 1000]
+            3 => {
+                let a = g.range(0.0, std::f64::consts::TAU);
+                let (e, nrm) = ([a.cos(), a.sin()], [-a.sin(), a.cos()]);
+                let cot = 1.0 / g.range(100.0, 1000.0);
+                let base = [g.range(-r, r), g.range(-r, r)];
+                let off = g.range(-r, r);
+                [0, 1, 2].map(|_| {
+                    let u = g.range(-1.5 * r, 1.5 * r);
+                    let w = g.range(-2.0 * r, 2.0 * r);
+                    let s = off + w * cot;
+                    [
+                        base[0] + u * e[0] + s * nrm[0],
+                        base[1] + u * e[1] + s * nrm[1],
+                        w,
+                    ]
+                })
+            }
+            // exactly vertical (n_z computes as 0)
+            4 => {
+                let (v0, v1) = (pt(g, r), pt(g, r));
+                let v2 = [v1[0], v1[1], v1[2] + g.range(-2.0 * r, 2.0 * r)];
+                [v0, v1, v2]
+            }
+            // cap sliver: three nearly collinear points
+            5 => {
+                let (v0, v1) = (pt(g, r), pt(g, r));
+                let l = dot(sub(v1, v0), sub(v1, v0)).sqrt();
+                let m = lerp(v0, v1, g.range(0.1, 0.9));
+                let v2 = add(m, scale(g.unit3(), l * 10f64.powf(g.range(-7.0, -3.0))));
+                [v0, v1, v2]
+            }
+            // needle: one very short edge
+            6 => {
+                let v0 = pt(g, r);
+                let v1 = add(v0, scale(g.unit3(), r * 10f64.powf(g.range(-7.0, -3.0))));
+                [v0, v1, pt(g, r)]
+            }
+            // degenerate: zero area (collinear, a repeated corner, a point)
+            _ => {
+                let (v0, v1) = (pt(g, r), pt(g, r));
+                match g.f() {
+                    q if q < 0.4 => [v0, v1, lerp(v0, v1, 0.5)],
+                    q if q < 0.8 => [v0, v1, v0],
+                    _ => [v0, v0, v0],
+                }
+            }
+        }
+    }
+
+    const KINDS: usize = 8;
+
+    #[test]
+    fn dropcutter_matches_the_brute_force_oracle_on_random_triangles() {
+        let mut g = Rng(0xd20c);
+        let mut cases = [0usize; 3];
+        let mut max_gap = [0.0f64; 3];
+        for case in 0..3000 {
+            let shape = case % 3;
+            let kind = (case / 3) % KINDS;
+            let c = random_cutter(&mut g, shape);
+            let r = c.radius;
+            let tri = random_triangle(&mut g, kind, r);
+            // A third of the axes near a corner, the rest anywhere nearby.
+            let (x, y) = if g.f() < 0.33 {
+                let v = tri[(g.f() * 3.0) as usize % 3];
+                (v[0] + g.range(-0.5, 0.5) * r, v[1] + g.range(-0.5, 0.5) * r)
+            } else {
+                (g.range(-2.0 * r, 2.0 * r), g.range(-2.0 * r, 2.0 * r))
+            };
+            let what = format!("case {case}: {c:?}, kind {kind}, {tri:?} at ({x}, {y})");
+            let t = Tri::new(tri);
+            let got = c.drop_triangle(&t, x, y);
+            let (lo, up) = oracle(&c, tri, x, y);
+            if let Some(lo) = lo {
+                let k = got.unwrap_or_else(|| panic!("{what}: None, oracle {lo}"));
+                assert!(k.tip >= lo - 1e-9, "{what}: {} gouges, oracle {lo}", k.tip);
+                let up = up.unwrap();
+                assert!(k.tip <= up + 1e-9, "{what}: {} above the bound {up}", k.tip);
+                check_witness(&c, tri, x, y, k, &what);
+                cases[shape] += 1;
+                if kind < 2 {
+                    max_gap[shape] = max_gap[shape].max((k.tip - lo) / r);
+                }
+            } else if let Some(k) = got {
+                // The footprint meets the triangle between the samples.
+                check_witness(&c, tri, x, y, k, &what);
+            }
+        }
+        // Most cases must have met the triangle, or the test tests little.
+        assert!(cases.iter().all(|&n| n > 500), "{cases:?}");
+        // On the general and horizontal triangles (slopes ≲ 1), sampled at
+        // ~r/20, the exact drop lies above the samples by a few hundredths of
+        // r at most (steep ones are sampled far more coarsely in z; for them
+        // `up` and the witness bound it from above).
+        assert!(max_gap.iter().all(|&g| g < 0.05), "{max_gap:?}");
+    }
+
+    /// Every bull-nose edge search proves its error ≤ EDGE_TOL within the
+    /// step cap, and the ball's closed form agrees with the search.
+    #[test]
+    fn dropcutter_edge_search_is_bounded_and_agrees_with_the_ball_closed_form() {
+        let mut g = Rng(0xed9e);
+        let mut searched = 0;
+        let mut max_steps = 0;
+        for case in 0..20000 {
+            let shape = 1 + case % 2;
+            let c = random_cutter(&mut g, shape);
+            let r = c.radius;
+            let tri = random_triangle(&mut g, [0, 2, 3][case % 3], r);
+            let (a, b) = (tri[0], tri[1]);
+            let Some(s) = EdgeFrame::new(a, b, r) else {
+                continue;
+            };
+            let (k, bound, steps) = c.edge_search(&s);
+            assert!(bound <= EDGE_TOL, "case {case}: bound {bound:e}");
+            assert!(steps <= EDGE_MAX_ITER);
+            max_steps = max_steps.max(steps);
+            searched += 1;
+            if shape == 1 {
+                let closed = c.edge(a, b, f64::NEG_INFINITY).unwrap();
+                assert!(
+                    (closed.tip - k.tip).abs() <= 1e-9,
+                    "case {case}: closed form {} search {}",
+                    closed.tip,
+                    k.tip
+                );
+            }
+        }
+        assert!(searched > 5000, "{searched}");
+        assert!(max_steps <= 80, "{max_steps}");
+    }
+
+    fn one(t: [[f64; 3]; 3]) -> MeshIndex {
+        MeshIndex::new(vec![t], 0.0)
+    }
+
+    const BIG: [[f64; 3]; 3] = [
+        [-100.0, -100.0, 3.0],
+        [100.0, -100.0, 3.0],
+        [0.0, 100.0, 3.0],
+    ];
+
+    #[test]
+    fn dropcutter_flat_cutter_on_a_horizontal_triangle() {
+        let m = one(BIG);
+        // Axis over the triangle: every shape rests on its flat part or tip.
+        for c in [Cutter::flat(2.0), Cutter::ball(2.0), Cutter::bull(2.0, 0.5)] {
+            assert_eq!(c.drop(&m, 0.0, 0.0), Some(3.0));
+            assert_eq!(c.drop(&m, 10.0, -99.0), Some(3.0));
+        }
+        // Axis outside the triangle, the flat bottom still over it: 3.
+        let flat = Cutter::flat(2.0);
+        for y in [-101.0, -101.5, -101.999] {
+            assert_eq!(flat.drop(&m, 0.0, y), Some(3.0));
+        }
+        let bull = Cutter::bull(2.0, 0.5);
+        assert_eq!(bull.drop(&m, 0.0, -101.0), Some(3.0));
+        // Ball with its axis 1 mm outside the edge y = −100: the edge touches
+        // at ρ = 1, tip = 3 − (2 − √3).
+        let ball = Cutter::ball(2.0);
+        let t = ball.drop(&m, 0.0, -101.0).unwrap();
+        assert!((t - (3.0 - 2.0 + 3f64.sqrt())).abs() < 1e-12, "{t}");
+        // Footprint clear of the triangle.
+        assert_eq!(flat.drop(&m, 0.0, -102.5), None);
+        assert_eq!(flat.drop(&m, 500.0, 0.0), None);
+    }
+
+    /// A plane z = x·tan θ: a ball of radius r centred at distance r from it
+    /// has its centre at x₀ tan θ + r/cos θ, so the tip is
+    /// x₀ tan θ + r(1/cos θ − 1); a bull nose touches at ρ = a + rc sin θ
+    /// uphill, tip x₀ tan θ + a tan θ + rc(1/cos θ − 1); a flat one at its rim,
+    /// x₀ tan θ + r tan θ.
+    #[test]
+    fn dropcutter_on_a_tilted_plane() {
+        for deg in [0.0f64, 5.0, 30.0, 45.0, 60.0, 85.0, 89.0] {
+            let th = deg.to_radians();
+            let tan = th.tan();
+            let plane = |x: f64, y: f64| [x, y, x * tan];
+            let m = one([plane(-50.0, -50.0), plane(50.0, -50.0), plane(0.0, 50.0)]);
+            let (r, rc) = (3.0, 1.0);
+            let a = r - rc;
+            for x0 in [-2.0, 0.0, 1.5] {
+                let z0 = x0 * tan;
+                let ball = Cutter::ball(r).drop(&m, x0, 0.5).unwrap();
+                let want = z0 + r * (1.0 / th.cos() - 1.0);
+                assert!(
+                    (ball - want).abs() < 1e-9 * (1.0 + tan),
+                    "{deg}°: {ball} vs {want}"
+                );
+                let bull = Cutter::bull(r, rc).drop(&m, x0, 0.5).unwrap();
+                let want = z0 + a * tan + rc * (1.0 / th.cos() - 1.0);
+                assert!(
+                    (bull - want).abs() < 1e-9 * (1.0 + tan),
+                    "{deg}°: {bull} vs {want}"
+                );
+                let flat = Cutter::flat(r).drop(&m, x0, 0.5).unwrap();
+                let want = z0 + r * tan;
+                assert!(
+                    (flat - want).abs() < 1e-9 * (1.0 + tan),
+                    "{deg}°: {flat} vs {want}"
+                );
+            }
+        }
+    }
+
+    /// A spike: the apex (0, 0, 5) with the triangle falling away at slope
+    /// ≥ 100, so the cutter rests on the apex: tip = 5 − p(ρ).
+    #[test]
+    fn dropcutter_over_a_single_vertex() {
+        let spike = [[0.0, 0.0, 5.0], [-3.0, 4.0, -500.0], [3.0, 4.0, -500.0]];
+        let point = [[1.0, 1.0, 5.0]; 3];
+        for c in [Cutter::flat(2.0), Cutter::ball(2.0), Cutter::bull(2.0, 0.7)] {
+            for d in [0.0, 0.3, 1.0, 1.3, 1.9, 2.0] {
+                let want = 5.0 - c.profile(d);
+                // From below the apex, so the spike falls away from the axis.
+                let got = c.drop(&one(spike), 0.0, -d).unwrap();
+                assert!((got - want).abs() < 1e-12, "{c:?} d {d}: {got} vs {want}");
+                // A triangle that is a single point.
+                let got = c.drop(&one(point), 1.0 + d * 0.6, 1.0 - d * 0.8).unwrap();
+                assert!((got - want).abs() < 1e-12, "{c:?} d {d}: {got} vs {want}");
+            }
+            assert_eq!(c.drop(&one(point), 1.0, 3.01), None);
+        }
+        // The ball's value by hand: 5 − 2 + √(4 − 1.3²).
+        let got = Cutter::ball(2.0).drop(&one(spike), 0.0, -1.3).unwrap();
+        assert!((got - (3.0 + (4.0f64 - 1.69).sqrt())).abs() < 1e-12);
+    }
+
+    /// A horizontal edge y = 1, z = 2, the triangle falling steeply away from
+    /// the axis: the cutter rests on the edge at ρ = 1, tip = 2 − p(1), ball
+    /// 2 − 3 + √(9 − 1).
+    #[test]
+    fn dropcutter_across_a_horizontal_edge() {
+        let t = [[-20.0, 1.0, 2.0], [20.0, 1.0, 2.0], [0.0, 3.0, -400.0]];
+        let m = one(t);
+        let ball = Cutter::ball(3.0);
+        for x in [-5.0, 0.0, 7.5] {
+            let got = ball.drop(&m, x, 0.0).unwrap();
+            assert!((got - (8f64.sqrt() - 1.0)).abs() < 1e-12, "{got}");
+            for c in [
+                Cutter::flat(3.0),
+                Cutter::bull(3.0, 2.5),
+                Cutter::bull(3.0, 1.0),
+            ] {
+                let got = c.drop(&m, x, 0.0).unwrap();
+                assert!((got - (2.0 - c.profile(1.0))).abs() < 1e-9, "{c:?}: {got}");
+            }
+        }
+    }
+
+    /// A hemisphere of radius R meshed on a latitude–longitude grid (corners on
+    /// the sphere). The mesh lies inside the sphere and outside the ball of
+    /// radius R_in (the smallest distance from the centre to a triangle's
+    /// plane), so the drop lies between the analytic offsets of those two
+    /// spheres: with the axis at distance d, F(R′) = R′ for d ≤ a, else
+    /// √((R′ + rc)² − (d − a)²) − rc (the corner circle's centre is R′ + rc
+    /// from the sphere's centre).
+    #[test]
+    fn dropcutter_on_a_meshed_hemisphere() {
+        let big_r = 10.0;
+        let (nt, np) = (90usize, 180usize);
+        let vtx = |i: usize, j: usize| {
+            let th = std::f64::consts::FRAC_PI_2 * i as f64 / nt as f64;
+            let ph = std::f64::consts::TAU * j as f64 / np as f64;
+            [
+                big_r * th.sin() * ph.cos(),
+                big_r * th.sin() * ph.sin(),
+                big_r * th.cos(),
+            ]
+        };
+        let mut tris = Vec::new();
+        for i in 0..nt {
+            for j in 0..np {
+                let (a, b) = (vtx(i, j), vtx(i, j + 1));
+                let (c, d) = (vtx(i + 1, j), vtx(i + 1, j + 1));
+                if i > 0 {
+                    tris.push([a, c, b]);
+                }
+                tris.push([b, c, d]);
+            }
+        }
+        let r_in = tris
+            .iter()
+            .map(|t| {
+                let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+                dot(n, t[0]).abs() / dot(n, n).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min);
+        assert!(big_r - r_in < 2e-3 && big_r - r_in > 0.0, "{r_in}");
+        let m = MeshIndex::new(tris, 1.0);
+        let mut g = Rng(0x5e5e);
+        for c in [
+            Cutter::flat(2.0),
+            Cutter::ball(3.175 / 2.0),
+            Cutter::bull(3.0, 1.0),
+        ] {
+            let a = c.flat_radius();
+            let offset = |rr: f64, d: f64| {
+                if d <= a {
+                    rr
+                } else {
+                    ((rr + c.corner).powi(2) - (d - a).powi(2)).sqrt() - c.corner
+                }
+            };
+            for k in 0..300 {
+                let d = big_r * k as f64 / 300.0;
+                let phi = g.range(0.0, std::f64::consts::TAU);
+                let got = c.drop(&m, d * phi.cos(), d * phi.sin()).unwrap();
+                let (lo, hi) = (offset(r_in, d), offset(big_r, d));
+                assert!(
+                    got >= lo - 1e-9 && got <= hi + 1e-9,
+                    "{c:?} d {d}: {got} not in [{lo}, {hi}]"
+                );
+            }
+        }
+    }
+
+    /// A small random terrain with slivers, walls and a few big triangles.
+    fn random_mesh(g: &mut Rng, n: usize) -> Vec<[[f64; 3]; 3]> {
+        let h = 1.0;
+        let z: Vec<f64> = (0..(n + 1) * (n + 1)).map(|_| g.range(-0.6, 0.6)).collect();
+        let p = |i: usize, j: usize| [i as f64 * h, j as f64 * h, z[j * (n + 1) + i]];
+        let mut tris = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+                tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+            }
+        }
+        for k in 0..40 {
+            let t = random_triangle(g, k % KINDS, 2.0);
+            tris.push(t.map(|v| [v[0] + n as f64 / 2.0, v[1] + n as f64 / 2.0, v[2]]));
+        }
+        tris
+    }
+
+    /// The grid (any cell size, coarsened or not) finds exactly what a scan
+    /// of every triangle finds: the same maximum, to rounding.
+    #[test]
+    fn dropcutter_mesh_index_equals_a_scan_of_every_triangle() {
+        let mut g = Rng(0x1dec);
+        let tris = random_mesh(&mut g, 16);
+        let all: Vec<Tri> = tris.iter().map(|&t| Tri::new(t)).collect();
+        for cell in [0.0, f64::NAN, 1e-9, 0.3, 1.0, 2.5, 1e6] {
+            let m = MeshIndex::new(tris.clone(), cell);
+            assert_eq!(m.len(), tris.len());
+            assert!(m.nx * m.ny <= MAX_CELLS);
+            for shape in 0..3 {
+                let c = random_cutter(&mut g, shape);
+                for _ in 0..300 {
+                    let (x, y) = (g.range(-3.0, 19.0), g.range(-3.0, 19.0));
+                    let scan = all
+                        .iter()
+                        .filter_map(|t| c.drop_triangle(t, x, y))
+                        .map(|k| k.tip)
+                        .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.max(t))));
+                    let got = c.drop(&m, x, y);
+                    // A shared edge, tested from both its triangles in opposite
+                    // directions, may round differently: equal to 1e-12.
+                    let same = match (got, scan) {
+                        (Some(a), Some(b)) => (a - b).abs() <= 1e-12,
+                        (a, b) => a == b,
+                    };
+                    assert!(
+                        same,
+                        "cell {cell}, {c:?} at ({x}, {y}): {got:?} vs {scan:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn dropcutter_translating_mesh_and_axis_translates_the_result() {
+        let mut g = Rng(0x7a45);
+        let tris = random_mesh(&mut g, 12);
+        let (tx, ty, tz) = (1234.5, -678.25, 42.125);
+        let moved: Vec<_> = tris
+            .iter()
+            .map(|t| t.map(|v| [v[0] + tx, v[1] + ty, v[2] + tz]))
+            .collect();
+        let (m0, m1) = (MeshIndex::new(tris, 1.5), MeshIndex::new(moved, 1.7));
+        for shape in 0..3 {
+            let c = random_cutter(&mut g, shape);
+            for _ in 0..500 {
+                let (x, y) = (g.range(-2.0, 14.0), g.range(-2.0, 14.0));
+                let a = c.drop(&m0, x, y);
+                let b = c.drop(&m1, x + tx, y + ty);
+                match (a, b) {
+                    (Some(a), Some(b)) => {
+                        assert!((b - tz - a).abs() < 1e-9, "{c:?} ({x}, {y}): {a} vs {b}")
+                    }
+                    (None, None) => {}
+                    _ => panic!("{c:?} ({x}, {y}): {a:?} vs {b:?}"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn dropcutter_drop_many_is_drop_at_each_point() {
+        let mut g = Rng(0x3a11);
+        let m = MeshIndex::new(random_mesh(&mut g, 10), 0.0);
+        let c = Cutter::bull(1.5, 0.5);
+        let pts: Vec<(f64, f64)> = (0..400)
+            .map(|_| (g.range(-3.0, 13.0), g.range(-3.0, 13.0)))
+            .collect();
+        let many = c.drop_many(&m, &pts);
+        assert_eq!(many.len(), pts.len());
+        for (k, &(x, y)) in pts.iter().enumerate() {
+            assert_eq!(many[k], c.drop(&m, x, y));
+        }
+        assert!(many.iter().any(|d| d.is_none()) && many.iter().any(|d| d.is_some()));
+    }
+
+    #[test]
+    fn dropcutter_bad_input_gives_none_not_a_panic() {
+        let mut tris = vec![BIG];
+        tris.push([[f64::NAN, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        let m = MeshIndex::new(tris, 1e-30);
+        assert_eq!((m.len(), m.skipped()), (1, 1));
+        assert!(m.nx * m.ny <= MAX_CELLS, "{} × {}", m.nx, m.ny);
+        for c in [
+            Cutter::flat(0.0),
+            Cutter::bull(1.0, 2.0),
+            Cutter::ball(f64::NAN),
+        ] {
+            assert!(c.validate().is_err());
+            assert_eq!(c.drop(&m, 0.0, 0.0), None);
+        }
+        let c = Cutter::ball(1.0);
+        assert!(c.validate().is_ok());
+        assert_eq!(c.drop(&m, f64::NAN, 0.0), None);
+        assert_eq!(c.drop(&m, 0.0, f64::INFINITY), None);
+        assert_eq!(c.drop(&MeshIndex::new(Vec::new(), 1.0), 0.0, 0.0), None);
+        // A huge radius over the whole mesh still works.
+        assert_eq!(Cutter::flat(1e12).drop(&m, 0.0, 0.0), Some(3.0));
+    }
+}
