@@ -130,6 +130,15 @@ impl Tool {
         })
     }
 
+    /// A flat end mill of `diameter` mm (not checked: for callers that have).
+    pub(crate) fn flat_unchecked(diameter: f64) -> Tool {
+        Tool {
+            diameter,
+            shape: ToolShape::Flat,
+            corner: 0.0,
+        }
+    }
+
     /// Diameter, mm.
     pub fn diameter(&self) -> f64 {
         self.diameter
