@@ -427,8 +427,13 @@ impl Walk {
             if deep >= SLOT_SHARE && cut.deep_mid <= SLOT_MIDDLE * w && cut.depth > sd + SLOT_SLACK
             {
                 self.deep_slots += 1;
+                let of = if w < r {
+                    "the tool's flat part"
+                } else {
+                    "the tool"
+                };
                 let msg = format!(
-                    "full-width cut ({:.0} % of the tool deeper than the stepdown {sd} mm), {:.3} mm deep",
+                    "full-width cut ({:.0} % of {of} deeper than the stepdown {sd} mm), {:.3} mm deep",
                     100.0 * deep,
                     cut.depth
                 );
