@@ -731,6 +731,13 @@ fn a_ball_cuts_the_round_groove_computed_by_hand() {
         r.max_radial
     );
     assert!(r.is_clean(), "{:?}", r.findings);
+    let doc = doc_figures::read("docs/simulate.md");
+    let stated = doc_figures::number_after(&doc, "docs/simulate.md", "a 4 mm ball 1 mm deep reads");
+    doc_figures::assert_figure(
+        "docs/simulate.md, the ball's radial engagement",
+        &stated,
+        100.0 * r.max_radial.value,
+    );
     // The flat end mill of the same diameter cuts the full 4 mm wide slot,
     // and nowhere less deep than the ball.
     let flat = run(
@@ -959,6 +966,17 @@ fn a_finish_program_after_the_rough_leaves_less_than_the_rough_alone() {
         "{:?}",
         fresh.report.max_axial
     );
+    let doc = doc_figures::read("docs/simulate.md");
+    let stated = doc_figures::number_after(
+        &doc,
+        "docs/simulate.md",
+        "alone on fresh stock its rows would cut",
+    );
+    doc_figures::assert_figure(
+        "docs/simulate.md, the finish alone",
+        &stated,
+        fresh.report.max_axial.value,
+    );
     assert!(
         b.report.max_axial.value <= 0.5 + 1e-12,
         "{:?}",
@@ -1177,4 +1195,26 @@ fn a_ball_along_a_helix_stays_within_the_chord_tolerance() {
     }
     assert!(ball.map.min() < -1.49);
     eprintln!("helix: the ball's cells lie within bounds at most {worst:.4} mm apart");
+}
+
+/// docs/simulate.md's example of two programs is what the command prints.
+#[test]
+fn the_docs_example_of_two_programs_is_what_the_cli_prints() {
+    let doc = doc_figures::read("docs/simulate.md");
+    let command =
+        "pfcam simulate tests/data/simulate/pocket.rough.nc tests/data/simulate/pocket.finish.nc";
+    let quoted = doc_figures::after(&doc, "docs/simulate.md", &format!("$ {command}\n"));
+    let quoted = &quoted[quoted.find('\n').unwrap() + 1..];
+    let quoted = &quoted[..quoted.find("```").expect("the block's end")];
+    let out = Command::new(PFCAM)
+        .args(command.split(' ').skip(1))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout),
+        quoted,
+        "docs/simulate.md, `{command}`"
+    );
 }
