@@ -1218,3 +1218,57 @@ fn the_docs_example_of_two_programs_is_what_the_cli_prints() {
         "docs/simulate.md, `{command}`"
     );
 }
+
+/// The walk leaves out cells of a piece's start disk that the piece cannot
+/// lower (all of it for a flat end mill, the half behind it for a curved
+/// end) when the piece goes on from where the last ended without
+/// descending. Cut as separate programs the moves skip nothing: the stock
+/// is the same, for every shape.
+#[test]
+fn skipping_the_start_disk_changes_no_cell() {
+    let pts = [
+        [5.0, 5.0, -1.0],
+        [15.0, 5.0, -1.0],
+        [15.0, 8.0, -1.0],
+        [5.0, 12.0, -0.5],
+        [8.0, 12.0, -0.5],
+        [8.05, 12.02, -0.5],
+        [8.1, 12.0, -0.45],
+        [12.0, 15.0, -1.2],
+        [18.0, 10.0, -0.3],
+        [18.0, 10.0, 0.2],
+        [18.0, 10.0, -0.8],
+        [18.03, 10.0, -0.8],
+        [11.0, 21.0, -0.2],
+    ];
+    let p = |q: [f64; 3]| format!("X{} Y{} Z{}", q[0], q[1], q[2]);
+    let mut whole = format!("G21 G90\nG0 {}\n", p(pts[0]));
+    let mut parts = Vec::new();
+    for w in pts.windows(2) {
+        whole += &format!("G1 {} F300\n", p(w[1]));
+        parts.push(format!("G21 G90\nG0 {}\nG1 {} F300\n", p(w[0]), p(w[1])));
+    }
+    let named: Vec<(&str, &str)> = parts.iter().map(|t| ("part", t.as_str())).collect();
+    for (shape, corner) in [
+        (ToolShape::Flat, None),
+        (ToolShape::Ball, None),
+        (ToolShape::Bull, Some(0.8)),
+    ] {
+        let o = SimOptions {
+            tool_shape: Some(shape),
+            corner_radius: corner,
+            ..opts(3.0)
+        };
+        let a = run(&whole, &o);
+        let b = simulate_programs(&named, &o).unwrap();
+        let differ = a
+            .map
+            .h
+            .iter()
+            .zip(&b.map.h)
+            .filter(|(x, y)| (*x - *y).abs() > 1e-12)
+            .count();
+        assert_eq!(differ, 0, "{shape:?}: cells at different heights");
+        assert!(a.map.min() < -1.19);
+    }
+}

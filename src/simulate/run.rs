@@ -233,15 +233,23 @@ impl Band<'_> {
         for (m, mv) in moves.iter().enumerate() {
             let mut cut = MoveCut::default();
             for s in mv.pieces(chord_tol) {
-                // A piece of a flat end mill that starts where the last one
-                // ended and does not descend cannot lower the cells within r
-                // of its start (the last piece left them at or below its start
-                // z, and z(t) is not lower): only the rest of its sweep is
-                // visited. Not so for a curved end: moving on brings the
-                // lower middle of the tool over cells its rim just passed.
-                let skip_start = flat && last_end == Some(s.a) && s.b[2] >= s.a[2];
+                // A piece that starts where the last one ended and does not
+                // descend cannot lower the cells within r of its start that
+                // it moves away from: the last piece left each at or below
+                // z(0) + p(ρ(0)), and z(t) is not lower, nor ρ(t) smaller
+                // behind the start. For a flat end mill (p = 0) that is the
+                // whole start disk, left out of the rows' ranges; a curved
+                // end moving on brings its lower middle over the cells ahead
+                // of its start, so only the half behind is skipped, cell by
+                // cell.
+                let from_last = last_end == Some(s.a) && s.b[2] >= s.a[2];
+                let skip = match (from_last, flat) {
+                    (false, _) => Skip::None,
+                    (true, true) => Skip::Disk,
+                    (true, false) => Skip::HalfDisk,
+                };
                 let piece = out.cutting.len() as u32;
-                let removed = self.cut_segment(&s, r, mv.line, skip_start, piece, &mut cut);
+                let removed = self.cut_segment(&s, r, mv.line, skip, piece, &mut cut);
                 out.cutting.push(removed > AIR_DEPTH);
                 last_end = Some(s.b);
             }
@@ -259,7 +267,7 @@ impl Band<'_> {
         s: &Segment,
         r: f64,
         line: usize,
-        skip_start: bool,
+        skip: Skip,
         piece: u32,
         cut: &mut MoveCut,
     ) -> f64 {
@@ -279,10 +287,15 @@ impl Band<'_> {
         }
         let axis = Axis::new(s);
         let mut removed = 0.0f64;
+        let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
+        let rr2 = (r - RIM) * (r - RIM);
         for j in j0..=j1 {
             let cy = g.cy(j);
             let row = (j - self.j0) * g.nx;
-            for (i0, i1) in row_ranges(&g, s, cy, r, skip_start).into_iter().flatten() {
+            for (i0, i1) in row_ranges(&g, s, cy, r, skip == Skip::Disk)
+                .into_iter()
+                .flatten()
+            {
                 for i in i0..=i1 {
                     let k = row + i;
                     // No point of the piece is lower than the cell: nothing to
@@ -291,6 +304,12 @@ impl Band<'_> {
                         continue;
                     }
                     let cx = g.cx(i);
+                    if skip == Skip::HalfDisk {
+                        let (ux, uy) = (cx - s.a[0], cy - s.a[1]);
+                        if ux * dx + uy * dy <= 0.0 && ux * ux + uy * uy <= rr2 {
+                            continue;
+                        }
+                    }
                     let Some(zb) = s.surface_over(cx, cy, &self.tool) else {
                         continue;
                     };
@@ -322,6 +341,18 @@ impl Band<'_> {
         }
         removed
     }
+}
+
+/// Which cells of a piece's start disk the walk may leave out (see
+/// `Band::walk`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Skip {
+    /// None.
+    None,
+    /// All (a flat end mill).
+    Disk,
+    /// Those behind the piece's direction (a curved end).
+    HalfDisk,
 }
 
 /// Slack (mm) by which the skipped start disk is shrunk, so that a cell centre

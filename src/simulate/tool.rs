@@ -373,15 +373,18 @@ impl Segment {
             self.z(t) + r - (r * r - (px * px + py * py)).max(0.0).sqrt()
         };
         let dz = self.b[2] - self.a[2];
-        // XY closest approach t₀ and its squared distance ρ₀² (from the cross
-        // product, free of the cancellation in C − B²/4A).
+        // XY closest approach t₀; a level move is lowest there.
         let t0 = -(ex * dx + ey * dy) / aa;
-        let cross = dx * ey - dy * ex;
-        let rho02 = cross * cross / aa;
-        let u = -dz * ((r * r - rho02).max(0.0) / (aa * (aa + dz * dz))).sqrt();
-        let t = (t0 + u).clamp(t1, t2);
-        // The ends too, so rounding near them never leaves a value above theirs.
-        Some(f(t).min(f(t1)).min(f(t2)))
+        let t = if dz == 0.0 {
+            t0
+        } else {
+            // ρ₀² from the cross product, free of the cancellation in
+            // C − B²/4A.
+            let cross = dx * ey - dy * ex;
+            let rho02 = cross * cross / aa;
+            t0 - dz * ((r * r - rho02).max(0.0) / (aa * (aa + dz * dz))).sqrt()
+        };
+        Some(f(t.clamp(t1, t2)))
     }
 
     /// The lowest surface over (cx, cy) of a bull nose end mill of radius `r`
