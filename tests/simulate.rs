@@ -1272,3 +1272,44 @@ fn skipping_the_start_disk_changes_no_cell() {
         assert!(a.map.min() < -1.19);
     }
 }
+
+/// docs/simulate.md: mfs-mould.nc, planned for its flat end mill, run with a
+/// ball and a bull nose, reads the straight plunges the doc states (the
+/// linker's `G1 Z` descents into what only a flat end mill cleared).
+#[test]
+fn the_flat_mould_with_curved_ends_reads_the_plunges_the_doc_states() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("gcode-samples/mfs-mould.nc")).unwrap();
+    let doc = doc_figures::read("docs/simulate.md");
+    let stated = doc_figures::numbers_after(
+        &doc,
+        "docs/simulate.md",
+        "that flat-tool program also reads",
+        2,
+    );
+    for (figure, shape, corner) in [
+        (&stated[0], ToolShape::Ball, None),
+        (&stated[1], ToolShape::Bull, Some(0.5)),
+    ] {
+        let s = run(
+            &text,
+            &SimOptions {
+                tool_shape: Some(shape),
+                corner_radius: corner,
+                ..SimOptions::default()
+            },
+        );
+        let r = &s.report;
+        let source = match corner {
+            Some(_) => "--tool-shape, --corner-radius, header",
+            None => "--tool-shape, header",
+        };
+        assert_eq!(r.tool_source, source);
+        assert_eq!(
+            figure.parse().ok(),
+            Some(r.straight_plunges),
+            "docs/simulate.md, {shape:?}"
+        );
+        assert!(r.findings.iter().all(|f| f.kind == Kind::StraightPlunge));
+    }
+}
