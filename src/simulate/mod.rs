@@ -27,7 +27,9 @@
 //!   tolerance are gouges ([`part`]).
 //!
 //! The library never prints; [`simulate`] returns a [`Simulation`] (the
-//! [`Report`] and the final [`HeightMap`]), and [`png::stock_png`] draws it.
+//! [`Report`] and the final [`HeightMap`]), and [`png::stock_png`] draws it;
+//! [`simulate_programs`] returns a [`Sequence`] (a report per program, the
+//! part compared once, the final stock), and [`png::sequence_png`] draws it.
 
 pub mod header;
 pub mod moves;
