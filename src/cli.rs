@@ -189,9 +189,10 @@ pub enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
-    /// Dry-run a G-code file on a height-map stock: rapids into material,
-    /// straight plunges, engagement, air cutting and, with --job, gouges and
-    /// material left against the part (docs/simulate.md). Exit 0: clean;
+    /// Dry-run G-code files, in order, on one height-map stock (flat, ball or
+    /// bull nose end mill): rapids into material, straight plunges,
+    /// engagement, air cutting and, with --job, gouges and material left
+    /// against the part (docs/simulate.md). Exit 0: clean;
     /// 1: a collision, plunge, too deep a slot or a gouge; 2: usage; 3: output.
     Simulate(simulate::SimulateArgs),
 }

@@ -1,9 +1,13 @@
 //! `pfcam simulate`: hand-made programs caught at the right line, the height
 //! map checked against an independent distance oracle, I/J against R arcs,
-//! invariance under translation, and every shipped sample run through it.
+//! invariance under translation, ball and bull nose tools, several programs
+//! on one stock, and every shipped sample run through it.
 
 use pfcam::gcode::check::{check_gcode, CheckOptions};
-use pfcam::simulate::{simulate, JobFacts, Kind, PartModel, SimOptions, Simulation, StockBox};
+use pfcam::simulate::{
+    simulate, simulate_programs, JobFacts, Kind, PartModel, SimError, SimOptions, Simulation,
+    StockBox, ToolShape,
+};
 use std::path::Path;
 use std::process::Command;
 
@@ -649,4 +653,663 @@ fn every_job_sample_is_within_its_part() {
         quoted_runs, 4,
         "docs/simulate.md quotes the four bosses and cavities"
     );
+}
+
+/// Runs the pfcam binary; (exit code, stdout, stderr).
+fn pfcam(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = Command::new(PFCAM).args(args).output().unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A scratch directory for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("pfcam-simulate-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// One straight G1 at depth 1 along y = 10 across the 20 mm stock, the tool
+/// entering and leaving outside it, under the header's `tool` line.
+fn groove(tool: &str) -> String {
+    format!(
+        "(pfcam 0.1.0 job groove)\n({tool})\n(stock: X0..20 Y0..20, top 0, safe z 5 mm)\nG21 G90\nG0 Z5\nG0 X-5 Y10\nG0 Z-1\nG1 X25 F300\nG0 Z5\nM2\n"
+    )
+}
+
+/// A 4 mm ball along a straight line at depth 1 cuts the round groove
+/// computed by hand: the cell at ρ from the line is lowered to
+/// −1 + 2 − √(4 − ρ²) where that is below the top, and is untouched beyond.
+#[test]
+fn a_ball_cuts_the_round_groove_computed_by_hand() {
+    let s = run(
+        &groove("tool: 4 mm ball end mill, feed 800, plunge 200 mm/min, spindle 18000 rpm"),
+        &SimOptions::default(),
+    );
+    let r = &s.report;
+    assert_eq!(
+        (r.tool_shape, r.tool_diameter, r.corner_radius),
+        (ToolShape::Ball, 4.0, 2.0)
+    );
+    assert_eq!(r.tool_source, "header");
+    let g = s.map.grid;
+    assert_eq!((g.nx, g.ny), (200, 200));
+    let mut checked = 0;
+    for j in 0..g.ny {
+        let rho = (g.cy(j) - 10.0).abs();
+        let want = if rho <= 2.0 {
+            (-1.0 + 2.0 - (4.0 - rho * rho).sqrt()).min(0.0)
+        } else {
+            0.0
+        };
+        for i in 0..g.nx {
+            let got = s.map.at(i, j);
+            assert!(
+                (got - want).abs() < 1e-12,
+                "cell ({i}, {j}), {rho} mm off: {got} vs {want}"
+            );
+            checked += usize::from(want < 0.0);
+        }
+    }
+    // Cut where √(4 − ρ²) > 1, i.e. ρ < √3: 2·√3 / 0.1 ≈ 34 rows of 200.
+    assert_eq!(checked, 34 * 200);
+    // The deepest cell is the row nearest the line, 0.05 mm off.
+    let deepest = 1.0 - (2.0 - (4.0f64 - 0.05 * 0.05).sqrt());
+    assert!(
+        (r.max_axial.value - deepest).abs() < 1e-12,
+        "{:?}",
+        r.max_axial
+    );
+    assert_eq!(r.max_axial.line, 8);
+    // Removing more than 0.001 mm: the rows within 1.73 mm of the line, 0.05..1.65 off.
+    assert!(
+        (r.max_radial.value - 3.3 / 4.0).abs() < 1e-9,
+        "{:?}",
+        r.max_radial
+    );
+    assert!(r.is_clean(), "{:?}", r.findings);
+    let doc = doc_figures::read("docs/simulate.md");
+    let stated = doc_figures::number_after(&doc, "docs/simulate.md", "a 4 mm ball 1 mm deep reads");
+    doc_figures::assert_figure(
+        "docs/simulate.md, the ball's radial engagement",
+        &stated,
+        100.0 * r.max_radial.value,
+    );
+    // The flat end mill of the same diameter cuts the full 4 mm wide slot,
+    // and nowhere less deep than the ball.
+    let flat = run(
+        &groove("tool: 4 mm end mill, feed 800, plunge 200 mm/min, spindle 18000 rpm"),
+        &SimOptions::default(),
+    );
+    assert_eq!(flat.report.tool_shape, ToolShape::Flat);
+    assert!(flat.map.h.iter().zip(&s.map.h).all(|(f, b)| f <= b));
+    assert_eq!(flat.map.h.iter().filter(|h| **h == -1.0).count(), 40 * 200);
+}
+
+/// The three tool lines a pfcam header may carry, read by the CLI: flat
+/// stays `end mill`, and `--json` says the shape and corner.
+#[test]
+fn the_cli_reads_the_three_tool_lines_of_a_header() {
+    let dir = scratch("headers");
+    let tail = "feed 800, plunge 200 mm/min, spindle 18000 rpm";
+    for (line, shape, d, corner, summary) in [
+        (
+            format!("tool: 3.175 mm end mill, {tail}"),
+            "flat",
+            3.175,
+            0.0,
+            "tool: 3.175 mm flat end mill (header)",
+        ),
+        (
+            format!("tool: 3.175 mm ball end mill, {tail}"),
+            "ball",
+            3.175,
+            1.5875,
+            "tool: 3.175 mm ball end mill (header)",
+        ),
+        (
+            format!("tool: 6 mm bull nose end mill, corner 1.5 mm, {tail}"),
+            "bull",
+            6.0,
+            1.5,
+            "tool: 6 mm bull nose end mill, corner 1.5 mm (header)",
+        ),
+    ] {
+        let file = dir.join(format!("{shape}.nc"));
+        std::fs::write(&file, groove(&line)).unwrap();
+        let f = file.to_str().unwrap();
+        let (code, out, err) = pfcam(&["simulate", f, "--json"]);
+        assert_eq!(code, Some(0), "{line}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let r = &v["report"];
+        assert_eq!(r["tool_shape"], shape, "{line}");
+        assert_eq!(r["tool_diameter"], d, "{line}");
+        assert_eq!(r["corner_radius"], corner, "{line}");
+        assert_eq!(r["tool_source"], "header", "{line}");
+        assert_eq!(v["programs"][0]["report"]["tool_shape"], shape, "{line}");
+        let (_, text, _) = pfcam(&["simulate", f]);
+        assert!(text.contains(summary), "{line}: {text}");
+    }
+    // A tool line naming no tool the simulator models: noted, and the tool
+    // must come from the flags.
+    let file = dir.join("vbit.nc");
+    std::fs::write(&file, groove("tool: 6 mm v-bit, feed 800")).unwrap();
+    let f = file.to_str().unwrap();
+    let (code, _, err) = pfcam(&["simulate", f]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("--tool-diameter"), "{err}");
+    let (code, out, _) = pfcam(&["simulate", f, "--tool-diameter", "6"]);
+    assert_eq!(code, Some(0));
+    assert!(
+        out.contains("note: the header's `tool: 6 mm v-bit, feed 800` names no tool"),
+        "{out}"
+    );
+    // The flags override the header's parts: the shape, and a bull's corner.
+    let file = dir.join("bull.nc");
+    let f = file.to_str().unwrap();
+    let (_, out, _) = pfcam(&["simulate", f, "--corner-radius", "1", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["report"]["corner_radius"], 1.0);
+    assert_eq!(v["report"]["tool_source"], "--corner-radius, header");
+    let (_, out, _) = pfcam(&["simulate", f, "--tool-shape", "ball", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["report"]["tool_shape"], "ball");
+    assert_eq!(v["report"]["corner_radius"], 3.0);
+    // A bull nose needs its corner; a ball takes none.
+    let (code, _, err) = pfcam(&[
+        "simulate",
+        dir.join("flat.nc").to_str().unwrap(),
+        "--tool-shape",
+        "bull",
+    ]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("--corner-radius"), "{err}");
+    let (code, _, err) = pfcam(&[
+        "simulate",
+        dir.join("ball.nc").to_str().unwrap(),
+        "--corner-radius",
+        "0.5",
+    ]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("is for --tool-shape bull"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The job's tool is the first program's, unless that program's header names
+/// another (the job's finish tool); the stepdown goes with the tool; a later
+/// program's tool is its header's.
+#[test]
+fn the_jobs_tool_yields_to_a_header_naming_another() {
+    let o = SimOptions {
+        job: Some(square_job()), // a 3 mm flat end mill, stepdown 1
+        ..SimOptions::default()
+    };
+    let same = groove("tool: 3 mm end mill, feed 800");
+    let r = run(&same, &o).report;
+    assert_eq!(
+        (r.tool_source.as_str(), r.tool_shape, r.stepdown),
+        ("job", ToolShape::Flat, Some(1.0))
+    );
+    let other = groove("tool: 4 mm ball end mill, feed 800");
+    let r = run(&other, &o).report;
+    assert_eq!(
+        (r.tool_source.as_str(), r.tool_shape, r.tool_diameter),
+        ("header", ToolShape::Ball, 4.0)
+    );
+    assert_eq!(r.stepdown, None, "the job's stepdown is its own tool's");
+    // Flags override the job's tool too.
+    let r = run(
+        &same,
+        &SimOptions {
+            tool_shape: Some(ToolShape::Ball),
+            ..o.clone()
+        },
+    )
+    .report;
+    assert_eq!(
+        (r.tool_source.as_str(), r.tool_shape, r.tool_diameter),
+        ("--tool-shape, job", ToolShape::Ball, 3.0)
+    );
+    // A later program without a tool line gets no tool from the job.
+    let bare = "G21 G90\nG0 Z5\nG0 X-5 Y10\nG0 Z-1\nG1 X25 F300\nM2\n";
+    match simulate_programs(&[("rough.nc", &same), ("finish.nc", bare)], &o) {
+        Err(SimError::Program { name, error }) => {
+            assert_eq!(name, "finish.nc");
+            assert!(matches!(*error, SimError::NoToolAfterFirst), "{error}");
+        }
+        other => panic!("{:?}", other.map(|s| s.programs.len())),
+    }
+    let seq = simulate_programs(&[("rough.nc", &same), ("finish.nc", &other)], &o).unwrap();
+    let tools: Vec<_> = seq
+        .programs
+        .iter()
+        .map(|p| (p.report.tool_shape, p.report.tool_source.as_str()))
+        .collect();
+    assert_eq!(
+        tools,
+        [(ToolShape::Flat, "job"), (ToolShape::Ball, "header")]
+    );
+}
+
+/// The floor of `pocket.*.nc`: the plane z = −2 over their 20 mm stock.
+fn pocket_job() -> JobFacts {
+    let (a, b, c, d) = (
+        [0.0, 0.0, -2.0],
+        [20.0, 0.0, -2.0],
+        [20.0, 20.0, -2.0],
+        [0.0, 20.0, -2.0],
+    );
+    JobFacts {
+        tool_diameter: 6.0,
+        stepdown: 1.5,
+        stock: Some(StockBox {
+            lo: [0.0, 0.0],
+            hi: [20.0, 20.0],
+            top: 0.0,
+        }),
+        part: Some(PartModel {
+            name: "floor".into(),
+            triangles: vec![[a, b, c], [a, c, d]],
+            outlines: Vec::new(),
+            outline_z: 0.0,
+        }),
+        tolerance: 0.01,
+        scallop: 0.1,
+        stepover: 4.0,
+    }
+}
+
+/// A rough program (6 mm flat end mill, leaving 0.5 mm on the floor) then a
+/// finish program (4 mm ball on the floor): the finish starts on the rough's
+/// stock, removes only what is left, and leaves less than the rough alone;
+/// the stock at the end is the lower of the two programs' cuts, cell by cell.
+#[test]
+fn a_finish_program_after_the_rough_leaves_less_than_the_rough_alone() {
+    let (rough, finish) = (data("pocket.rough.nc"), data("pocket.finish.nc"));
+    let o = SimOptions {
+        job: Some(pocket_job()),
+        ..SimOptions::default()
+    };
+    let alone = run(&rough, &o);
+    let left = alone.report.part.as_ref().unwrap();
+    assert!((left.max_left.value - 0.5).abs() < 1e-12, "{left:?}");
+    assert_eq!(left.left_share_over_scallop, 1.0);
+    let seq = simulate_programs(
+        &[("pocket.rough.nc", &rough), ("pocket.finish.nc", &finish)],
+        &o,
+    )
+    .unwrap();
+    assert!(seq.is_clean());
+    let [a, b] = &seq.programs[..] else { panic!() };
+    assert_eq!(
+        (a.report.tool_shape, b.report.tool_shape),
+        (ToolShape::Flat, ToolShape::Ball)
+    );
+    // The first program's report is the one it has alone (the part aside).
+    let mut first = alone.report.clone();
+    first.part = None;
+    assert_eq!(a.report, first);
+    // The finish meets 0.5 mm of material: alone on fresh stock each of its
+    // rows would cut a crescent 1.26 mm deep.
+    let fresh = run(
+        &finish,
+        &SimOptions {
+            job: Some(pocket_job()),
+            ..SimOptions::default()
+        },
+    );
+    assert!(
+        fresh.report.max_axial.value > 1.0,
+        "{:?}",
+        fresh.report.max_axial
+    );
+    let doc = doc_figures::read("docs/simulate.md");
+    let stated = doc_figures::number_after(
+        &doc,
+        "docs/simulate.md",
+        "alone on fresh stock its rows would cut",
+    );
+    doc_figures::assert_figure(
+        "docs/simulate.md, the finish alone",
+        &stated,
+        fresh.report.max_axial.value,
+    );
+    assert!(
+        b.report.max_axial.value <= 0.5 + 1e-12,
+        "{:?}",
+        b.report.max_axial
+    );
+    // What is left is the ball's scallop, 2 − √(4 − 0.25²) = 0.016 mm, by the
+    // finish's lines; nothing below the floor.
+    let p = seq.part.as_ref().unwrap();
+    let scallop = 2.0 - (4.0f64 - 0.0625).sqrt();
+    assert!(
+        p.max_left.value < scallop + 1e-9 && p.max_left.value > 0.5 * scallop,
+        "{p:?}"
+    );
+    assert!(p.max_left.value < left.max_left.value);
+    assert_eq!(p.max_left_program.as_deref(), Some("pocket.finish.nc"));
+    assert!(
+        p.max_left.line > 8 && p.max_left.line < finish.lines().count(),
+        "{p:?}"
+    );
+    assert_eq!(p.left_share_over_scallop, 0.0);
+    assert!(p.max_gouge.value <= 1e-12, "{p:?}");
+    // Order aside, the final stock is each cell's lowest cut.
+    assert!(seq
+        .map
+        .h
+        .iter()
+        .zip(alone.map.h.iter().zip(&fresh.map.h))
+        .all(|(s, (a, b))| *s == a.min(*b)));
+}
+
+/// On the command line: the same two files, in order, with a `programs`
+/// list in `--json`; a finding names its own file and line, and depends on
+/// what ran before (a rapid down into the rough's pocket is harmless after
+/// the rough, a collision before it).
+#[test]
+fn the_cli_runs_several_files_in_order() {
+    let dir = scratch("several");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/simulate");
+    let rough = root.join("pocket.rough.nc");
+    let finish = root.join("pocket.finish.nc");
+    let (rough, finish) = (rough.to_str().unwrap(), finish.to_str().unwrap());
+    let (code, out, err) = pfcam(&["simulate", rough, finish, "--json"]);
+    assert_eq!(code, Some(0), "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["clean"], true);
+    assert_eq!(v["files"][1], finish);
+    let programs = v["programs"].as_array().unwrap();
+    assert_eq!(programs.len(), 2);
+    assert_eq!(programs[0]["file"], rough);
+    assert_eq!(programs[0]["report"]["tool_shape"], "flat");
+    assert_eq!(programs[1]["report"]["tool_shape"], "ball");
+    assert_eq!(programs[1]["report"]["tool_diameter"], 4.0);
+    assert!(
+        programs[1]["report"]["max_axial"]["value"]
+            .as_f64()
+            .unwrap()
+            <= 0.5
+    );
+    assert!(v.get("report").is_none(), "one report per program");
+    // A 3 mm flat end mill dropping by G0 to z −1 in the middle of the pocket.
+    let drop = dir.join("drop.nc");
+    std::fs::write(
+        &drop,
+        "(tool: 3 mm end mill, feed 300)\nG21 G90\nG0 Z5\nG0 X10 Y10\nG0 Z-1\nG1 X12 F300\nG0 Z5\nM2\n",
+    )
+    .unwrap();
+    let drop = drop.to_str().unwrap();
+    let (code, out, _) = pfcam(&["simulate", rough, drop]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains(&format!("program 2 of 2: {drop}")), "{out}");
+    assert!(out.contains("tool: 3 mm flat end mill (header)"), "{out}");
+    let png = dir.join("final.png");
+    // The first file's header names no stock: the pocket's is given.
+    let (code, out, err) = pfcam(&[
+        "simulate",
+        drop,
+        rough,
+        "--stock",
+        "0,0,20,20,0",
+        "--png",
+        png.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(1), "{out}");
+    assert!(
+        out.contains(&format!("{drop}:5: error: rapid (G0) into material")),
+        "{out}"
+    );
+    assert!(
+        err.contains(&format!("{drop}, {rough}: 1 finding(s)")),
+        "{err}"
+    );
+    assert!(std::fs::metadata(&png).is_ok());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The full-width rule: a ball is not judged by it; a bull nose is judged by
+/// the cells under its flat part, so a cut whose corner reaches deep beside
+/// a flat part half in material is not a slot, and the same cut in fresh
+/// stock is.
+#[test]
+fn the_slot_rule_looks_at_the_flat_part() {
+    let slot = data("deep-slot.nc");
+    let tool = |shape, corner| SimOptions {
+        tool_shape: Some(shape),
+        corner_radius: corner,
+        stepdown: Some(1.0),
+        ..opts(3.0)
+    };
+    let ball = run(&slot, &tool(ToolShape::Ball, None));
+    assert!(ball.report.is_clean(), "{:?}", ball.report.findings);
+    assert_eq!(ball.report.stepdown, None);
+    assert!(ball
+        .report
+        .summary()
+        .contains("full-width cuts: not checked (a ball end mill has no flat part)"));
+    let bull = run(&slot, &tool(ToolShape::Bull, Some(0.5)));
+    assert_eq!(found(&bull), vec![(8, Kind::SlotDeeperThanStepdown)]);
+    assert!(bull.report.findings[0]
+        .message
+        .contains("of the tool's flat part"));
+    // y < 10 cleared to −2 by a 10 mm flat end mill (stepdown 5: no slot),
+    // then a 6 mm bull nose with 2 mm corners (flat part 2 mm wide) along
+    // y = 10 at −2: its flat part is half in material, its corner cuts more
+    // than the stepdown 1 out to y = 12.7.
+    let clear = "(tool: 10 mm end mill, feed 800)\n(stock: X0..30 Y0..20, top 0, safe z 5 mm)\n(operation: pocket, stepdown 5, tol 0.01 mm)\nG21 G90\nG0 Z5\nG0 X-6 Y5\nG1 Z-2 F200\nG1 X36 F800\nG0 Z5\nM2\n";
+    let side = "(tool: 6 mm bull nose end mill, corner 2 mm, feed 800)\n(operation: finish, stepdown 1, tol 0.01 mm)\nG21 G90\nG0 Z5\nG0 X-4 Y10\nG1 Z-2 F200\nG1 X34 F800\nG0 Z5\nM2\n";
+    let seq = simulate_programs(
+        &[("clear.nc", clear), ("side.nc", side)],
+        &SimOptions::default(),
+    )
+    .unwrap();
+    let [a, b] = &seq.programs[..] else { panic!() };
+    assert!(a.report.is_clean(), "{:?}", a.report.findings);
+    assert_eq!(b.report.stepdown, Some(1.0));
+    assert!(b.report.max_axial.value > 1.9);
+    assert!(b.report.is_clean(), "{:?}", b.report.findings);
+    let alone = simulate_programs(
+        &[("side.nc", side)],
+        &SimOptions {
+            stock: Some(StockBox {
+                lo: [0.0, 0.0],
+                hi: [30.0, 20.0],
+                top: 0.0,
+            }),
+            ..SimOptions::default()
+        },
+    )
+    .unwrap();
+    let found: Vec<_> = alone.programs[0]
+        .report
+        .findings
+        .iter()
+        .map(|f| (f.line, f.kind))
+        .collect();
+    assert_eq!(found, vec![(7, Kind::SlotDeeperThanStepdown)]);
+}
+
+/// Helical arcs reach the tool as chords within 1/20 of a cell of the arc;
+/// the swept ball along the chords is then within that distance of the
+/// swept ball along the helix (both are the path ⊕ the ball). So every cell
+/// lies between the helix's sweep by a ball larger by the chord tolerance
+/// (and the oracle's sample spacing) and by one smaller by it, and never
+/// below a flat end mill's cut.
+#[test]
+fn a_ball_along_a_helix_stays_within_the_chord_tolerance() {
+    let prog = "G21 G90\nG0 Z5\nG0 X21 Y15\nG0 Z0\nG2 X21 Y15 Z-1.5 I-6 J0 F300\nM2\n";
+    let (r, res) = (1.5, 0.1);
+    let o = |shape| SimOptions {
+        tool_shape: Some(shape),
+        ..opts(2.0 * r)
+    };
+    let ball = run(prog, &o(ToolShape::Ball));
+    let flat = run(prog, &o(ToolShape::Flat));
+    assert!(flat.map.h.iter().zip(&ball.map.h).all(|(f, b)| f <= b));
+    let delta = res * pfcam::simulate::CHORD_FRACTION;
+    // The helix's centre path, densely: 60 000 points 0.0006 mm apart.
+    let n = 60_000;
+    let g = ball.map.grid;
+    let mut lo = vec![0.0f64; g.nx * g.ny]; // ball of r + δ + spacing
+    let mut hi = vec![0.0f64; g.nx * g.ny]; // ball of r − δ
+    let spacing = 2.0 * std::f64::consts::PI * 6.0 / n as f64;
+    let (r_lo, r_hi) = (r + delta + spacing, r - delta);
+    for k in 0..=n {
+        let f = k as f64 / n as f64;
+        let a = -2.0 * std::f64::consts::PI * f; // clockwise from angle 0
+        let (x, y, zc) = (15.0 + 6.0 * a.cos(), 15.0 + 6.0 * a.sin(), -1.5 * f + r);
+        let (Some((i0, i1)), Some((j0, j1))) =
+            (g.cols(x - r_lo, x + r_lo), g.rows(y - r_lo, y + r_lo))
+        else {
+            continue;
+        };
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let rho2 = (g.cx(i) - x).powi(2) + (g.cy(j) - y).powi(2);
+                let c = j * g.nx + i;
+                if rho2 <= r_lo * r_lo {
+                    lo[c] = lo[c].min(zc - (r_lo * r_lo - rho2).sqrt());
+                }
+                if rho2 <= r_hi * r_hi {
+                    hi[c] = hi[c].min(zc - (r_hi * r_hi - rho2).sqrt());
+                }
+            }
+        }
+    }
+    let mut worst = 0.0f64;
+    for c in 0..lo.len() {
+        let h = ball.map.h[c];
+        assert!(
+            h >= lo[c] - 1e-9 && h <= hi[c] + 1e-9,
+            "cell {c}: {} not in [{}, {}]",
+            h,
+            lo[c],
+            hi[c]
+        );
+        worst = worst.max(hi[c] - lo[c]);
+    }
+    assert!(ball.map.min() < -1.49);
+    eprintln!("helix: the ball's cells lie within bounds at most {worst:.4} mm apart");
+}
+
+/// docs/simulate.md's example of two programs is what the command prints.
+#[test]
+fn the_docs_example_of_two_programs_is_what_the_cli_prints() {
+    let doc = doc_figures::read("docs/simulate.md");
+    let command =
+        "pfcam simulate tests/data/simulate/pocket.rough.nc tests/data/simulate/pocket.finish.nc";
+    let quoted = doc_figures::after(&doc, "docs/simulate.md", &format!("$ {command}\n"));
+    let quoted = &quoted[quoted.find('\n').unwrap() + 1..];
+    let quoted = &quoted[..quoted.find("```").expect("the block's end")];
+    let out = Command::new(PFCAM)
+        .args(command.split(' ').skip(1))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout),
+        quoted,
+        "docs/simulate.md, `{command}`"
+    );
+}
+
+/// The walk leaves out cells of a piece's start disk that the piece cannot
+/// lower (all of it for a flat end mill, the half behind it for a curved
+/// end) when the piece goes on from where the last ended without
+/// descending. Cut as separate programs the moves skip nothing: the stock
+/// is the same, for every shape.
+#[test]
+fn skipping_the_start_disk_changes_no_cell() {
+    let pts = [
+        [5.0, 5.0, -1.0],
+        [15.0, 5.0, -1.0],
+        [15.0, 8.0, -1.0],
+        [5.0, 12.0, -0.5],
+        [8.0, 12.0, -0.5],
+        [8.05, 12.02, -0.5],
+        [8.1, 12.0, -0.45],
+        [12.0, 15.0, -1.2],
+        [18.0, 10.0, -0.3],
+        [18.0, 10.0, 0.2],
+        [18.0, 10.0, -0.8],
+        [18.03, 10.0, -0.8],
+        [11.0, 21.0, -0.2],
+    ];
+    let p = |q: [f64; 3]| format!("X{} Y{} Z{}", q[0], q[1], q[2]);
+    let mut whole = format!("G21 G90\nG0 {}\n", p(pts[0]));
+    let mut parts = Vec::new();
+    for w in pts.windows(2) {
+        whole += &format!("G1 {} F300\n", p(w[1]));
+        parts.push(format!("G21 G90\nG0 {}\nG1 {} F300\n", p(w[0]), p(w[1])));
+    }
+    let named: Vec<(&str, &str)> = parts.iter().map(|t| ("part", t.as_str())).collect();
+    for (shape, corner) in [
+        (ToolShape::Flat, None),
+        (ToolShape::Ball, None),
+        (ToolShape::Bull, Some(0.8)),
+    ] {
+        let o = SimOptions {
+            tool_shape: Some(shape),
+            corner_radius: corner,
+            ..opts(3.0)
+        };
+        let a = run(&whole, &o);
+        let b = simulate_programs(&named, &o).unwrap();
+        let differ = a
+            .map
+            .h
+            .iter()
+            .zip(&b.map.h)
+            .filter(|(x, y)| (*x - *y).abs() > 1e-12)
+            .count();
+        assert_eq!(differ, 0, "{shape:?}: cells at different heights");
+        assert!(a.map.min() < -1.19);
+    }
+}
+
+/// docs/simulate.md: mfs-mould.nc, planned for its flat end mill, run with a
+/// ball and a bull nose, reads the straight plunges the doc states (the
+/// linker's `G1 Z` descents into what only a flat end mill cleared).
+#[test]
+fn the_flat_mould_with_curved_ends_reads_the_plunges_the_doc_states() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("gcode-samples/mfs-mould.nc")).unwrap();
+    let doc = doc_figures::read("docs/simulate.md");
+    let stated = doc_figures::numbers_after(
+        &doc,
+        "docs/simulate.md",
+        "that flat-tool program also reads",
+        2,
+    );
+    for (figure, shape, corner) in [
+        (&stated[0], ToolShape::Ball, None),
+        (&stated[1], ToolShape::Bull, Some(0.5)),
+    ] {
+        let s = run(
+            &text,
+            &SimOptions {
+                tool_shape: Some(shape),
+                corner_radius: corner,
+                ..SimOptions::default()
+            },
+        );
+        let r = &s.report;
+        let source = match corner {
+            Some(_) => "--tool-shape, --corner-radius, header",
+            None => "--tool-shape, header",
+        };
+        assert_eq!(r.tool_source, source);
+        assert_eq!(
+            figure.parse().ok(),
+            Some(r.straight_plunges),
+            "docs/simulate.md, {shape:?}"
+        );
+        assert!(r.findings.iter().all(|f| f.kind == Kind::StraightPlunge));
+    }
 }

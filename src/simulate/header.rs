@@ -1,15 +1,28 @@
 //! What a pfcam G-code header says about the tool, the stock and the
-//! operation, for a file simulated without `--job`: the comments
-//! `(tool: 3.175 mm end mill, ...)`, `(stock: ..40 Y-3..60, top 0, ...)`
-//! or `(stock: top 0, ...)`, and `(operation: ... stepdown 1.5, tol 0.01 mm)`.
+//! operation: the comments `(tool: ...)`, `(stock: ..40 Y-3..60, top
+//! 0, ...)` or `(stock: top 0, ...)`, and `(operation: ... stepdown 1.5, tol
+//! 0.01 mm)`. The tool line names one of three tools (what follows the
+//! tool's words is not read):
+//! - `(tool: 3.175 mm end mill, feed 800, plunge 200 mm/min, spindle 18000 rpm)`:
+//!   a flat end mill;
+//! - `(tool: 3.175 mm ball end mill, feed ...)`: a ball end mill;
+//! - `(tool: 6 mm bull nose end mill, corner 1.5 mm, feed ...)`: a bull nose
+//!   of corner radius 1.5 mm.
+//!
 //! Only the leading comment lines are read; another program's comments are
 //! ignored unless they say exactly this.
+
+use super::tool::{Tool, ToolShape};
 
 /// What the header gives (each `None` when not said).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Header {
-    /// Tool diameter, mm.
-    pub tool_diameter: Option<f64>,
+    /// The tool.
+    pub tool: Option<Tool>,
+    /// A `tool:` line that names none of the three tools (or one that cannot
+    /// be: a bull nose without its corner, a corner not below the radius):
+    /// its text, for a note.
+    pub tool_unread: Option<String>,
     /// Stock rectangle (x0, y0, x1, y1), mm.
     pub stock_rect: Option<[f64; 4]>,
     /// Stock top, mm.
@@ -27,10 +40,8 @@ pub fn read_header(text: &str) -> Header {
             break;
         };
         if let Some(rest) = body.strip_prefix("tool: ") {
-            h.tool_diameter = rest
-                .split_once(" mm end mill")
-                .and_then(|(d, _)| d.parse().ok())
-                .filter(|d: &f64| *d > 0.0 && d.is_finite());
+            h.tool = read_tool(rest);
+            h.tool_unread = h.tool.is_none().then(|| body.to_string());
         } else if let Some(rest) = body.strip_prefix("stock: ") {
             for part in rest.split(", ") {
                 if let Some(t) = part.strip_prefix("top ") {
@@ -48,6 +59,31 @@ pub fn read_header(text: &str) -> Header {
         }
     }
     h
+}
+
+/// The tool of a `tool:` line (what follows `tool: `; see the module docs).
+fn read_tool(rest: &str) -> Option<Tool> {
+    let mut parts = rest.split(", ");
+    let (d, kind) = parts.next()?.split_once(" mm ")?;
+    let d: f64 = d.parse().ok()?;
+    let shape = match kind {
+        "end mill" => ToolShape::Flat,
+        "ball end mill" => ToolShape::Ball,
+        "bull nose end mill" => ToolShape::Bull,
+        _ => return None,
+    };
+    let corner = match shape {
+        ToolShape::Bull => Some(
+            parts
+                .next()?
+                .strip_prefix("corner ")?
+                .strip_suffix(" mm")?
+                .parse()
+                .ok()?,
+        ),
+        _ => None,
+    };
+    Tool::new(shape, d, corner).ok()
 }
 
 /// `X-12.5..40 Y-3..60` as [x0, y0, x1, y1].
@@ -72,7 +108,8 @@ mod tests {
     fn reads_pfcam_headers_old_and_new() {
         let old = "(pfcam 0.1.0 job q-mould)\n(tool: 3.175 mm end mill, feed 800, plunge 200 mm/min, spindle 18000 rpm)\n(stock: top 0, safe z 5 mm)\n(operation: cavity outside climb, depth 3, stepdown 1.5, tol 0.01 mm)\nG21\n(tool: 6 mm end mill)\n";
         let h = read_header(old);
-        assert_eq!(h.tool_diameter, Some(3.175));
+        assert_eq!(h.tool, Tool::new(ToolShape::Flat, 3.175, None).ok());
+        assert_eq!(h.tool_unread, None);
         assert_eq!(h.stock_top, Some(0.0));
         assert_eq!(h.stock_rect, None);
         assert_eq!(h.stepdown, Some(1.5));
@@ -80,10 +117,51 @@ mod tests {
         let h = read_header(new);
         assert_eq!(h.stock_rect, Some([-12.5, -3.0, 40.0, 60.0]));
         assert_eq!(h.stock_top, Some(-1.0));
-        assert_eq!(h.tool_diameter, None);
+        assert_eq!(h.tool, None);
         assert_eq!(
             read_header("G0 X0\n(tool: 3 mm end mill)\n"),
             Header::default()
         );
+    }
+
+    #[test]
+    fn reads_the_three_tool_lines() {
+        let tool = |line: &str| {
+            let h = read_header(&format!("(pfcam 0.1.0 job x)\n({line})\nG21\n"));
+            (h.tool, h.tool_unread.is_some())
+        };
+        let flat = Tool::new(ToolShape::Flat, 3.175, None).ok();
+        let ball = Tool::new(ToolShape::Ball, 3.175, None).ok();
+        let bull = Tool::new(ToolShape::Bull, 6.0, Some(1.5)).ok();
+        let tail = "feed 800, plunge 200 mm/min, spindle 18000 rpm";
+        assert_eq!(
+            tool(&format!("tool: 3.175 mm end mill, {tail}")),
+            (flat, false)
+        );
+        assert_eq!(
+            tool(&format!("tool: 3.175 mm ball end mill, {tail}")),
+            (ball, false)
+        );
+        assert_eq!(
+            tool(&format!(
+                "tool: 6 mm bull nose end mill, corner 1.5 mm, {tail}"
+            )),
+            (bull, false)
+        );
+        assert_eq!(
+            tool("tool: 6 mm bull nose end mill, corner 1.5 mm"),
+            (bull, false)
+        );
+        // Lines that name no tool pfcam simulate can model: noted, not guessed.
+        for line in [
+            "tool: 6 mm bull nose end mill, feed 800",
+            "tool: 6 mm bull nose end mill, corner 3 mm, feed 800",
+            "tool: 6 mm bull nose end mill, corner -1 mm",
+            "tool: 6 mm v-bit, feed 800",
+            "tool: -3 mm end mill",
+            "tool: T1",
+        ] {
+            assert_eq!(tool(line), (None, true), "{line}");
+        }
     }
 }

@@ -4,10 +4,12 @@
 //!
 //! Every move removes material ([`run`]): `G0`, `G1`, `G2`/`G3` (I/J/K or R,
 //! helical), each arc cut into chords within [`CHORD_FRACTION`] of the
-//! resolution. The tool is a flat end mill of radius r; along a straight piece
-//! each cell centre within r of the tool's axis is lowered to the lowest z the
-//! tool bottom has over it ([`tool`], exact: the quadratic for the parameter
-//! interval). The rules of the findings:
+//! resolution. The tool ([`Tool`]) is a flat, ball or bull nose end mill of
+//! radius r; along a straight piece each cell centre within r of the tool's
+//! axis is lowered to the lowest z the tool's lower surface has over it
+//! ([`tool`]: exact for the flat end and the ball, within 1e-7 mm for the
+//! bull nose). Several programs ([`simulate_programs`]) run one after the
+//! other on one stock, each with its own tool. The rules of the findings:
 //! - a rapid that removes more than [`RAPID_DEPTH`] touches material;
 //! - a feed move that removes more than [`PLUNGE_DEPTH`] of material while
 //!   descending steeper than [`PLUNGE_ANGLE_DEG`] from horizontal (Δz over its
@@ -16,15 +18,18 @@
 //!   tool; radial engagement: the spread, across the move's direction, of the
 //!   cells where it removes more than [`AIR_DEPTH`], over the tool diameter;
 //!   a move whose cells cut deeper than stepdown + [`SLOT_SLACK`] span at
-//!   least [`SLOT_SHARE`] of the tool width, and reach within [`SLOT_MIDDLE`]
-//!   of the radius from its axis, is a full-width cut deeper than the
-//!   stepdown;
+//!   least [`SLOT_SHARE`] of the width of the tool's flat part, and reach
+//!   within [`SLOT_MIDDLE`] of its radius from the axis, is a full-width cut
+//!   deeper than the stepdown (for a bull nose only cells under its flat part
+//!   count; a ball has none and is not judged by this rule);
 //! - feed length in air: pieces that remove at most [`AIR_DEPTH`];
 //! - with a job: cells cut below the part's own model by more than the
 //!   tolerance are gouges ([`part`]).
 //!
 //! The library never prints; [`simulate`] returns a [`Simulation`] (the
-//! [`Report`] and the final [`HeightMap`]), and [`png::stock_png`] draws it.
+//! [`Report`] and the final [`HeightMap`]), and [`png::stock_png`] draws it;
+//! [`simulate_programs`] returns a [`Sequence`] (a report per program, the
+//! part compared once, the final stock), and [`png::sequence_png`] draws it.
 
 pub mod header;
 pub mod moves;
@@ -36,9 +41,12 @@ pub mod stock;
 pub mod tool;
 mod verify;
 
+use serde::Serialize;
+
 pub use part::{job_facts, JobFacts, PartModel};
 pub use report::{Finding, Kind, PartComparison, Report, StockInfo, Worst};
 pub use stock::{Grid, HeightMap};
+pub use tool::{Tool, ToolShape};
 pub use verify::{verify_program, UnsafeProgram};
 
 /// A rapid removing more than this (mm) touches material: far below a chip,
@@ -79,6 +87,9 @@ pub enum SimError {
     /// No tool diameter from the flags, the job or the file's header.
     #[error("no tool diameter: give --tool-diameter MM or --job JOB.toml (the file's header does not name a tool)")]
     NoTool,
+    /// A program after the first whose header names no tool, without flags.
+    #[error("no tool: the file's header does not name one, and a job's tool is the first program's only: give --tool-diameter MM (and --tool-shape; the flags apply to every program)")]
+    NoToolAfterFirst,
     /// Nothing tells where the stock is.
     #[error("no feed move from a known position and no stock given: nothing to simulate (give --stock X0,Y0,X1,Y1,TOP)")]
     NoStock,
@@ -91,6 +102,14 @@ pub enum SimError {
     /// The PNG could not be encoded.
     #[error("drawing the stock: {0}")]
     Png(String),
+    /// What stopped one program of several, and its name.
+    #[error("{name}: {error}")]
+    Program {
+        /// The program's name (its file).
+        name: String,
+        /// What stopped it.
+        error: Box<SimError>,
+    },
 }
 
 /// A stock block: the rectangle `lo`..`hi` (mm) and its top z.
@@ -113,6 +132,10 @@ pub struct SimOptions {
     pub stock: Option<StockBox>,
     /// `--tool-diameter`, mm.
     pub tool_diameter: Option<f64>,
+    /// `--tool-shape`.
+    pub tool_shape: Option<ToolShape>,
+    /// `--corner-radius`, mm (a bull nose's).
+    pub corner_radius: Option<f64>,
     /// `--stepdown`, mm.
     pub stepdown: Option<f64>,
     /// What `--job` says (tool, stepdown, stock, part).
@@ -127,6 +150,8 @@ impl Default for SimOptions {
             resolution: DEFAULT_RESOLUTION,
             stock: None,
             tool_diameter: None,
+            tool_shape: None,
+            corner_radius: None,
             stepdown: None,
             job: None,
             max_cells: MAX_CELLS,
@@ -134,13 +159,51 @@ impl Default for SimOptions {
     }
 }
 
-/// A finished simulation: the report and the final stock.
+/// A finished simulation of one program: the report and the final stock.
 #[derive(Clone, Debug)]
 pub struct Simulation {
     /// The figures and findings.
     pub report: Report,
     /// The stock after the program.
     pub map: HeightMap,
+}
+
+/// One program of a [`Sequence`]: its name and what it did.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ProgramReport {
+    /// The name it was given (its file).
+    pub name: String,
+    /// Its figures and findings (line numbers its own); `part` is `None`: the
+    /// part is compared once, on the final stock ([`Sequence::part`]).
+    pub report: Report,
+}
+
+/// Several programs run one after the other on one stock (a rough and a
+/// finish program: GRBL has no tool changer, the machinist runs one, changes
+/// the tool, runs the next).
+#[derive(Clone, Debug)]
+pub struct Sequence {
+    /// Each program, in order.
+    pub programs: Vec<ProgramReport>,
+    /// With a job: the final stock against the part. Its lines name the
+    /// program in `max_gouge_program` / `max_left_program`.
+    pub part: Option<PartComparison>,
+    /// The stock after the last program.
+    pub map: HeightMap,
+}
+
+impl Sequence {
+    /// No finding in any program (gouges included).
+    pub fn is_clean(&self) -> bool {
+        self.programs.iter().all(|p| p.report.is_clean())
+    }
+
+    /// Every finding, with the name of its program.
+    pub fn findings(&self) -> impl Iterator<Item = (&str, &Finding)> {
+        self.programs
+            .iter()
+            .flat_map(|p| p.report.findings.iter().map(|f| (p.name.as_str(), f)))
+    }
 }
 
 fn positive(name: &str, v: f64) -> Result<f64, SimError> {
@@ -155,85 +218,276 @@ fn positive(name: &str, v: f64) -> Result<f64, SimError> {
 
 /// Simulates the program `text` (see the module docs).
 pub fn simulate(text: &str, opts: &SimOptions) -> Result<Simulation, SimError> {
+    let seq = simulate_programs(&[("", text)], opts).map_err(|e| match e {
+        SimError::Program { error, .. } => *error,
+        e => e,
+    })?;
+    let Sequence {
+        programs,
+        part,
+        map,
+    } = seq;
+    let mut report = programs
+        .into_iter()
+        .next()
+        .map(|p| p.report)
+        .ok_or_else(|| SimError::Invalid("no program".into()))?;
+    report.part = part;
+    Ok(Simulation { report, map })
+}
+
+/// Where a program's tool comes from before the flags: the job's or the
+/// header's, and which.
+fn base_tool(
+    job: Option<&JobFacts>,
+    head: &header::Header,
+    first: bool,
+) -> Option<(Tool, &'static str)> {
+    let header = head.tool.map(|t| (t, "header"));
+    match job {
+        // The job's tool is the first program's, unless its header names
+        // another (the job's finish tool).
+        Some(j) if first => {
+            let jt = Tool::flat_unchecked(j.tool_diameter);
+            match header {
+                Some((t, _)) if t != jt => header,
+                _ => Some((jt, "job")),
+            }
+        }
+        _ => header,
+    }
+}
+
+/// The program's tool: each of `--tool-diameter`, `--tool-shape` and
+/// `--corner-radius` given overrides that part of the header's or job's
+/// tool; the source names the flags used and the base when it gave a part.
+fn choose_tool(
+    opts: &SimOptions,
+    base: Option<(Tool, &'static str)>,
+    first: bool,
+) -> Result<(Tool, String), SimError> {
+    let no_tool = if first {
+        SimError::NoTool
+    } else {
+        SimError::NoToolAfterFirst
+    };
+    let diameter = match opts.tool_diameter {
+        Some(d) => positive("--tool-diameter", d)?,
+        None => base.map(|(t, _)| t.diameter()).ok_or(no_tool)?,
+    };
+    let base_shape = base.map(|(t, _)| t.shape());
+    let shape = opts.tool_shape.or(base_shape).unwrap_or(ToolShape::Flat);
+    let base_corner = base
+        .filter(|(t, _)| t.shape() == ToolShape::Bull && shape == ToolShape::Bull)
+        .map(|(t, _)| t.corner_radius());
+    let corner = match (opts.corner_radius, shape) {
+        (Some(c), _) => Some(c),
+        (None, ToolShape::Bull) => base_corner,
+        (None, _) => None,
+    };
+    let tool = Tool::new(shape, diameter, corner)?;
+    let mut flags: Vec<&str> = Vec::new();
+    if opts.tool_diameter.is_some() {
+        flags.push("--tool-diameter");
+    }
+    if opts.tool_shape.is_some() {
+        flags.push("--tool-shape");
+    }
+    if opts.corner_radius.is_some() {
+        flags.push("--corner-radius");
+    }
+    // The base gave a part: the diameter, a shape other than the flat one
+    // every tool defaults to, or the corner.
+    let from_base = opts.tool_diameter.is_none()
+        || (opts.tool_shape.is_none() && base_shape.is_some_and(|s| s != ToolShape::Flat))
+        || (opts.corner_radius.is_none() && base_corner.is_some());
+    if let (true, Some((_, name))) = (from_base, base) {
+        flags.push(name);
+    }
+    Ok((tool, flags.join(", ")))
+}
+
+/// One program read and its tool chosen, before the walk.
+struct Prepared<'a> {
+    name: &'a str,
+    head: header::Header,
+    read: moves::Moves,
+    tool: Tool,
+    tool_source: String,
+    stepdown: Option<f64>,
+}
+
+/// Simulates `programs` (name, G-code text) one after the other on one stock
+/// (see the module docs): the stock the first leaves is where the second
+/// starts. The stock box is `--stock`, the job's, the first program's
+/// header's, else the feed moves of all of them grown by the largest tool
+/// radius. Each program has its own tool: the flags, else its header's, else
+/// (the first program only) the job's; and its own stepdown: `--stepdown`,
+/// else the job's when its tool is the job's, else its header's.
+pub fn simulate_programs(
+    programs: &[(&str, &str)],
+    opts: &SimOptions,
+) -> Result<Sequence, SimError> {
     let res = positive("--resolution", opts.resolution)?;
-    let head = header::read_header(text);
     let job = opts.job.as_ref();
-    let (diameter, tool_source) = match (opts.tool_diameter, job, head.tool_diameter) {
-        (Some(d), _, _) => (positive("--tool-diameter", d)?, "--tool-diameter"),
-        (None, Some(j), _) => (j.tool_diameter, "job"),
-        (None, None, Some(d)) => (d, "header"),
-        (None, None, None) => return Err(SimError::NoTool),
+    let mut prepared = Vec::with_capacity(programs.len());
+    for (k, &(name, text)) in programs.iter().enumerate() {
+        let in_program = |error: SimError| SimError::Program {
+            name: name.to_string(),
+            error: Box::new(error),
+        };
+        let head = header::read_header(text);
+        let base = base_tool(job, &head, k == 0);
+        let (tool, tool_source) = choose_tool(opts, base, k == 0).map_err(in_program)?;
+        let stepdown = match opts.stepdown {
+            Some(s) => Some(positive("--stepdown", s).map_err(in_program)?),
+            None => match (job, base) {
+                (Some(j), Some((_, "job"))) => Some(j.stepdown),
+                _ => head.stepdown,
+            },
+        };
+        prepared.push(Prepared {
+            name,
+            read: moves::read_moves(text),
+            head,
+            tool,
+            tool_source,
+            stepdown,
+        });
+    }
+    let Some(first) = prepared.first() else {
+        return Err(SimError::Invalid("no program to simulate".into()));
     };
-    let r = diameter / 2.0;
-    let stepdown = match opts.stepdown {
-        Some(s) => Some(positive("--stepdown", s)?),
-        None => job.map(|j| j.stepdown).or(head.stepdown),
-    };
-    let read = moves::read_moves(text);
-    let (stock, source) = choose_stock(opts, &head, &read.moves, r)?;
+    let r = prepared.iter().map(|p| p.tool.radius()).fold(0.0, f64::max);
+    let all_moves: Vec<&moves::Move> = prepared.iter().flat_map(|p| &p.read.moves).collect();
+    let (stock, source) = choose_stock(opts, &first.head, &all_moves, r)?;
     let grid = Grid::covering(stock.lo, stock.hi, res, opts.max_cells.max(1));
-    let mut notes = Vec::new();
-    if grid.res > res {
-        notes.push(format!(
-            "the stock needs more than {} cells at {res} mm: simulated at {} mm",
-            opts.max_cells, grid.res
-        ));
-    }
-    for (line, e) in read.rejected.iter().take(10) {
-        notes.push(format!(
-            "line {line}: GRBL would reject it ({e}); not simulated"
-        ));
-    }
-    if read.rejected.len() > 10 {
-        notes.push(format!("{} more rejected lines", read.rejected.len() - 10));
-    }
     let mut map = HeightMap::new(grid, stock.top);
-    let w = run::walk(
-        &mut map,
-        &read.moves,
-        r,
-        grid.res * CHORD_FRACTION,
-        stepdown,
-    );
-    let mut findings = w.findings;
+    // The lines of all programs as one count (HeightMap::last_cut): program
+    // k's line L is bases[k] + L.
+    let mut bases = Vec::with_capacity(prepared.len());
+    let mut base: u64 = 0;
+    for (p, &(_, text)) in prepared.iter().zip(programs) {
+        bases.push(base as u32);
+        let last = p.read.moves.iter().map(|m| m.line).max().unwrap_or(0);
+        base += text.lines().count().max(last) as u64;
+        if base > u64::from(u32::MAX) {
+            return Err(SimError::Invalid(format!(
+                "more than {} lines in all: too many to simulate together",
+                u32::MAX
+            )));
+        }
+    }
+    let mut reports = Vec::with_capacity(prepared.len());
+    for (p, &line_base) in prepared.iter().zip(&bases) {
+        let mut notes = Vec::new();
+        if grid.res > res {
+            notes.push(format!(
+                "the stock needs more than {} cells at {res} mm: simulated at {} mm",
+                opts.max_cells, grid.res
+            ));
+        }
+        if let Some(line) = &p.head.tool_unread {
+            notes.push(format!(
+                "the header's `{line}` names no tool pfcam simulate models (flat, ball or bull nose end mill): not used"
+            ));
+        }
+        for (line, e) in p.read.rejected.iter().take(10) {
+            notes.push(format!(
+                "line {line}: GRBL would reject it ({e}); not simulated"
+            ));
+        }
+        if p.read.rejected.len() > 10 {
+            notes.push(format!(
+                "{} more rejected lines",
+                p.read.rejected.len() - 10
+            ));
+        }
+        let w = run::walk(
+            &mut map,
+            &p.read.moves,
+            &p.tool,
+            grid.res * CHORD_FRACTION,
+            p.stepdown,
+            line_base,
+        );
+        reports.push(ProgramReport {
+            name: p.name.to_string(),
+            report: Report {
+                tool_diameter: p.tool.diameter(),
+                tool_shape: p.tool.shape(),
+                corner_radius: p.tool.corner_radius(),
+                tool_source: p.tool_source.clone(),
+                stepdown: p.stepdown.filter(|_| p.tool.shape() != ToolShape::Ball),
+                stock: StockInfo {
+                    lo: stock.lo,
+                    hi: grid.hi(),
+                    top: stock.top,
+                    resolution: grid.res,
+                    cells: [grid.nx, grid.ny],
+                    source: source.into(),
+                    lowest: map.min(),
+                },
+                moves: p.read.moves.len(),
+                unknown_start: p.read.unknown_start,
+                rapids_into_material: w.rapids_into_material,
+                worst_rapid: w.worst_rapid,
+                straight_plunges: w.straight_plunges,
+                steepest_entry_deg: w.steepest_entry,
+                max_axial: w.max_axial,
+                max_radial: w.max_radial,
+                deep_slots: w.deep_slots,
+                feed_length: w.feed_length,
+                air_length: w.air_length,
+                air_share: if w.feed_length > 0.0 {
+                    w.air_length / w.feed_length
+                } else {
+                    0.0
+                },
+                part: None,
+                findings: w.findings,
+                notes,
+            },
+        });
+    }
+    // Program k holds the counted lines bases[k] + 1 ..= bases[k + 1].
+    let locate = |id: usize| -> (usize, usize) {
+        let k = bases.partition_point(|&b| (b as usize) < id).max(1) - 1;
+        (k, id - bases[k] as usize)
+    };
+    let several = reports.len() > 1;
     let part = job
         .and_then(|j| j.part.as_ref().map(|p| (j, p)))
-        .map(|(j, p)| part::compare(&map, p, j, &mut findings));
-    findings.sort_by_key(|f| f.line);
-    let report = Report {
-        tool_diameter: diameter,
-        tool_source: tool_source.into(),
-        stepdown,
-        stock: StockInfo {
-            lo: stock.lo,
-            hi: grid.hi(),
-            top: stock.top,
-            resolution: grid.res,
-            cells: [grid.nx, grid.ny],
-            source: source.into(),
-            lowest: map.min(),
-        },
-        moves: read.moves.len(),
-        unknown_start: read.unknown_start,
-        rapids_into_material: w.rapids_into_material,
-        worst_rapid: w.worst_rapid,
-        straight_plunges: w.straight_plunges,
-        steepest_entry_deg: w.steepest_entry,
-        max_axial: w.max_axial,
-        max_radial: w.max_radial,
-        deep_slots: w.deep_slots,
-        feed_length: w.feed_length,
-        air_length: w.air_length,
-        air_share: if w.feed_length > 0.0 {
-            w.air_length / w.feed_length
-        } else {
-            0.0
-        },
+        .map(|(j, p)| {
+            let mut gouges = Vec::new();
+            let mut cmp = part::compare(&map, p, j, &mut gouges);
+            for mut f in gouges {
+                let (k, line) = locate(f.line);
+                f.line = line;
+                reports[k].report.findings.push(f);
+            }
+            for (worst, program) in [
+                (&mut cmp.max_gouge, &mut cmp.max_gouge_program),
+                (&mut cmp.max_left, &mut cmp.max_left_program),
+            ] {
+                if worst.line > 0 {
+                    let (k, line) = locate(worst.line);
+                    worst.line = line;
+                    if several {
+                        *program = Some(reports[k].name.clone());
+                    }
+                }
+            }
+            cmp
+        });
+    for p in &mut reports {
+        p.report.findings.sort_by_key(|f| f.line);
+    }
+    Ok(Sequence {
+        programs: reports,
         part,
-        findings,
-        notes,
-    };
-    Ok(Simulation { report, map })
+        map,
+    })
 }
 
 /// The stock: `--stock`, else the job's, else the header's rectangle, else the
@@ -242,7 +496,7 @@ pub fn simulate(text: &str, opts: &SimOptions) -> Result<Simulation, SimError> {
 fn choose_stock(
     opts: &SimOptions,
     head: &header::Header,
-    moves: &[moves::Move],
+    moves: &[&moves::Move],
     r: f64,
 ) -> Result<(StockBox, &'static str), SimError> {
     if let Some(s) = opts.stock {

@@ -299,8 +299,10 @@ pub fn compare(
         model: part.name.clone(),
         cells,
         max_gouge,
+        max_gouge_program: None,
         gouged_cells: gouged,
         max_left,
+        max_left_program: None,
         left_share_over_scallop: if cells > 0 {
             over_scallop as f64 / cells as f64
         } else {

@@ -2,8 +2,9 @@
 //! deepest cut dark blue), seen from above with +y up, and a red cross on
 //! every collision (rapid into material, straight plunge, gouge).
 
-use super::report::Kind;
-use super::{SimError, Simulation};
+use super::report::{Finding, Kind};
+use super::stock::HeightMap;
+use super::{Sequence, SimError, Simulation};
 use crate::preview::colormap::{encode_png, Rgb8};
 
 /// The longest side of the picture, pixels: a larger stock is drawn with one
@@ -33,7 +34,20 @@ fn colour(t: f64) -> [u8; 3] {
 
 /// The picture of `sim`'s final stock as PNG bytes (pfcam's `Software` chunk).
 pub fn stock_png(sim: &Simulation, title: &str) -> Result<Vec<u8>, SimError> {
-    let map = &sim.map;
+    draw(&sim.map, sim.report.findings.iter(), title)
+}
+
+/// The picture of the stock after the last program of `seq`, every
+/// program's collisions marked.
+pub fn sequence_png(seq: &Sequence, title: &str) -> Result<Vec<u8>, SimError> {
+    draw(&seq.map, seq.findings().map(|(_, f)| f), title)
+}
+
+fn draw<'a>(
+    map: &HeightMap,
+    findings: impl Iterator<Item = &'a Finding>,
+    title: &str,
+) -> Result<Vec<u8>, SimError> {
     let g = map.grid;
     let side = g.nx.max(g.ny);
     // cells per pixel (down) or pixels per cell (up)
@@ -62,7 +76,7 @@ pub fn stock_png(sim: &Simulation, title: &str) -> Result<Vec<u8>, SimError> {
         }
     }
     let scale = up as f64 / down as f64 / g.res; // pixels per mm
-    for f in sim.report.findings.iter().filter(|f| {
+    for f in findings.filter(|f| {
         matches!(
             f.kind,
             Kind::RapidIntoMaterial | Kind::StraightPlunge | Kind::Gouge

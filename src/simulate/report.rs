@@ -2,6 +2,7 @@
 //! whole program, and the comparison with the part. Serialised as JSON by the
 //! CLI's `--json`.
 
+use super::tool::{Tool, ToolShape};
 use serde::Serialize;
 
 /// What kind of thing a finding is.
@@ -84,11 +85,17 @@ pub struct PartComparison {
     pub cells: usize,
     /// Deepest cut below the part, mm, and the line that made it.
     pub max_gouge: Worst,
+    /// When several programs were simulated: the one `max_gouge.line` is in.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_gouge_program: Option<String>,
     /// Cells cut below the part by more than the tolerance.
     pub gouged_cells: usize,
     /// Most material left above the part, mm, and the line that last cut
     /// there (0: never cut).
     pub max_left: Worst,
+    /// When several programs were simulated: the one `max_left.line` is in.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_left_program: Option<String>,
     /// Share of the compared cells with more than `scallop + tolerance` left.
     pub left_share_over_scallop: f64,
     /// The job's tolerance, mm.
@@ -104,9 +111,16 @@ pub struct PartComparison {
 pub struct Report {
     /// Tool diameter used, mm, and where it came from.
     pub tool_diameter: f64,
-    /// `--tool-diameter`, `job` or `header`.
+    /// The tool's shape.
+    pub tool_shape: ToolShape,
+    /// Its corner radius, mm (0 flat, the radius for a ball).
+    pub corner_radius: f64,
+    /// Where the tool came from: `job`, `header`, or the flags used
+    /// (`--tool-diameter`, `--tool-shape`, `--corner-radius`), followed by
+    /// `job` or `header` when that gave the rest.
     pub tool_source: String,
-    /// Stepdown used for the slot check, mm (`None`: not checked).
+    /// Stepdown used for the slot check, mm (`None`: not checked; always
+    /// `None` for a ball end mill, which the full-width rule does not judge).
     pub stepdown: Option<f64>,
     /// The stock.
     pub stock: StockInfo,
@@ -159,8 +173,11 @@ impl Report {
             s.lo[0], s.hi[0], s.lo[1], s.hi[1], s.top, s.source, s.cells[0], s.cells[1], s.resolution, s.lowest
         );
         t += &format!(
-            "tool: {} mm flat end mill ({})\nmoves: {} simulated, {} from an unknown position\n",
-            self.tool_diameter, self.tool_source, self.moves, self.unknown_start
+            "tool: {} ({})\nmoves: {} simulated, {} from an unknown position\n",
+            self.tool().describe(),
+            self.tool_source,
+            self.moves,
+            self.unknown_start
         );
         t += &format!(
             "rapids into material: {} (worst {:.3} mm, line {})\n",
@@ -177,12 +194,21 @@ impl Report {
             100.0 * self.max_radial.value,
             self.max_radial.line
         );
-        t += &match self.stepdown {
-            Some(sd) => format!(
+        t += &match (self.stepdown, self.tool_shape) {
+            (_, ToolShape::Ball) => {
+                "full-width cuts: not checked (a ball end mill has no flat part)\n".into()
+            }
+            (Some(sd), ToolShape::Flat) => format!(
                 "full-width cuts deeper than the stepdown {sd} mm: {}\n",
                 self.deep_slots
             ),
-            None => "full-width cuts: not checked (no stepdown: give --stepdown or --job)\n".into(),
+            (Some(sd), ToolShape::Bull) => format!(
+                "full-width cuts of the flat part deeper than the stepdown {sd} mm: {}\n",
+                self.deep_slots
+            ),
+            (None, _) => {
+                "full-width cuts: not checked (no stepdown: give --stepdown or --job)\n".into()
+            }
         };
         t += &format!(
             "feed: {:.1} mm, {:.1} % in air",
@@ -190,20 +216,39 @@ impl Report {
             100.0 * self.air_share
         );
         if let Some(p) = &self.part {
-            t += &format!(
-                "\npart ({}): max gouge {:.4} mm (line {}), {} cell(s) below the part by more than the tolerance {} mm; max material left {:.3} mm (line {}), {:.2} % of {} cells above scallop + tolerance ({} mm)",
-                p.model,
-                p.max_gouge.value,
-                p.max_gouge.line,
-                p.gouged_cells,
-                p.tolerance,
-                p.max_left.value,
-                p.max_left.line,
-                100.0 * p.left_share_over_scallop,
-                p.cells,
-                p.scallop + p.tolerance
-            );
+            t += "\n";
+            t += &p.summary();
         }
         t
+    }
+
+    /// The tool simulated.
+    pub fn tool(&self) -> Tool {
+        let corner = (self.tool_shape == ToolShape::Bull).then_some(self.corner_radius);
+        Tool::new(self.tool_shape, self.tool_diameter, corner)
+            .unwrap_or_else(|_| Tool::flat_unchecked(self.tool_diameter))
+    }
+}
+
+impl PartComparison {
+    /// The comparison in one line (the last of [`Report::summary`]).
+    pub fn summary(&self) -> String {
+        let at = |program: &Option<String>, line: usize| match program {
+            Some(name) => format!("{name} line {line}"),
+            None => format!("line {line}"),
+        };
+        format!(
+            "part ({}): max gouge {:.4} mm ({}), {} cell(s) below the part by more than the tolerance {} mm; max material left {:.3} mm ({}), {:.2} % of {} cells above scallop + tolerance ({} mm)",
+            self.model,
+            self.max_gouge.value,
+            at(&self.max_gouge_program, self.max_gouge.line),
+            self.gouged_cells,
+            self.tolerance,
+            self.max_left.value,
+            at(&self.max_left_program, self.max_left.line),
+            100.0 * self.left_share_over_scallop,
+            self.cells,
+            self.scallop + self.tolerance
+        )
     }
 }

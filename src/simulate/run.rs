@@ -1,13 +1,19 @@
 //! The walk: every move, in program order, lowers the cells under the tool
-//! ([`Segment::bottom_over`]) and is measured as it goes: how much material
+//! ([`Segment::surface_over`]) and is measured as it goes: how much material
 //! it removed (axial engagement), across how much of the tool's width
 //! (radial engagement), whether a rapid touched material, whether a feed move
 //! went straight down into it, and how much feed length cut only air.
+//!
+//! The full-width rule looks at the tool's flat part: all of a flat end
+//! mill, the cells within r − rc of the axis for a bull nose (a corner
+//! lowers cells beside the flat part by less, and a cut half as wide as the
+//! tool would otherwise span the flat part's width with them); a ball has
+//! no flat part and is not judged by it.
 
 use super::moves::Move;
 use super::report::{Finding, Kind, Worst};
 use super::stock::{Grid, HeightMap};
-use super::tool::Segment;
+use super::tool::{Segment, Tool, ToolShape};
 use super::{
     AIR_DEPTH, PLUNGE_ANGLE_DEG, PLUNGE_DEPTH, RAPID_DEPTH, SLOT_MIDDLE, SLOT_SHARE, SLOT_SLACK,
 };
@@ -109,18 +115,27 @@ pub struct Walk {
 /// one pass in program order, on any number of threads.
 pub const MAX_BANDS: usize = 8;
 
-/// Runs `moves` over `map` with a flat end mill of radius `r`; arcs are cut
-/// into chords within `chord_tol` mm; `stepdown` (mm) enables the slot check.
+/// Runs `moves` over `map` with `tool`; arcs are cut into chords within
+/// `chord_tol` mm; `stepdown` (mm) enables the slot check (not for a ball);
+/// a cell lowered by line L records `line_base + L` as its last cut (the
+/// lines of the programs simulated before on the same stock come first).
 pub fn walk(
     map: &mut HeightMap,
     moves: &[Move],
-    r: f64,
+    tool: &Tool,
     chord_tol: f64,
     stepdown: Option<f64>,
+    line_base: u32,
 ) -> Walk {
     let g = map.grid;
     let top = map.top;
+    let r = tool.radius();
+    // The slot rule's half width: the flat part's (none for a ball).
+    let slot_r = (tool.shape() != ToolShape::Ball).then(|| tool.flat_radius());
+    let stepdown = stepdown.filter(|_| slot_r.is_some());
     let slot_depth = stepdown.map_or(f64::INFINITY, |sd| sd + SLOT_SLACK);
+    // Deep cells of a bull nose count only under its flat part.
+    let deep_within = (tool.shape() == ToolShape::Bull).then(|| tool.flat_radius());
     let bands = rayon::current_num_threads().clamp(1, MAX_BANDS);
     let rows_per = g.ny.div_ceil(bands).max(1);
     let chunk = rows_per * g.nx;
@@ -137,10 +152,13 @@ pub fn walk(
                 j1: (j0 + rows_per).min(g.ny) - 1,
                 top,
                 slot_depth,
+                deep_within,
+                tool: *tool,
+                line_base,
                 h,
                 last_cut,
             };
-            band.walk(moves, r, chord_tol)
+            band.walk(moves, chord_tol)
         })
         .collect();
     let mut cuts = vec![MoveCut::default(); moves.len()];
@@ -168,7 +186,7 @@ pub fn walk(
         }
         let (_, j, i) = cut.key;
         let at = [g.cx(i), g.cy(j)];
-        w.record(mv, cut, at, air, r, stepdown);
+        w.record(mv, cut, at, air, r, slot_r.zip(stepdown));
     }
     w
 }
@@ -188,6 +206,13 @@ struct Band<'a> {
     top: f64,
     /// Removal deeper than this (mm) counts toward a slot's width.
     slot_depth: f64,
+    /// If set, only cells within this distance (mm) of the piece's XY
+    /// segment count toward it (a bull nose's flat part).
+    deep_within: Option<f64>,
+    /// The tool.
+    tool: Tool,
+    /// Added to the line numbers recorded in `last_cut`.
+    line_base: u32,
     /// Heights of rows j0..=j1.
     h: &'a mut [f64],
     /// Lines that last cut them.
@@ -195,7 +220,9 @@ struct Band<'a> {
 }
 
 impl Band<'_> {
-    fn walk(&mut self, moves: &[Move], r: f64, chord_tol: f64) -> BandResult {
+    fn walk(&mut self, moves: &[Move], chord_tol: f64) -> BandResult {
+        let r = self.tool.radius();
+        let flat = self.tool.shape() == ToolShape::Flat;
         let mut out = BandResult {
             cuts: Vec::new(),
             cutting: Vec::new(),
@@ -207,12 +234,22 @@ impl Band<'_> {
             let mut cut = MoveCut::default();
             for s in mv.pieces(chord_tol) {
                 // A piece that starts where the last one ended and does not
-                // descend cannot lower the cells within r of its start (the
-                // last piece left them at or below its start z, and z(t) is not
-                // lower): only the rest of its sweep is visited.
-                let skip_start = last_end == Some(s.a) && s.b[2] >= s.a[2];
+                // descend cannot lower the cells within r of its start that
+                // it moves away from: the last piece left each at or below
+                // z(0) + p(ρ(0)), and z(t) is not lower, nor ρ(t) smaller
+                // behind the start. For a flat end mill (p = 0) that is the
+                // whole start disk, left out of the rows' ranges; a curved
+                // end moving on brings its lower middle over the cells ahead
+                // of its start, so only the half behind is skipped, cell by
+                // cell.
+                let from_last = last_end == Some(s.a) && s.b[2] >= s.a[2];
+                let skip = match (from_last, flat) {
+                    (false, _) => Skip::None,
+                    (true, true) => Skip::Disk,
+                    (true, false) => Skip::HalfDisk,
+                };
                 let piece = out.cutting.len() as u32;
-                let removed = self.cut_segment(&s, r, mv.line, skip_start, piece, &mut cut);
+                let removed = self.cut_segment(&s, r, mv.line, skip, piece, &mut cut);
                 out.cutting.push(removed > AIR_DEPTH);
                 last_end = Some(s.b);
             }
@@ -230,7 +267,7 @@ impl Band<'_> {
         s: &Segment,
         r: f64,
         line: usize,
-        skip_start: bool,
+        skip: Skip,
         piece: u32,
         cut: &mut MoveCut,
     ) -> f64 {
@@ -250,10 +287,15 @@ impl Band<'_> {
         }
         let axis = Axis::new(s);
         let mut removed = 0.0f64;
+        let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
+        let rr2 = (r - RIM) * (r - RIM);
         for j in j0..=j1 {
             let cy = g.cy(j);
             let row = (j - self.j0) * g.nx;
-            for (i0, i1) in row_ranges(&g, s, cy, r, skip_start).into_iter().flatten() {
+            for (i0, i1) in row_ranges(&g, s, cy, r, skip == Skip::Disk)
+                .into_iter()
+                .flatten()
+            {
                 for i in i0..=i1 {
                     let k = row + i;
                     // No point of the piece is lower than the cell: nothing to
@@ -262,7 +304,13 @@ impl Band<'_> {
                         continue;
                     }
                     let cx = g.cx(i);
-                    let Some(zb) = s.bottom_over(cx, cy, r) else {
+                    if skip == Skip::HalfDisk {
+                        let (ux, uy) = (cx - s.a[0], cy - s.a[1]);
+                        if ux * dx + uy * dy <= 0.0 && ux * ux + uy * uy <= rr2 {
+                            continue;
+                        }
+                    }
+                    let Some(zb) = s.surface_over(cx, cy, &self.tool) else {
                         continue;
                     };
                     let d = self.h[k] - zb;
@@ -270,7 +318,7 @@ impl Band<'_> {
                         continue;
                     }
                     self.h[k] = zb;
-                    self.last_cut[k] = line as u32;
+                    self.last_cut[k] = self.line_base + line as u32;
                     removed = removed.max(d);
                     if cut.deeper(d, (piece, j, i)) {
                         cut.depth = d;
@@ -280,7 +328,9 @@ impl Band<'_> {
                         let o = axis.offset(cx, cy);
                         cut.off_lo = cut.off_lo.min(o);
                         cut.off_hi = cut.off_hi.max(o);
-                        if d > self.slot_depth {
+                        if d > self.slot_depth
+                            && self.deep_within.is_none_or(|w| xy_dist(s, cx, cy) <= w)
+                        {
                             cut.deep_lo = cut.deep_lo.min(o);
                             cut.deep_hi = cut.deep_hi.max(o);
                             cut.deep_mid = cut.deep_mid.min(o.abs());
@@ -291,6 +341,18 @@ impl Band<'_> {
         }
         removed
     }
+}
+
+/// Which cells of a piece's start disk the walk may leave out (see
+/// `Band::walk`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Skip {
+    /// None.
+    None,
+    /// All (a flat end mill).
+    Disk,
+    /// Those behind the piece's direction (a curved end).
+    HalfDisk,
 }
 
 /// Slack (mm) by which the skipped start disk is shrunk, so that a cell centre
@@ -347,7 +409,8 @@ impl Walk {
         });
     }
 
-    /// The findings and figures of one move.
+    /// The findings and figures of one move; `slot` is the slot rule's half
+    /// width and stepdown, when it applies.
     fn record(
         &mut self,
         mv: &Move,
@@ -355,7 +418,7 @@ impl Walk {
         at: [f64; 2],
         air: f64,
         r: f64,
-        stepdown: Option<f64>,
+        slot: Option<(f64, f64)>,
     ) {
         if mv.rapid {
             if cut.depth > RAPID_DEPTH {
@@ -387,16 +450,21 @@ impl Walk {
                 self.push(mv, Kind::StraightPlunge, cut.depth, at, msg);
             }
         }
-        if let Some(sd) = stepdown {
+        if let Some((w, sd)) = slot {
             // Full width at depth: more than the stepdown removed across
-            // SLOT_SHARE of the tool (a sliver at the rim deeper than the
-            // stepdown, left by rounding, is not a slot).
-            let deep = MoveCut::share(cut.deep_lo, cut.deep_hi, r);
-            if deep >= SLOT_SHARE && cut.deep_mid <= SLOT_MIDDLE * r && cut.depth > sd + SLOT_SLACK
+            // SLOT_SHARE of the tool's flat part (a sliver at the rim deeper
+            // than the stepdown, left by rounding, is not a slot).
+            let deep = MoveCut::share(cut.deep_lo, cut.deep_hi, w);
+            if deep >= SLOT_SHARE && cut.deep_mid <= SLOT_MIDDLE * w && cut.depth > sd + SLOT_SLACK
             {
                 self.deep_slots += 1;
+                let of = if w < r {
+                    "the tool's flat part"
+                } else {
+                    "the tool"
+                };
                 let msg = format!(
-                    "full-width cut ({:.0} % of the tool deeper than the stepdown {sd} mm), {:.3} mm deep",
+                    "full-width cut ({:.0} % of {of} deeper than the stepdown {sd} mm), {:.3} mm deep",
                     100.0 * deep,
                     cut.depth
                 );
@@ -434,6 +502,18 @@ pub fn entry_angle_deg(mv: &Move) -> f64 {
         _ => (mv.to[0] - mv.from[0]).hypot(mv.to[1] - mv.from[1]),
     };
     dz.atan2(xy).to_degrees()
+}
+
+/// Distance (mm) from (x, y) to the piece's XY segment.
+fn xy_dist(s: &Segment, x: f64, y: f64) -> f64 {
+    let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (((x - s.a[0]) * dx + (y - s.a[1]) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (s.a[0] + t * dx - x).hypot(s.a[1] + t * dy - y)
 }
 
 /// A piece's XY direction, for the signed offset of a cell from its axis.
