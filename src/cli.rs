@@ -335,11 +335,16 @@ fn cmd_run(
     field_image: bool,
 ) -> Result<Done> {
     let job = load(path)?;
-    let target = out_dir.join(format!("{}.nc", job.name));
-    let svg_target = target.with_extension("svg");
-    let json_target = target.with_extension("json");
+    let files = pfcam::report::program_files(&job);
+    let target = out_dir.join(&files[0]);
+    let finish_target = files.get(1).map(|f| out_dir.join(f));
+    let svg_target = out_dir.join(format!("{}.svg", job.name));
+    let json_target = out_dir.join(format!("{}.json", job.name));
     // Refuse before the (long) run, and again when writing.
-    for t in [&target, &svg_target, &json_target] {
+    for t in [&target, &svg_target, &json_target]
+        .into_iter()
+        .chain(finish_target.as_ref())
+    {
         check_target(t, force)?;
     }
     check_writable(&target)?;
@@ -393,7 +398,23 @@ fn cmd_run(
             .map_err(|e| anyhow!(e))
             .with_context(|| format!("{}: nothing written", path.display()))?;
     }
+    // The finishing program (its own simulation needs the roughed stock:
+    // `pfcam simulate` takes both in order).
+    let finish_gcode = match (&output.finish, job.finishing(), &finish_target) {
+        (Some(f), Some(fj), Some(_)) => {
+            let g = write_gcode_on(&f.toolpath, &fj, output.stock)?;
+            let time_s = report.programs.get(1).map_or(0.0, |p| p.time_s);
+            pfcam::estimate::check_program(time_s, g.len(), &job.machine)
+                .map_err(|e| anyhow!(e))
+                .with_context(|| format!("{}: nothing written", path.display()))?;
+            Some(g)
+        }
+        _ => None,
+    };
     write_atomic(&target, gcode.as_bytes(), force)?;
+    if let (Some(g), Some(t)) = (&finish_gcode, &finish_target) {
+        write_atomic(t, g.as_bytes(), force)?;
+    }
     write_atomic(&svg_target, svg.as_bytes(), force)?;
     write_atomic(&json_target, report.to_json().as_bytes(), force)?;
 
@@ -415,7 +436,7 @@ fn cmd_run(
         // As the G-code header counts them: the distinct depths cut (a
         // profile's passes, a boss's or cavity's z-levels).
         levels: pfcam::gcode::writer::levels(&output.toolpath).len(),
-        machining_s: report.programs.first().map_or(0.0, |p| p.time_s),
+        machining_s: report.programs.iter().map(|p| p.time_s).sum(),
         warnings: output.warnings.len(),
     })
 }

@@ -16,7 +16,10 @@ use std::path::{Path, PathBuf};
 pub mod echo;
 mod exact;
 pub mod extent;
+pub mod finish;
 pub mod limits;
+
+pub use finish::{CutterShape, Finish};
 
 /// A resolved job: units in mm, mm/min and rev/min, defaults applied, validated.
 #[derive(Clone, Debug, PartialEq)]
@@ -39,11 +42,35 @@ pub struct Job {
     pub profile: Option<crate::levels::DepthProfile>,
     /// What the G-code may contain (arcs).
     pub output: Output,
+    /// The finishing tool of a boss or cavity (`[finish]`): with it the job
+    /// writes a roughing and a finishing program.
+    pub finish: Option<Finish>,
 }
 
-/// A flat end mill.
+impl Job {
+    /// The job as its finishing program sees it: `[finish]`'s cutter, feeds
+    /// and spindle as the tool (`None` without a `[finish]` table).
+    pub fn finishing(&self) -> Option<Job> {
+        let f = self.finish.as_ref()?;
+        let mut j = self.clone();
+        j.tool.shape = f.shape;
+        j.tool.corner = f.corner;
+        j.tool.diameter = f.diameter;
+        j.tool.feed = f.feed;
+        j.tool.plunge_feed = f.plunge_feed;
+        j.tool.spindle = f.spindle;
+        Some(j)
+    }
+}
+
+/// The cutter of a program: `[tool]` (a flat end mill, the roughing) or, for
+/// the finishing program, the `[finish]` tool ([`Job::finishing`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tool {
+    /// Flat for `[tool]`; `[finish]` may be ball or bull nose.
+    pub shape: CutterShape,
+    /// Corner radius, mm (0 for a flat end mill).
+    pub corner: f64,
     /// Diameter, mm (> 0).
     pub diameter: f64,
     /// Cutting feed, mm/min.
@@ -113,6 +140,9 @@ pub struct Operation {
     pub direction: Direction,
     /// Largest horizontal step between the contours of neighbouring levels, mm.
     pub max_scallop: f64,
+    /// Material the roughing leaves on the walls, mm (in plan, beyond the tool
+    /// radius); floors are cut to size.
+    pub stock_to_leave: f64,
 }
 
 /// How the MFS field is set up.
@@ -355,6 +385,8 @@ pub struct RawJob {
     pub output: Option<RawOutput>,
     /// `[profile]`
     pub profile: Option<RawProfile>,
+    /// `[finish]`
+    pub finish: Option<finish::RawFinish>,
 }
 
 /// `[profile]`: the depth profile φ(s) of a boss or cavity.
@@ -511,6 +543,8 @@ pub struct RawOperation {
     pub direction: Option<String>,
     /// `max_scallop`, mm
     pub max_scallop: Option<f64>,
+    /// `stock_to_leave`, mm
+    pub stock_to_leave: Option<f64>,
 }
 
 /// `[field]`
@@ -1006,6 +1040,8 @@ impl RawJob {
                 .ok_or_else(|| invalid("tool.diameter", "is required (mm)"))?,
         )?;
         let tool = Tool {
+            shape: CutterShape::Flat,
+            corner: 0.0,
             diameter,
             feed: limits::FEED.check("tool.feed", t.feed.unwrap_or(defaults::FEED))?,
             plunge_feed: limits::FEED.check(
@@ -1175,7 +1211,32 @@ impl RawJob {
         } else {
             Some(resolve_profile(self.profile.unwrap_or_default(), depth)?)
         };
+        let finish = match self.finish {
+            None => None,
+            Some(_) if op_kind == OperationKind::Profile => {
+                return Err(invalid(
+                    "finish",
+                    "only applies to operation.kind = \"boss\" or \"cavity\" (a profile's walls are the tool's own)",
+                ))
+            }
+            Some(f) => Some(f.resolve(&tool)?),
+        };
+        let stock_to_leave = limits::STOCK_TO_LEAVE.check(
+            "operation.stock_to_leave",
+            o.stock_to_leave.unwrap_or(if finish.is_some() {
+                finish::defaults::STOCK_TO_LEAVE
+            } else {
+                0.0
+            }),
+        )?;
+        if stock_to_leave > 0.0 && op_kind == OperationKind::Profile {
+            return Err(invalid(
+                "operation.stock_to_leave",
+                "only applies to operation.kind = \"boss\" or \"cavity\"",
+            ));
+        }
         let operation = Operation {
+            stock_to_leave,
             max_scallop,
             kind: op_kind,
             side: Side::Outside,
@@ -1247,6 +1308,7 @@ impl RawJob {
             machine,
             profile,
             output,
+            finish,
         })
     }
 }

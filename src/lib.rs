@@ -7,6 +7,7 @@
 pub mod compose;
 pub mod estimate;
 pub mod field;
+pub mod finish;
 pub mod gcode;
 pub mod geometry;
 pub mod grbl;

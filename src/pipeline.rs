@@ -71,6 +71,8 @@ pub struct RunOutput {
     pub field: field::Field,
     /// A lower bound of the program's machining time, found before the work.
     pub lower_bound: LowerBound,
+    /// The finishing program, for a job with `[finish]`.
+    pub finish: Option<crate::finish::Finished>,
 }
 
 /// Progress events for a front end's progress bar.
@@ -459,6 +461,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         top: job.stock.top,
         stepdown: job.tool.stepdown,
         rapid_rate: job.machine.rapid_rate,
+        leave: job.operation.stock_to_leave,
         stock_lo: crate::geometry::Vec2::ZERO,
         stock_hi: crate::geometry::Vec2::ZERO,
     };
@@ -480,6 +483,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         params,
         max_hours: job.machine.max_hours,
     };
+    let leave = job.operation.stock_to_leave;
     let mut planned = plan_with_progress(&lj, progress)?;
     check_coverage(&planned.info, &mut planned.warnings)?;
     // The levels in cutting order; sections[i] is the level order[i].
@@ -501,7 +505,8 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
                     start: toolpath.start,
                     sections: vec![section.clone()],
                 };
-                gouge::check(&one, &part, params.radius, job.stock.top)
+                // With stock to leave, the moves keep that much more clearance.
+                gouge::check(&one, &part, params.radius + leave, job.stock.top)
             })
             .collect()
     };
@@ -514,9 +519,21 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
                 tol,
             });
         }
-        min_clearance = min_clearance.min(rep.min_clearance);
-        planned.info[k].min_clearance = rep.min_clearance;
+        // Reported from the part itself (the stock to leave included).
+        min_clearance = min_clearance.min(rep.min_clearance + leave);
+        planned.info[k].min_clearance = rep.min_clearance + leave;
     }
+    let finish = match &job.finish {
+        Some(f) => Some(finish_program(
+            job,
+            f,
+            &solved.solution.field,
+            &glyphs,
+            (planned.params.stock_lo, planned.params.stock_hi),
+            progress,
+        )?),
+        None => None,
+    };
     solves.push(shape_report);
     for (k, li) in planned.info.iter().enumerate() {
         solves.push(SolveReport {
@@ -540,7 +557,62 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         shape,
         field: solved.solution.field.clone(),
         lower_bound: planned.bound,
+        finish,
     })
+}
+
+/// S2's mesh is built this fine (mm) for the finisher's drop-cutter: half the
+/// planner's grid, so the mesh follows the surface within a few µm.
+pub const FINISH_MESH: f64 = 0.2;
+
+/// The finishing program of a boss or cavity (`crate::finish`): S2's mesh,
+/// u on the planner's grid over the stock, the passes and their path.
+fn finish_program(
+    job: &Job,
+    f: &crate::job::Finish,
+    field: &field::Field,
+    glyphs: &[Vec<crate::geometry::Vec2>],
+    stock: (crate::geometry::Vec2, crate::geometry::Vec2),
+    progress: &mut dyn FnMut(Progress),
+) -> Result<crate::finish::Finished, PipelineError> {
+    use crate::surface::{build, SurfaceJob, SurfaceOptions};
+    let profile = job
+        .profile
+        .as_ref()
+        .ok_or_else(|| PipelineError::Other("a boss or cavity needs a [profile]".into()))?;
+    let sj = SurfaceJob {
+        field,
+        glyphs,
+        profile,
+        cavity: job.operation.kind == OperationKind::Cavity,
+        top: job.stock.top,
+        margin: job.stock.margin,
+        tol: job.operation.tolerance,
+    };
+    let opts = SurfaceOptions {
+        resolution: FINISH_MESH,
+    };
+    let surface = build(&sj, &opts, progress).map_err(|e| PipelineError::Other(e.to_string()))?;
+    progress(Progress::Stage {
+        name: "finishing passes".into(),
+        total: 1,
+    });
+    let mesh = &surface.mesh;
+    let up: Vec<[[f64; 3]; 3]> = (0..mesh.triangles.len())
+        .map(|t| mesh.corners(t))
+        .filter(|c| {
+            (c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[2][0] - c[0][0]) * (c[1][1] - c[0][1])
+                > 1e-12
+        })
+        .collect();
+    let walls = crate::finish::wall_area(&up);
+    let index = crate::toolpath::dropcutter::MeshIndex::new(up, 4.0 * FINISH_MESH);
+    let h = crate::levels::plan::GRID_SPACING;
+    let grid = field::isolines::Grid::sample(field, stock.0, stock.1, h, glyphs);
+    let done = crate::finish::finish(job, f, field, glyphs, grid, h, &index, walls)
+        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
+    progress(Progress::Step);
+    Ok(done)
 }
 
 /// Plan the levels (in parallel, on the current rayon pool) while this thread
@@ -637,6 +709,7 @@ fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutpu
         shape: plan.shape,
         field: plan.field,
         lower_bound: plan.bound,
+        finish: None,
     })
 }
 

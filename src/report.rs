@@ -233,13 +233,46 @@ pub struct ProgramReport {
     pub time_over_bound: Option<f64>,
 }
 
+/// The G-code files of a job: `<name>.nc`, or with a `[finish]` tool
+/// `<name>.rough.nc` and `<name>.finish.nc` (GRBL has no tool changer).
+pub fn program_files(job: &Job) -> Vec<String> {
+    if job.finish.is_some() {
+        vec![
+            format!("{}.rough.nc", job.name),
+            format!("{}.finish.nc", job.name),
+        ]
+    } else {
+        vec![format!("{}.nc", job.name)]
+    }
+}
+
 impl ProgramReport {
-    /// The program of `job` for the finished run `out`.
+    /// Every program of the run, roughing first.
+    pub fn all(job: &Job, out: &RunOutput) -> Vec<ProgramReport> {
+        let mut v = vec![ProgramReport::new(job, out)];
+        if let (Some(f), Some(fj)) = (&out.finish, job.finishing()) {
+            let st = crate::gcode::writer::program_stats(&f.toolpath, &fj);
+            v.push(ProgramReport {
+                file: program_files(job)[1].clone(),
+                tool_diameter_mm: fj.tool.diameter,
+                cut_length_mm: st.cut_length,
+                rapid_length_mm: st.rapid_length,
+                time_s: st.time_s,
+                lower_bound_s: f.lower_bound_s,
+                lower_bound_clearing_s: 0.0,
+                lower_bound_outline_s: f.lower_bound_s,
+                time_over_bound: (f.lower_bound_s > 0.0).then(|| st.time_s / f.lower_bound_s),
+            });
+        }
+        v
+    }
+
+    /// The (roughing) program of `job` for the finished run `out`.
     pub fn new(job: &Job, out: &RunOutput) -> ProgramReport {
         let st = crate::gcode::writer::program_stats(&out.toolpath, job);
         let b = out.lower_bound;
         ProgramReport {
-            file: format!("{}.nc", job.name),
+            file: program_files(job)[0].clone(),
             tool_diameter_mm: job.tool.diameter,
             cut_length_mm: st.cut_length,
             rapid_length_mm: st.rapid_length,
@@ -422,7 +455,7 @@ impl RunReport {
             solves: out.solves.iter().map(SolveEntry::from).collect(),
             levels,
             totals,
-            programs: vec![ProgramReport::new(job, out)],
+            programs: ProgramReport::all(job, out),
             warnings: out.warnings.clone(),
         }
     }

@@ -480,9 +480,15 @@ pub fn write_gcode_on(
     };
     let l = &mut out.lines;
     l.push(super::header_line(&job.name));
+    let corner = if job.tool.shape == crate::job::CutterShape::Bull {
+        format!(", corner {} mm", fmt_num(job.tool.corner))
+    } else {
+        String::new()
+    };
     l.push(comment(&format!(
-        "tool: {} mm end mill, feed {}, plunge {} mm/min, spindle {} rpm",
+        "tool: {} mm {}{corner}, feed {}, plunge {} mm/min, spindle {} rpm",
         fmt_num(job.tool.diameter),
+        job.tool.shape.header_words(),
         fmt_num(job.tool.feed),
         fmt_num(job.tool.plunge_feed),
         fmt_num(job.tool.spindle.round()),

@@ -153,6 +153,11 @@ pub const MAX_HOURS: Range = Range::open(0.0, 1000.0, "h");
 pub const MAX_FILE_MB: Range = Range::open(0.0, 10_000.0, "MB");
 /// `output.max_arc_radius`.
 pub const MAX_ARC_RADIUS: Range = Range::open(0.0, 100_000.0, "mm");
+/// `operation.stock_to_leave`, mm: a roughing allowance, never a part's size.
+pub const STOCK_TO_LEAVE: Range = Range::closed(0.0, 5.0, "mm");
+/// `finish.scallop`, mm: a thousandth of a millimetre is below any machine's
+/// repeatability; a millimetre is no finish.
+pub const SCALLOP: Range = Range::closed(0.001, 1.0, "mm");
 
 /// Every numeric key with its range, for the docs test and for `pfcam validate`.
 pub const KEYS: &[(&str, Range)] = &[
@@ -169,6 +174,12 @@ pub const KEYS: &[(&str, Range)] = &[
     ("operation.depth", DEPTH),
     ("operation.tolerance", TOLERANCE),
     ("operation.max_scallop", MAX_SCALLOP),
+    ("operation.stock_to_leave", STOCK_TO_LEAVE),
+    ("finish.diameter", TOOL_DIAMETER),
+    ("finish.feed", FEED),
+    ("finish.plunge_feed", FEED),
+    ("finish.spindle", SPINDLE),
+    ("finish.scallop", SCALLOP),
     ("shape.height", SHAPE_HEIGHT),
     ("shape.origin", ORIGIN),
     ("shape.letter_spacing", LETTER_SPACING),

@@ -308,6 +308,7 @@ pub fn plan_levels_reporting(
     params.stock_lo = blo - Vec2::new(job.margin, job.margin);
     params.stock_hi = bhi + Vec2::new(job.margin, job.margin);
     let stock = (!job.cavity).then_some((params.stock_lo, params.stock_hi));
+
     let area_at = |zrel: f64| level_area(&contours_at(s_of(zrel)), stock);
     let bound = levels_bound(
         &rough_z[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),

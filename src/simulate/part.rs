@@ -60,7 +60,11 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         stock: None,
         part: None,
         tolerance: job.operation.tolerance,
-        scallop: job.operation.max_scallop,
+        // With a finishing tool, its scallop bound is what the part is held to.
+        scallop: job
+            .finish
+            .as_ref()
+            .map_or(job.operation.max_scallop, |f| f.scallop),
         stepover: job.tool.stepover,
     };
     if job.operation.kind == OperationKind::Profile {

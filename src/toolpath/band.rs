@@ -116,7 +116,7 @@ pub fn band_rings<N: Navigator>(
     let points = cavity_points(part, index, h);
     let mut paths = Vec::new();
     for j in (1..=n).rev() {
-        let rj = p.radius + j as f64 * p.stepover;
+        let rj = p.wall() + j as f64 * p.stepover;
         let Some(loops) = loops_at(&points, index, nav, p, rj, h, label)? else {
             return Ok(None);
         };
@@ -170,6 +170,7 @@ mod tests {
             safe_z: 5.0,
             top: 0.0,
             stepdown: 1.0,
+            leave: 0.0,
             stock_lo: Vec2::new(-30.0, -30.0),
             stock_hi: Vec2::new(30.0, 30.0),
         }

@@ -32,15 +32,17 @@ fn as_loop(c: &CutPath) -> Vec<Vec2> {
 }
 
 /// Grid points (spacing `h`) of the rectangle `[lo, hi]` outside the part,
-/// where the tool centre may sit (at least `r + tol` from the part), farther
+/// where the tool centre may sit (at least `wall + tol` from the part), farther
 /// than `r` from every path: the stock the paths leave that the tool can reach
 /// from inside. As (distance to the part, point), deepest first.
+#[allow(clippy::too_many_arguments)]
 pub fn uncut_spots(
     part: &[Vec<Vec2>],
     index: &DistanceIndex,
     paths: &[CutPath],
     (lo, hi): (Vec2, Vec2),
     h: f64,
+    wall: f64,
     r: f64,
     tol: f64,
 ) -> Vec<(f64, Vec2)> {
@@ -61,7 +63,7 @@ pub fn uncut_spots(
             }
             let q = lo + Vec2::new(i as f64 * h, j as f64 * h);
             let d = index.distance(q);
-            if d >= r + tol && !pindex.closer_than(q, r, &hint) {
+            if d >= wall + tol && !pindex.closer_than(q, r, &hint) {
                 spots.push((d, q));
             }
         }
@@ -85,7 +87,7 @@ fn bay_rings<N: Navigator>(
     room: f64,
     p: &LevelParams,
 ) -> Vec<Vec<Vec2>> {
-    let r = p.radius;
+    let r = p.wall();
     let n = ((room - r - p.tol) / p.stepover).floor().max(0.0) as usize;
     let mut rings = Vec::new();
     let hint = std::cell::Cell::new(0);
@@ -128,7 +130,7 @@ pub fn clear_bays<N: Navigator>(
     let r = p.radius;
     let h = 0.25 * r;
     let rect = (p.stock_lo, p.stock_hi);
-    let mut spots = uncut_spots(part, index, paths, rect, h, r, p.tol);
+    let mut spots = uncut_spots(part, index, paths, rect, h, p.wall(), r, p.tol);
     let mut bays = 0;
     while let Some(&(room, q)) = spots.first() {
         if !room.is_finite() {
@@ -150,7 +152,7 @@ pub fn clear_bays<N: Navigator>(
         if rings.is_empty() {
             // No ring of its own: a loop of radius up to r/2 about the spot,
             // its disk still r + tol from the part.
-            let rho = (0.5 * r).min(room - r - p.tol);
+            let rho = (0.5 * r).min(room - p.wall() - p.tol);
             let m = 24;
             let mut pts: Vec<Vec2> = (0..m)
                 .map(|k| {

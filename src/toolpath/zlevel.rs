@@ -35,6 +35,10 @@ pub struct LevelParams {
     /// Deepest cut allowed in one move (the tool's stepdown): a sideways link
     /// at depth may cross material no deeper than this.
     pub stepdown: f64,
+    /// Material left on the walls for a finishing tool, mm
+    /// (`operation.stock_to_leave`): the paths keep the wall radius
+    /// [`wall`](Self::wall) from the part, and cover with the true radius.
+    pub leave: f64,
     /// Lower-left corner of the stock rectangle.
     pub stock_lo: Vec2,
     /// Upper-right corner of the stock rectangle.
@@ -42,6 +46,12 @@ pub struct LevelParams {
 }
 
 impl LevelParams {
+    /// How far the tool's axis stays from the part: its radius plus the
+    /// stock to leave, mm.
+    pub fn wall(&self) -> f64 {
+        self.radius + self.leave
+    }
+
     /// The entry settings of these parameters.
     pub fn entry(&self) -> Entry {
         Entry {
@@ -180,11 +190,12 @@ pub fn boss_paths<N: Navigator + Sync>(
 ) -> Result<Vec<CutPath>, ProfileError> {
     use rayon::prelude::*;
     let index = DistanceIndex::new(part);
-    let r = p.radius;
-    let grow = Vec2::new(r, r);
+    // Rings are offsets of the wall radius; the tool covers its true radius.
+    let r = p.wall();
+    let grow = Vec2::new(p.radius, p.radius);
     let (lo, hi) = (p.stock_lo - grow, p.stock_hi + grow);
     let dmax = farthest_stock_point(part, &index, p.stock_lo, p.stock_hi, p.stepover);
-    let full = ((dmax - 2.0 * r) / p.stepover).ceil().max(0.0) as usize;
+    let full = ((dmax - r - p.radius) / p.stepover).ceil().max(0.0) as usize;
     // A level added for the scallop bound only clears the band, `reach` wide, out
     // to the contour of the level below, which was cut first: ring j's disk
     // reaches j·stepover + 2r out, and the outermost engages at most a stepover
@@ -504,9 +515,12 @@ pub fn cavity_paths<N: Navigator + Sync>(
     use crate::field::isolines::{isolines_linear, polygon_area, Grid};
     use crate::field::{self, Boundary, Layout, Prepared, Sink};
     let index = DistanceIndex::new(part);
+    // The wall loops keep `rw` (radius + stock to leave) from the part; the
+    // coverage below is measured with the tool's true radius `r`.
     let r = p.radius;
+    let rw = p.wall();
     let tp = TraceParams {
-        radius: r,
+        radius: rw,
         tol: p.tol,
         part_on_left: !p.climb,
     };
@@ -551,14 +565,14 @@ pub fn cavity_paths<N: Navigator + Sync>(
     let mut finish: Vec<Vec<Vec2>> = Vec::new();
     for (i, pk) in pockets.iter().enumerate() {
         let (deep, room) = deepest_in_pocket(pk);
-        if room < r + p.tol {
+        if room < rw + p.tol {
             warnings.push(format!(
                 "{label}: pocket {} is too narrow for the tool (room {room:.3} mm): not cut",
                 i + 1
             ));
             continue;
         }
-        let t = trace(nav, &index, pocket_start(pk, deep, r), tp).map_err(|source| {
+        let t = trace(nav, &index, pocket_start(pk, deep, rw), tp).map_err(|source| {
             ProfileError::Trace {
                 label: format!("{label}: wall of pocket {}", i + 1),
                 source,
@@ -567,7 +581,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
         finish.push(t.points);
     }
     for (i, is) in islands.iter().enumerate() {
-        let start = lowest(is) - Vec2::new(0.0, r + p.tol);
+        let start = lowest(is) - Vec2::new(0.0, rw + p.tol);
         match trace(nav, &index, start, tp) {
             Ok(t) => finish.push(t.points),
             Err(source) => {
@@ -602,7 +616,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // keeps the wall's sharp corners, which the equipotential rings would cut by
     // more than the tool can bridge (the measured uncut area sat in those corners).
     // The inverse problem is then solved inside these loops.
-    let r2 = r + 0.9 * p.stepover;
+    let r2 = rw + 0.9 * p.stepover;
     let tp2 = TraceParams {
         radius: r2,
         tol: p.tol,
@@ -780,13 +794,13 @@ pub fn cavity_paths<N: Navigator + Sync>(
         if small(&prev) && !rings.is_empty() {
             break;
         }
-        // A ring is usable when it keeps r − tol/4 from the part everywhere (the
+        // A ring is usable when it keeps rw − tol/4 from the part everywhere (the
         // field's error could carry a ring with c near 1 across ∂V).
         let safe = |set: &[Vec<Vec2>]| {
             set.iter().all(|l| {
                 let n = l.len();
                 (0..n).all(|i| {
-                    index.segment_distance(l[i], l[(i + 1) % n], 2.0 * r) >= r - 0.25 * p.tol
+                    index.segment_distance(l[i], l[(i + 1) % n], 2.0 * r) >= rw - 0.25 * p.tol
                 })
             })
         };

@@ -1,0 +1,38 @@
+//! Where material is left: `cargo run --release --example left_map -- JOB.toml A.nc [B.nc ...]`
+//! prints the cells farthest above the part after the programs, with x, y.
+use pfcam::simulate::part::part_heights;
+use pfcam::simulate::{job_facts, simulate_programs, SimOptions};
+fn main() {
+    let a: Vec<String> = std::env::args().skip(1).collect();
+    let job = pfcam::job::load_job(std::path::Path::new(&a[0])).expect("job");
+    let facts = job_facts(&job, 0.1).expect("facts");
+    let part = facts.part.clone().expect("part");
+    let texts: Vec<(String, String)> = a[1..]
+        .iter()
+        .map(|f| (f.clone(), std::fs::read_to_string(f).expect("read")))
+        .collect();
+    let progs: Vec<(&str, &str)> = texts
+        .iter()
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .collect();
+    let opts = SimOptions {
+        job: Some(facts),
+        ..SimOptions::default()
+    };
+    let seq = simulate_programs(&progs, &opts).expect("sim");
+    let h = part_heights(&seq.map, &part);
+    let g = seq.map.grid;
+    let mut v: Vec<(f64, f64, f64)> = Vec::new();
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let p = h[j * g.nx + i];
+            if p.is_finite() {
+                v.push((seq.map.at(i, j) - p, g.cx(i), g.cy(j)));
+            }
+        }
+    }
+    v.sort_by(|a, b| b.0.total_cmp(&a.0));
+    for (d, x, y) in v.iter().take(12) {
+        println!("{d:.4} at X{x:.2} Y{y:.2}");
+    }
+}

@@ -1,0 +1,151 @@
+//! Finishing (issue 14): the second program of a job with a `[finish]` tool.
+//! The roughing leaves `operation.stock_to_leave` on the walls; the finisher
+//! follows the modelled surface S2 along the equipotentials Γ(s_k) of the
+//! shape's field ([`passes`]), its axis where the cutter touches S2 at the
+//! contact points and its height from a drop-cutter against S2's mesh
+//! ([`path`]), so that it never enters the part by construction; `pfcam
+//! simulate` checks the two programs against the part independently.
+
+pub mod passes;
+pub mod path;
+
+use crate::field::isolines::Grid;
+use crate::field::Field;
+use crate::geometry::Vec2;
+use crate::job::{Finish, Job};
+use crate::levels::DepthProfile;
+use crate::toolpath::dropcutter::{Cutter, MeshIndex};
+use crate::toolpath::Toolpath;
+
+/// What the finisher needs besides the mesh.
+pub struct FinishParams<'a> {
+    /// The cutter.
+    pub cutter: Cutter,
+    /// φ(s).
+    pub profile: &'a DepthProfile,
+    /// A cavity (the mould) rather than a boss.
+    pub cavity: bool,
+    /// Climb (material on the right of the cutter's travel).
+    pub climb: bool,
+    /// Cutting feed, mm/min.
+    pub feed: f64,
+    /// Ramp feed, mm/min.
+    pub plunge_feed: f64,
+    /// Ramp angle, degrees.
+    pub ramp_angle: f64,
+    /// Safe Z, mm.
+    pub safe_z: f64,
+    /// Height above the surface at which an entry's ramp starts, mm: the most
+    /// the roughing can have left over S2 (a stepdown and the stock to leave).
+    pub entry: f64,
+    /// Chord tolerance, mm.
+    pub tol: f64,
+}
+
+/// The finishing program and what it was planned from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finished {
+    /// The tool path (tip coordinates).
+    pub toolpath: Toolpath,
+    /// The passes' s, from the floor up.
+    pub levels: Vec<f64>,
+    /// The pass width on the surface, mm.
+    pub width: f64,
+    /// The lower bound of its machining time: S2's sloped area (the walls) ÷
+    /// the pass width ÷ the feed, s (no pattern of passes at most w apart
+    /// covers the walls with less feed length).
+    pub lower_bound_s: f64,
+}
+
+/// Area of the triangles of `tris` that are neither flat nor vertical (S2's
+/// walls), mm².
+pub fn wall_area(tris: &[[[f64; 3]; 3]]) -> f64 {
+    tris.iter()
+        .map(|c| {
+            let u = [c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]];
+            let v = [c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]];
+            let n = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            let a = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let cos = if a > 0.0 { n[2].abs() / a } else { 1.0 };
+            if cos < 1.0 - 1e-9 && cos > 1e-9 {
+                0.5 * a
+            } else {
+                0.0
+            }
+        })
+        .sum()
+}
+
+/// The job's finishing cutter.
+pub fn cutter_of(f: &Finish) -> Cutter {
+    Cutter {
+        radius: f.radius(),
+        corner: f.corner,
+    }
+}
+
+/// The finishing program of a boss or cavity with `[finish]`: `field` and
+/// `glyphs` as the roughing solved them, `mesh` S2's triangles, `grid` u over
+/// the part (as the level planner samples it, spacing `h`).
+#[allow(clippy::too_many_arguments)]
+pub fn finish(
+    job: &Job,
+    f: &Finish,
+    field: &Field,
+    glyphs: &[Vec<Vec2>],
+    grid: Grid,
+    h: f64,
+    mesh: &MeshIndex,
+    wall_area: f64,
+) -> Result<Finished, String> {
+    let profile = job
+        .profile
+        .as_ref()
+        .ok_or_else(|| "a boss or cavity needs a [profile]".to_string())?;
+    let cavity = job.operation.kind == crate::job::OperationKind::Cavity;
+    let p = FinishParams {
+        cutter: cutter_of(f),
+        profile,
+        cavity,
+        climb: job.operation.direction == crate::job::Direction::Climb,
+        feed: f.feed,
+        plunge_feed: f.plunge_feed,
+        ramp_angle: job.tool.ramp_angle,
+        safe_z: job.stock.safe_z,
+        entry: job.tool.stepdown + job.operation.stock_to_leave + 0.5,
+        tol: job.operation.tolerance,
+    };
+    let curves = passes::Curves {
+        field,
+        grid,
+        glyphs,
+        h,
+        tol: job.operation.tolerance,
+    };
+    let width = passes::pass_width(f.corner, f.scallop);
+    let levels = passes::pass_levels(
+        &curves,
+        profile,
+        cavity,
+        width,
+        job.operation.stock_to_leave,
+    )?;
+    let mut loops = Vec::new();
+    for (k, (s, polys)) in levels.iter().enumerate() {
+        for poly in polys {
+            loops.push(path::tip_loop(poly, k, *s, field, &p, mesh)?);
+        }
+    }
+    let order = path::order(&loops, path::LINK_WIDTHS * width + 2.0 * f.radius());
+    let toolpath = path::moves(&loops, &order, &p, mesh);
+    Ok(Finished {
+        toolpath,
+        levels: levels.iter().map(|(s, _)| *s).collect(),
+        width,
+        lower_bound_s: wall_area / width / f.feed * 60.0,
+    })
+}

@@ -1,0 +1,458 @@
+//! From the pass curves to the finishing tool path: where the cutter's axis
+//! goes for each contact point, how low it may go (the drop-cutter against
+//! S2's mesh, so no triangle of the part is ever entered), and the order and
+//! links of the loops.
+//!
+//! - Axis. At a point p of Γ(s), S2's slope θ has tan θ = |φ'(s)|·|∇u(p)|,
+//!   and the surface falls away from the material along d̂ = ∓∇u/|∇u| (− for a
+//!   boss, + for a cavity). A cutter of radius r and corner rc touching S2 at p
+//!   with its corner has its axis (r − rc) + rc·sin θ from p along d̂. Its tip
+//!   height is then the drop-cutter's: the lowest at which it touches the mesh,
+//!   which also lifts it where another part of the surface is nearer than p.
+//! - Order. The passes are cut from the floor up, so every link between
+//!   neighbouring passes climbs and no move descends into what the roughing
+//!   left. The loops form a tree (each loop's parent is the nearest loop of the
+//!   pass below); a depth-first walk cuts a loop's first child straight after
+//!   it (a short feed link over the surface) and reaches the others by a
+//!   retract.
+//! - Entry. After a retract the cutter comes down in rapid to `entry` above
+//!   the surface (what the roughing can have left there: a stepdown and the
+//!   stock to leave) and ramps down along the loop at `ramp_angle`, then cuts
+//!   the whole loop at depth.
+
+use super::FinishParams;
+use crate::field::Field;
+use crate::geometry::{DistanceIndex, Vec2};
+use crate::toolpath::dropcutter::MeshIndex;
+use crate::toolpath::{Move, Section, Toolpath, Vec3};
+
+/// Spacing of the contact points along a pass, mm (the chords between
+/// dropped points then follow the surface within a few µm).
+pub const SAMPLE: f64 = 0.1;
+/// Longest feed link between a loop and its first child, in pass widths; a
+/// farther child is reached by a retract.
+pub const LINK_WIDTHS: f64 = 6.0;
+
+/// One loop of one pass, as the cutter's tip follows it.
+#[derive(Clone, Debug)]
+pub struct Loop {
+    /// The pass (index into the passes, from the floor up).
+    pub pass: usize,
+    /// s of the pass.
+    pub s: f64,
+    /// The contact curve (closed, first point not repeated), oriented for the
+    /// cutting direction.
+    pub contact: Vec<Vec2>,
+    /// The tip positions, one per contact point.
+    pub tip: Vec<Vec3>,
+}
+
+/// The curve resampled at most `step` apart (closed; the first point not repeated).
+fn resample(poly: &[Vec2], step: f64) -> Vec<Vec2> {
+    let n = poly.len();
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        let k = (a.dist(b) / step).ceil().max(1.0) as usize;
+        for j in 0..k {
+            out.push(a.lerp(b, j as f64 / k as f64));
+        }
+    }
+    out
+}
+
+/// The side the material lies on: +1 when it is on the right of the loop's
+/// direction (at most points), −1 on the left.
+fn material_side(pts: &[Vec2], away: &[Vec2]) -> f64 {
+    let n = pts.len();
+    let mut sum = 0.0;
+    for i in 0..n {
+        let t = pts[(i + 1) % n] - pts[i];
+        // Right of t is −perp(t); the material is at −away.
+        sum += (-t.perp()).dot(-away[i]);
+    }
+    sum.signum()
+}
+
+/// The loop of Γ(s) at `s` with its tip positions (see the module docs);
+/// `Err` names a point no triangle lies under.
+pub fn tip_loop(
+    poly: &[Vec2],
+    pass: usize,
+    s: f64,
+    field: &Field,
+    p: &FinishParams,
+    mesh: &MeshIndex,
+) -> Result<Loop, String> {
+    let mut contact = resample(poly, SAMPLE);
+    let sign = if p.cavity { 1.0 } else { -1.0 };
+    let dphi = super::passes::dphi_ds(p.profile, s).abs();
+    let mut away: Vec<Vec2> = contact
+        .iter()
+        .map(|&q| field.grad(q).normalized() * sign)
+        .collect();
+    // Climb: the material on the right; conventional: on the left.
+    let want = if p.climb { 1.0 } else { -1.0 };
+    if material_side(&contact, &away) != want {
+        contact.reverse();
+        away.reverse();
+    }
+    let cutter = p.cutter;
+    let flat = cutter.radius - cutter.corner;
+    let axes: Vec<Vec2> = contact
+        .iter()
+        .zip(&away)
+        .map(|(&q, &d)| {
+            let t = dphi * field.grad(q).norm();
+            let sin = t / (1.0 + t * t).sqrt();
+            q + d * (flat + cutter.corner * sin)
+        })
+        .collect();
+    let pts: Vec<(f64, f64)> = axes.iter().map(|a| (a.x, a.y)).collect();
+    let zs = cutter.drop_many(mesh, &pts);
+    let mut tip = Vec::with_capacity(axes.len());
+    for (a, z) in axes.iter().zip(zs) {
+        let z = z.ok_or_else(|| {
+            format!(
+                "no part of the surface lies under the finishing tool at X{:.3} Y{:.3} (pass s = {s:.5})",
+                a.x, a.y
+            )
+        })?;
+        tip.push(Vec3::new(a.x, a.y, z));
+    }
+    Ok(Loop {
+        pass,
+        s,
+        contact,
+        tip,
+    })
+}
+
+/// The parent of each loop: the nearest loop of the pass below (`None` for
+/// the first pass's loops, or when there is no pass below).
+fn parents(loops: &[Loop]) -> Vec<Option<usize>> {
+    let mut out = vec![None; loops.len()];
+    for (i, l) in loops.iter().enumerate() {
+        if l.pass == 0 {
+            continue;
+        }
+        let probe = l.contact[0];
+        out[i] = loops
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.pass + 1 == l.pass)
+            .map(|(j, m)| {
+                (
+                    j,
+                    DistanceIndex::new(std::slice::from_ref(&m.contact)).distance(probe),
+                )
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(j, _)| j);
+    }
+    out
+}
+
+/// The loops in cutting order, each with whether it is reached by a feed link
+/// from the loop before it (else by a retract): a depth-first walk of the
+/// tree, nearest child first.
+pub fn order(loops: &[Loop], max_link: f64) -> Vec<(usize, bool)> {
+    let parent = parents(loops);
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); loops.len()];
+    let mut roots = Vec::new();
+    for (i, p) in parent.iter().enumerate() {
+        match p {
+            Some(j) => children[*j].push(i),
+            None => roots.push(i),
+        }
+    }
+    let mut out = Vec::with_capacity(loops.len());
+    let mut stack: Vec<(usize, bool)> = roots.iter().rev().map(|&i| (i, false)).collect();
+    let mut at = Vec2::new(f64::INFINITY, f64::INFINITY);
+    while let Some((i, linked)) = stack.pop() {
+        let near = loops[i]
+            .contact
+            .iter()
+            .map(|q| q.dist(at))
+            .fold(f64::INFINITY, f64::min);
+        out.push((i, linked && near <= max_link));
+        let end = loops[i].tip.first().map(|t| Vec2::new(t.x, t.y));
+        at = end.unwrap_or(at);
+        // The nearest child is cut next (pushed last); the others follow by
+        // retracts once its subtree is done.
+        let mut kids = children[i].clone();
+        kids.sort_by(|&a, &b| {
+            let d = |k: usize| {
+                loops[k]
+                    .contact
+                    .iter()
+                    .map(|q| q.dist(at))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            d(b).total_cmp(&d(a))
+        });
+        let last = kids.len().saturating_sub(1);
+        for (k, &c) in kids.iter().enumerate() {
+            stack.push((c, k == last));
+        }
+    }
+    out
+}
+
+/// The tips of `l` rotated to start at the tip nearest `at` (XY).
+fn starting_near(l: &Loop, at: Vec3) -> Vec<Vec3> {
+    let k = l
+        .tip
+        .iter()
+        .enumerate()
+        .min_by(|a, b| {
+            let d = |t: &Vec3| (t.x - at.x).powi(2) + (t.y - at.y).powi(2);
+            d(a.1).total_cmp(&d(b.1))
+        })
+        .map_or(0, |(k, _)| k);
+    l.tip[k..].iter().chain(&l.tip[..k]).copied().collect()
+}
+
+/// A feed link over the surface from `a` to `b`: straight in XY, each point
+/// at the drop-cutter's height
+/// (the safe height where no triangle lies under it), sampled every [`SAMPLE`].
+fn surface_link(a: Vec3, b: Vec3, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec3> {
+    let (pa, pb) = (Vec2::new(a.x, a.y), Vec2::new(b.x, b.y));
+    let k = (pa.dist(pb) / SAMPLE).ceil().max(1.0) as usize;
+    let pts: Vec<(f64, f64)> = (1..k)
+        .map(|j| {
+            let q = pa.lerp(pb, j as f64 / k as f64);
+            (q.x, q.y)
+        })
+        .collect();
+    let zs = p.cutter.drop_many(mesh, &pts);
+    let mut out: Vec<Vec3> = pts
+        .iter()
+        .zip(zs)
+        .map(|(&(x, y), z)| Vec3::new(x, y, z.unwrap_or(p.safe_z)))
+        .collect();
+    out.push(b);
+    out
+}
+
+/// The moves of the whole program from the loops in order (see the module docs).
+pub fn moves(
+    loops: &[Loop],
+    order: &[(usize, bool)],
+    p: &FinishParams,
+    mesh: &MeshIndex,
+) -> Toolpath {
+    let start = Vec3::new(0.0, 0.0, p.safe_z);
+    let mut sections = Vec::with_capacity(order.len());
+    let mut at = start;
+    let tan = p.ramp_angle.to_radians().tan();
+    for &(i, linked) in order {
+        let l = &loops[i];
+        let tips = starting_near(l, at);
+        let at_start = at;
+        let mut mv = Vec::with_capacity(tips.len() + 8);
+        let first = tips[0];
+        if linked {
+            for q in surface_link(at, first, p, mesh) {
+                mv.push(Move::Linear {
+                    to: q,
+                    feed: p.feed,
+                });
+            }
+        } else {
+            if at.z < p.safe_z {
+                mv.push(Move::Rapid {
+                    to: Vec3::new(at.x, at.y, p.safe_z),
+                });
+            }
+            mv.push(Move::Rapid {
+                to: Vec3::new(first.x, first.y, p.safe_z),
+            });
+            let top = (first.z + p.entry).min(p.safe_z);
+            mv.push(Move::Rapid {
+                to: Vec3::new(first.x, first.y, top),
+            });
+            // Ramp along the loop until the ramp line is below every tip.
+            let zmin = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
+            let (mut z, mut prev) = (top, Vec3::new(first.x, first.y, top));
+            let mut k = 1;
+            while z > zmin && k < 64 * tips.len() {
+                let q = tips[k % tips.len()];
+                z -= prev.dist(Vec3::new(q.x, q.y, prev.z)) * tan;
+                let to = Vec3::new(q.x, q.y, q.z.max(z));
+                mv.push(Move::Linear {
+                    to,
+                    feed: p.plunge_feed,
+                });
+                prev = to;
+                k += 1;
+            }
+            // Back to the loop's start at depth, along the loop.
+            let back = k % tips.len();
+            if back != 0 {
+                for q in &tips[back..] {
+                    mv.push(Move::Linear {
+                        to: *q,
+                        feed: p.feed,
+                    });
+                }
+            }
+            mv.push(Move::Linear {
+                to: first,
+                feed: p.feed,
+            });
+        }
+        for q in tips.iter().skip(1).chain(std::iter::once(&first)) {
+            mv.push(Move::Linear {
+                to: *q,
+                feed: p.feed,
+            });
+        }
+        at = first;
+        let z = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
+        sections.push(Section {
+            label: format!("finish pass {} s {:.5}", l.pass + 1, l.s),
+            z,
+            moves: simplify(at_start, mv, p.tol),
+        });
+    }
+    if let Some(last) = sections.last_mut() {
+        last.moves.push(Move::Rapid {
+            to: Vec3::new(at.x, at.y, p.safe_z),
+        });
+    }
+    Toolpath { start, sections }
+}
+
+/// Runs of feed moves at one feed thinned where a point lies within `tol`/4 of
+/// the chord of its neighbours (3-D Douglas–Peucker); rapids and feed changes
+/// are kept.
+fn simplify(start: Vec3, moves: Vec<Move>, tol: f64) -> Vec<Move> {
+    let eps = 0.25 * tol;
+    let mut out = Vec::with_capacity(moves.len() / 4);
+    let mut run: Vec<Vec3> = Vec::new();
+    let mut run_feed = f64::NAN;
+    let flush = |run: &mut Vec<Vec3>, feed: f64, out: &mut Vec<Move>| {
+        if run.len() > 1 {
+            for q in douglas_peucker(run, eps).into_iter().skip(1) {
+                out.push(Move::Linear { to: q, feed });
+            }
+        }
+        run.clear();
+    };
+    let mut at = start;
+    for m in moves {
+        match m {
+            Move::Linear { to, feed } => {
+                if feed != run_feed {
+                    flush(&mut run, run_feed, &mut out);
+                    // A run starts where the tool is.
+                    run.push(at);
+                    run_feed = feed;
+                }
+                run.push(to);
+            }
+            other => {
+                flush(&mut run, run_feed, &mut out);
+                out.push(other);
+                run_feed = f64::NAN;
+            }
+        }
+        at = m.to();
+    }
+    flush(&mut run, run_feed, &mut out);
+    out
+}
+
+/// The points of a polyline kept by Douglas–Peucker within `eps` (ends kept).
+fn douglas_peucker(pts: &[Vec3], eps: f64) -> Vec<Vec3> {
+    let n = pts.len();
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[n - 1] = true;
+    let mut stack = vec![(0, n - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (pa, pb) = (pts[a], pts[b]);
+        let mut worst = (0.0, 0);
+        for (k, q) in pts.iter().enumerate().take(b).skip(a + 1) {
+            let d = seg_dist(*q, pa, pb);
+            if d > worst.0 {
+                worst = (d, k);
+            }
+        }
+        if worst.0 > eps {
+            keep[worst.1] = true;
+            stack.push((a, worst.1));
+            stack.push((worst.1, b));
+        }
+    }
+    pts.iter()
+        .zip(keep)
+        .filter(|(_, k)| *k)
+        .map(|(q, _)| *q)
+        .collect()
+}
+
+/// Distance from `q` to the segment a–b in 3-D.
+fn seg_dist(q: Vec3, a: Vec3, b: Vec3) -> f64 {
+    let d = [b.x - a.x, b.y - a.y, b.z - a.z];
+    let e = [q.x - a.x, q.y - a.y, q.z - a.z];
+    let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = if dd > 0.0 {
+        ((e[0] * d[0] + e[1] * d[1] + e[2] * d[2]) / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let f = [e[0] - t * d[0], e[1] - t * d[1], e[2] - t * d[2]];
+    (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn douglas_peucker_keeps_what_bends_and_drops_what_does_not() {
+        let line: Vec<Vec3> = (0..=10).map(|k| Vec3::new(k as f64, 0.0, 0.0)).collect();
+        assert_eq!(douglas_peucker(&line, 1e-3).len(), 2);
+        let mut bent = line.clone();
+        bent[5].z = 0.01;
+        let kept = douglas_peucker(&bent, 1e-3);
+        assert!(kept.contains(&bent[5]), "{kept:?}");
+        assert_eq!(douglas_peucker(&bent, 0.02).len(), 2);
+        // Every dropped point lies within eps of the kept polyline.
+        let arc: Vec<Vec3> = (0..=200)
+            .map(|k| {
+                let t = k as f64 / 200.0;
+                Vec3::new(10.0 * t.cos(), 10.0 * t.sin(), t)
+            })
+            .collect();
+        let kept = douglas_peucker(&arc, 0.002);
+        for q in &arc {
+            let d = kept
+                .windows(2)
+                .map(|w| seg_dist(*q, w[0], w[1]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d <= 0.002 + 1e-12, "{d}");
+        }
+        assert!(kept.len() < arc.len() / 2);
+    }
+
+    #[test]
+    fn resampling_keeps_the_corners_and_bounds_the_spacing() {
+        let sq = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 1.0),
+        ];
+        let r = resample(&sq, 0.3);
+        assert_eq!(r.len(), 16);
+        for c in &sq {
+            assert!(r.contains(c));
+        }
+        for k in 0..r.len() {
+            assert!(r[k].dist(r[(k + 1) % r.len()]) <= 0.3 + 1e-12);
+        }
+    }
+}
