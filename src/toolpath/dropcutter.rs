@@ -117,13 +117,21 @@
 //!   is only known to ~1e-16/[`SLIVER`] rad, and every point of them lies within
 //!   |N|/ℓ ≤ 1e-8·ℓ of the longest edge, so they are dropped on as the segment
 //!   they nearly are.
-//! * The drop against a mesh first runs the vertex tests of every triangle
-//!   near the axis, then the edge and facet tests of those whose highest corner
-//!   minus p(distance from the axis to their bounding box) still exceeds the
-//!   best tip so far; each edge is skipped the same way. These bounds only
-//!   skip what cannot win, so the result is the max over all triangles (to
-//!   rounding: a shared edge tested from its two triangles may differ by an
-//!   ulp).
+//!
+//! # Against a mesh
+//!
+//! [`MeshIndex`] buckets triangles on a uniform XY grid by their bounding
+//! boxes; a drop visits each triangle whose box meets the footprint's square
+//! once (see `for_each_near`), and keeps those whose box lies within r of the
+//! axis. A first pass runs their vertex tests (skipping triangles whose highest
+//! corner is not above the best tip so far) for a good lower bound; the second
+//! runs edge and facet tests only on triangles whose z_max − p(distance to
+//! their box) still beats it. Within a triangle, a facet contact inside it is
+//! the answer (concavity), and a facet contact outside it that does not beat
+//! the bound ends the triangle (the plane bounds the triangle); each edge is
+//! skipped on its own bound. The bounds only skip what cannot win, so the
+//! result is the max over all triangles, to rounding (a shared edge tested
+//! from its two triangles may differ by an ulp).
 
 use rayon::prelude::*;
 
@@ -138,6 +146,10 @@ pub const MAX_CELLS: usize = 4_000_000;
 /// each triangle many times and gain nothing.
 pub const MAX_ENTRIES_PER_TRIANGLE: usize = 16;
 
+/// Most triangles a [`MeshIndex`] holds (2³⁰: an index and a 2-bit rank share
+/// a u32 per bucket entry; a billion triangles would need over 150 GB).
+pub const MAX_TRIANGLES: usize = 1 << 30;
+
 /// Bull-nose edge test: the bisection stops once the error of the value it
 /// returns is proven ≤ this, mm (well below the 1e-7 mm the finisher needs, and
 /// above what rounding lets a bracket of width ~1e-15·r prove).
@@ -147,6 +159,15 @@ pub const EDGE_TOL: f64 = 1e-10;
 /// halves each step; 100 steps take it below 2r·1e-30, past double precision,
 /// so the cap only guards against a NaN or an unforeseen stall.
 pub const EDGE_MAX_ITER: u32 = 100;
+
+/// Facets with n_z at least this may be skipped on their plane's bound (see
+/// `triangle_edges_facet`): there the facet contact's rounding is below
+/// 1e-16·(coordinates)/n_z, far below [`PLANE_BOUND_MARGIN`].
+pub const PLANE_BOUND_NZ: f64 = 1e-3;
+
+/// The plane bound must fall this far below the best tip (mm) before a
+/// triangle is skipped on it.
+pub const PLANE_BOUND_MARGIN: f64 = 1e-9;
 
 /// Facets whose unit normal has n_z below this are treated as vertical (no
 /// facet test, see the module notes).
@@ -282,11 +303,18 @@ impl Cutter {
         let range = mesh.cell_range(x - r, x + r, y - r, y + r)?;
         let c = [x, y];
         // Pass 1: vertices only, cheap, to get a good lower bound that lets
-        // pass 2 skip most triangles (a triangle can give at most
-        // z_max − p(distance from the axis to its bounding box)).
+        // pass 2 skip most triangles: a triangle can give at most
+        // z_max − p(distance from the axis to its bounding box), its `bound`.
+        // (That distance is shrunk by 1e-9·r so that its rounding, p being
+        // steep near the rim, cannot skip a triangle that would win.)
         let mut best: Option<Contact> = None;
         let mut floor = f64::NEG_INFINITY;
-        mesh.for_each_near(c, r, range, |t, _| {
+        let mut near: Vec<(u32, f64)> = Vec::with_capacity(256);
+        mesh.for_each_near(c, r, range, |ti, b, box_dist| {
+            if b.zmax <= floor {
+                return;
+            }
+            let t = &mesh.tris[ti as usize];
             for v in t.relative(c) {
                 if let Some(k) = self.vertex(v) {
                     if k.tip > floor {
@@ -295,19 +323,21 @@ impl Cutter {
                     }
                 }
             }
+            near.push((ti, b.zmax - self.profile(box_dist - 1e-9 * r)));
         });
         // Pass 2: edges and facets of the triangles that may still beat it.
-        mesh.for_each_near(c, r, range, |t, box_dist| {
-            if t.zmax - self.profile(box_dist) <= floor {
-                return;
+        for (ti, bound) in near {
+            if bound <= floor {
+                continue;
             }
+            let t = &mesh.tris[ti as usize];
             if let Some(k) = self.triangle_edges_facet(t, &t.relative(c), floor) {
                 if k.tip > floor {
                     floor = k.tip;
                     best = Some(k);
                 }
             }
-        });
+        }
         best.map(|k| Contact {
             tip: k.tip,
             point: [k.point[0] + x, k.point[1] + y, k.point[2]],
@@ -336,9 +366,28 @@ impl Cutter {
 
     /// Edge and facet tests of one triangle (vertices relative to the axis),
     /// skipping any edge that cannot give more than `floor`.
-    fn triangle_edges_facet(&self, t: &Tri, rel: &[[f64; 3]; 3], floor: f64) -> Option<Contact> {
-        let mut best = self.facet(t, rel);
-        let mut floor = best.map_or(floor, |k| k.tip.max(floor));
+    ///
+    /// The facet test's contact is the maximum of f over the whole plane of
+    /// the triangle within the footprint (concavity). So when it lies inside
+    /// the triangle it is the answer and the edges need no test, and when it
+    /// does not beat `floor` (by [`PLANE_BOUND_MARGIN`], on a facet with
+    /// n_z ≥ [`PLANE_BOUND_NZ`] where rounding stays far below that margin)
+    /// nothing of the triangle can.
+    fn triangle_edges_facet(
+        &self,
+        t: &Tri,
+        rel: &[[f64; 3]; 3],
+        mut floor: f64,
+    ) -> Option<Contact> {
+        if let Some((k, inside)) = self.facet(t, rel) {
+            if inside {
+                return Some(k);
+            }
+            if t.n[2] >= PLANE_BOUND_NZ && k.tip + PLANE_BOUND_MARGIN <= floor {
+                return None;
+            }
+        }
+        let mut best = None;
         for i in 0..3 {
             if let Some(k) = self.edge(rel[i], rel[(i + 1) % 3], floor) {
                 if k.tip > floor {
@@ -352,21 +401,22 @@ impl Cutter {
 
     /// Vertex test: t = V_z − p(ρ) when ρ ≤ r.
     fn vertex(&self, v: [f64; 3]) -> Option<Contact> {
-        let rho = v[0].hypot(v[1]);
+        let rho = norm(v[0], v[1]);
         (rho <= self.radius).then(|| Contact {
             tip: v[2] - self.profile(rho),
             point: v,
         })
     }
 
-    /// Facet test (module notes): the contact at ρ_c = a + rc·n_xy uphill, if it
-    /// lies inside the triangle.
-    fn facet(&self, t: &Tri, rel: &[[f64; 3]; 3]) -> Option<Contact> {
+    /// Facet test (module notes): the contact at ρ_c = a + rc·n_xy uphill on
+    /// the triangle's plane, and whether it lies inside the triangle; None for
+    /// a triangle without a facet test (near vertical, sliver).
+    fn facet(&self, t: &Tri, rel: &[[f64; 3]; 3]) -> Option<(Contact, bool)> {
         if t.orient == 0.0 {
             return None;
         }
         let [nx, ny, nz] = t.n;
-        let nxy = nx.hypot(ny);
+        let nxy = norm(nx, ny);
         let (qx, qy) = if nxy > 0.0 {
             let rho = self.flat_radius() + self.corner * nxy;
             (-nx / nxy * rho, -ny / nxy * rho)
@@ -376,18 +426,19 @@ impl Cutter {
         let v0 = rel[0];
         let zc = (nx * v0[0] + ny * v0[1] + nz * v0[2] - nx * qx - ny * qy) / nz;
         let x = [qx, qy, zc];
-        for i in 0..3 {
+        let tip = zc - self.corner * (1.0 - nz);
+        if !tip.is_finite() {
+            return None;
+        }
+        let inside = (0..3).all(|i| {
             let a = rel[i];
             let b = rel[(i + 1) % 3];
             let e = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
             let w = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
-            let side = t.orient * dot(t.n, cross(e, w));
-            if side.is_nan() || side < 0.0 {
-                return None;
-            }
-        }
-        let tip = zc - self.corner * (1.0 - nz);
-        tip.is_finite().then_some(Contact { tip, point: x })
+            // A NaN side counts as outside.
+            t.orient * dot(t.n, cross(e, w)) >= 0.0
+        });
+        Some((Contact { tip, point: x }, inside))
     }
 
     /// Edge test (module notes) for the segment a→b relative to the axis;
@@ -398,7 +449,7 @@ impl Cutter {
         // Upper bound for pruning: the higher clipped end's z minus p at the
         // smallest ρ on [lo, hi] (p is non-decreasing).
         let sig_min = 0.0f64.clamp(s.lo, s.hi);
-        let bound = s.z(s.lo).max(s.z(s.hi)) - self.profile(s.delta.hypot(sig_min));
+        let bound = s.z(s.lo).max(s.z(s.hi)) - self.profile(norm(s.delta, sig_min));
         if bound <= floor {
             return None;
         }
@@ -407,7 +458,7 @@ impl Cutter {
             return Some(s.contact(sig, s.z(sig)));
         }
         if self.flat_radius() == 0.0 {
-            let d3 = s.len.hypot(s.dz);
+            let d3 = norm(s.len, s.dz);
             let sig = s.h * s.dz / d3;
             if (s.lo..=s.hi).contains(&sig) {
                 let tip = s.z(sig) + s.h * s.len / d3 - self.radius;
@@ -424,13 +475,13 @@ impl Cutter {
 
     /// h(σ) = z(σ) − p(ρ(σ)) along an edge.
     fn h(&self, s: &EdgeFrame, sig: f64) -> f64 {
-        s.z(sig) - self.profile(s.delta.hypot(sig))
+        s.z(sig) - self.profile(norm(s.delta, sig))
     }
 
     /// h′(σ) = m − p′(ρ)·σ/ρ along an edge (±∞ on the rim).
     fn dh(&self, s: &EdgeFrame, sig: f64) -> f64 {
         let m = s.dz / s.len;
-        let rho = s.delta.hypot(sig);
+        let rho = norm(s.delta, sig);
         let rc = self.corner;
         let q = rho - self.flat_radius();
         if q <= 0.0 {
@@ -512,7 +563,7 @@ struct EdgeFrame {
 impl EdgeFrame {
     fn new(a: [f64; 3], b: [f64; 3], r: f64) -> Option<EdgeFrame> {
         let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let len = d[0].hypot(d[1]);
+        let len = norm(d[0], d[1]);
         if len.is_nan() || len <= 0.0 {
             return None;
         }
@@ -567,6 +618,13 @@ impl EdgeFrame {
     }
 }
 
+/// √(x² + y²). Not `f64::hypot`, which guards against overflow and
+/// underflow at several times the cost (it was a third of a drop's time);
+/// lengths here are mm, nowhere near 1e±154.
+fn norm(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
+}
+
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
@@ -583,33 +641,44 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
+/// A triangle's XY bounding box and highest z, apart from [`Tri`] so that the
+/// scan of a cell reads 40 bytes per triangle, not 150.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    lo: [f64; 2],
+    hi: [f64; 2],
+    zmax: f64,
+}
+
+impl Bounds {
+    fn new(v: &[[f64; 3]; 3]) -> Bounds {
+        Bounds {
+            lo: [
+                v[0][0].min(v[1][0]).min(v[2][0]),
+                v[0][1].min(v[1][1]).min(v[2][1]),
+            ],
+            hi: [
+                v[0][0].max(v[1][0]).max(v[2][0]),
+                v[0][1].max(v[1][1]).max(v[2][1]),
+            ],
+            zmax: v[0][2].max(v[1][2]).max(v[2][2]),
+        }
+    }
+}
+
 /// A triangle with what every drop needs precomputed.
 #[derive(Clone, Copy, Debug)]
 struct Tri {
     v: [[f64; 3]; 3],
-    lo: [f64; 2],
-    hi: [f64; 2],
-    zmax: f64,
     /// Unit normal with n_z ≥ 0.
     n: [f64; 3],
     /// +1 or −1: the sign of n·((v1 − v0) × (v2 − v0)); 0 when the triangle
     /// gets no facet test (near vertical or a sliver).
     orient: f64,
-    /// Grid cell of `lo`.
-    cell0: [u32; 2],
 }
 
 impl Tri {
     fn new(v: [[f64; 3]; 3]) -> Tri {
-        let lo = [
-            v[0][0].min(v[1][0]).min(v[2][0]),
-            v[0][1].min(v[1][1]).min(v[2][1]),
-        ];
-        let hi = [
-            v[0][0].max(v[1][0]).max(v[2][0]),
-            v[0][1].max(v[1][1]).max(v[2][1]),
-        ];
-        let zmax = v[0][2].max(v[1][2]).max(v[2][2]);
         // The cross product of the two edges at the corner opposite the longest
         // edge (the two shorter ones) is the most accurate.
         let e = [sub(v[2], v[1]), sub(v[0], v[2]), sub(v[1], v[0])];
@@ -637,15 +706,7 @@ impl Tri {
                 orient = s;
             }
         }
-        Tri {
-            v,
-            lo,
-            hi,
-            zmax,
-            n,
-            orient,
-            cell0: [0, 0],
-        }
+        Tri { v, n, orient }
     }
 
     /// Corners with XY relative to `c`.
@@ -659,13 +720,17 @@ impl Tri {
 #[derive(Clone, Debug)]
 pub struct MeshIndex {
     tris: Vec<Tri>,
+    /// `bounds[i]` is `tris[i]`'s.
+    bounds: Vec<Bounds>,
     /// Lower-left corner of the grid, mm.
     origin: [f64; 2],
     /// Cell side, mm.
     cell: f64,
     nx: usize,
     ny: usize,
-    /// Cell k = j·nx + i holds `items[start[k]..start[k + 1]]`.
+    /// Cell k = j·nx + i holds `items[start[k]..start[k + 1]]`, each item a
+    /// triangle index shifted left by 2 with its [`rank`] in the low bits,
+    /// sorted by rank within the cell.
     start: Vec<usize>,
     items: Vec<u32>,
     skipped: usize,
@@ -678,17 +743,21 @@ impl MeshIndex {
     /// doubled until the grid has at most [`MAX_CELLS`] cells and at most
     /// [`MAX_ENTRIES_PER_TRIANGLE`]·n + [`MAX_CELLS`] entries. For drops a cell
     /// near the tool radius is a good choice. Triangles with a coordinate that
-    /// is not finite are left out and counted in [`MeshIndex::skipped`].
+    /// is not finite, and any beyond the first [`MAX_TRIANGLES`], are left out
+    /// and counted in [`MeshIndex::skipped`].
     pub fn new(triangles: Vec<[[f64; 3]; 3]>, cell: f64) -> MeshIndex {
         let total = triangles.len();
-        let mut tris: Vec<Tri> = triangles
+        let tris: Vec<Tri> = triangles
             .into_iter()
             .filter(|t| t.iter().flatten().all(|c| c.is_finite()))
+            .take(MAX_TRIANGLES)
             .map(Tri::new)
             .collect();
         let skipped = total - tris.len();
+        let bounds: Vec<Bounds> = tris.iter().map(|t| Bounds::new(&t.v)).collect();
         let mut index = MeshIndex {
             tris: Vec::new(),
+            bounds: Vec::new(),
             origin: [0.0, 0.0],
             cell: 1.0,
             nx: 0,
@@ -703,7 +772,7 @@ impl MeshIndex {
         let mut lo = [f64::INFINITY; 2];
         let mut hi = [f64::NEG_INFINITY; 2];
         let mut extent = 0.0;
-        for t in &tris {
+        for t in &bounds {
             for k in 0..2 {
                 lo[k] = lo[k].min(t.lo[k]);
                 hi[k] = hi[k].max(t.hi[k]);
@@ -735,7 +804,7 @@ impl MeshIndex {
             index.cell = cell;
             index.nx = nxf as usize;
             index.ny = nyf as usize;
-            let entries: usize = tris
+            let entries: usize = bounds
                 .iter()
                 .map(|t| {
                     let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
@@ -748,13 +817,11 @@ impl MeshIndex {
             }
             cell *= 2.0;
         }
-        // Counting sort into the cells.
+        // Counting sort into the cells, then each cell's items by rank.
         let mut count = vec![0usize; index.nx * index.ny + 1];
-        for t in &mut tris {
+        for t in &bounds {
             let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
             let (j0, j1) = (index.cell_y(t.lo[1]), index.cell_y(t.hi[1]));
-            // nx, ny ≤ MAX_CELLS < 2³², so these fit.
-            t.cell0 = [i0 as u32, j0 as u32];
             for j in j0..=j1 {
                 for i in i0..=i1 {
                     count[j * index.nx + i + 1] += 1;
@@ -766,21 +833,26 @@ impl MeshIndex {
         }
         let mut fill = count.clone();
         let mut items = vec![0u32; count[count.len() - 1]];
-        for (ti, t) in tris.iter().enumerate() {
+        for (ti, t) in bounds.iter().enumerate() {
             let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
             let (j0, j1) = (index.cell_y(t.lo[1]), index.cell_y(t.hi[1]));
+            // ti < MAX_TRIANGLES = 2³⁰, so ti·4 + rank fits in a u32.
+            let base = (ti as u32) << 2;
             for j in j0..=j1 {
                 for i in i0..=i1 {
                     let k = j * index.nx + i;
-                    // More than 2³² triangles would not fit in memory anyway.
-                    items[fill[k]] = ti as u32;
+                    items[fill[k]] = base | rank(i > i0, j > j0);
                     fill[k] += 1;
                 }
             }
         }
+        for k in 0..index.nx * index.ny {
+            items[count[k]..count[k + 1]].sort_unstable_by_key(|&it| it & 3);
+        }
         index.start = count;
         index.items = items;
         index.tris = tris;
+        index.bounds = bounds;
         index
     }
 
@@ -837,34 +909,66 @@ impl MeshIndex {
         ))
     }
 
-    /// Calls `f(triangle, distance from c to its bounding box)` once for every
+    /// Calls `f(index, bounds, distance from c to the bounding box)` once for every
     /// triangle in the cells `range` whose bounding box comes within `r` of `c`.
-    /// A triangle in several cells is visited only in the first cell (in each
-    /// direction) that both it and the range cover.
+    ///
+    /// A triangle in several cells is visited only in the first cell, in each
+    /// direction, that both it and the range cover: in cell (i, j) of a range
+    /// starting at (i₀, j₀), a triangle whose own first cell is (a, b) is
+    /// visited iff max(a, i₀) = i and max(b, j₀) = j. Inside the range
+    /// (i > i₀, j > j₀) that means a = i and b = j, rank 1 only; on its first
+    /// column b = j (ranks 0–1), on its first row a = i (ranks 1–2), in its
+    /// first cell all. Those are contiguous in a cell sorted by rank, so a
+    /// triangle that spans many cells costs nothing in the cells where it is
+    /// not visited (the surface's bottom and walls are long slivers spanning
+    /// hundreds of cells).
     fn for_each_near(
         &self,
         c: [f64; 2],
         r: f64,
         (i0, i1, j0, j1): (usize, usize, usize, usize),
-        mut f: impl FnMut(&Tri, f64),
+        mut f: impl FnMut(u32, &Bounds, f64),
     ) {
+        // Slack: the tests measure ρ their own way; rounding must not make this
+        // filter stricter than they are.
+        let r2 = r * r * (1.0 + 1e-9);
         for j in j0..=j1 {
             for i in i0..=i1 {
                 let k = j * self.nx + i;
-                for &ti in &self.items[self.start[k]..self.start[k + 1]] {
-                    let t = &self.tris[ti as usize];
-                    if (t.cell0[0] as usize).max(i0) != i || (t.cell0[1] as usize).max(j0) != j {
-                        continue;
-                    }
+                let cell = &self.items[self.start[k]..self.start[k + 1]];
+                let (lo_rank, hi_rank) = match (i > i0, j > j0) {
+                    (true, true) => (1, 1),
+                    (false, true) => (0, 1),
+                    (true, false) => (1, 2),
+                    (false, false) => (0, 3),
+                };
+                let a = cell.partition_point(|&it| it & 3 < lo_rank);
+                let b = cell.partition_point(|&it| it & 3 <= hi_rank);
+                for &it in &cell[a..b] {
+                    let ti = it >> 2;
+                    let t = &self.bounds[ti as usize];
                     let dx = (t.lo[0] - c[0]).max(c[0] - t.hi[0]).max(0.0);
                     let dy = (t.lo[1] - c[1]).max(c[1] - t.hi[1]).max(0.0);
-                    let d = dx.hypot(dy);
-                    if d <= r {
-                        f(t, d);
+                    let d2 = dx * dx + dy * dy;
+                    if d2 <= r2 {
+                        f(ti, t, d2.sqrt());
                     }
                 }
             }
         }
+    }
+}
+
+/// Rank of a triangle's entry in a cell, from whether the cell lies right of
+/// and above the triangle's first cell: 0 right only (same first row), 1 the
+/// first cell itself, 2 above only (same first column), 3 both (see
+/// [`MeshIndex::for_each_near`]).
+fn rank(right: bool, above: bool) -> u32 {
+    match (right, above) {
+        (true, false) => 0,
+        (false, false) => 1,
+        (false, true) => 2,
+        (true, true) => 3,
     }
 }
 
