@@ -35,6 +35,7 @@ pub mod header;
 pub mod moves;
 pub mod part;
 pub mod png;
+pub mod reach;
 pub mod report;
 pub mod run;
 pub mod stock;
@@ -460,7 +461,8 @@ pub fn simulate_programs(
         .and_then(|j| j.part.as_ref().map(|p| (j, p)))
         .map(|(j, p)| {
             let mut gouges = Vec::new();
-            let mut cmp = part::compare(&map, p, j, &mut gouges);
+            let last_tool = prepared.last().map(|p| &p.tool);
+            let mut cmp = part::compare(&map, p, j, last_tool, &mut gouges);
             for mut f in gouges {
                 let (k, line) = locate(f.line);
                 f.line = line;
@@ -469,6 +471,10 @@ pub fn simulate_programs(
             for (worst, program) in [
                 (&mut cmp.max_gouge, &mut cmp.max_gouge_program),
                 (&mut cmp.max_left, &mut cmp.max_left_program),
+                (
+                    &mut cmp.max_left_reachable,
+                    &mut cmp.max_left_reachable_program,
+                ),
             ] {
                 if worst.line > 0 {
                     let (k, line) = locate(worst.line);

@@ -239,10 +239,15 @@ pub fn compare(
     map: &HeightMap,
     part: &PartModel,
     job: &JobFacts,
+    tool: Option<&super::tool::Tool>,
     findings: &mut Vec<Finding>,
 ) -> PartComparison {
     let g = map.grid;
     let (ph, cos) = part_surface(map, part);
+    // What the last tool can reach of the part (`reach`): the material
+    // above it is the programs' to remove.
+    let reach = tool.map(|t| super::reach::envelope(&g, &ph, t));
+    let mut max_left_reachable = Worst::default();
     let mut cells = 0;
     let mut max_gouge = Worst::default();
     let mut max_left = Worst::default();
@@ -274,6 +279,10 @@ pub fn compare(
         }
         max_gouge.take(gouge, line as usize);
         max_left.take(-gouge, line as usize);
+        if let Some(r) = &reach {
+            let floor = if r[k].is_finite() { r[k].max(p) } else { p };
+            max_left_reachable.take(h - floor, line as usize);
+        }
         if gouge > job.tolerance {
             gouged += 1;
             let e = by_line.entry(line).or_insert((0.0, k));
@@ -307,6 +316,8 @@ pub fn compare(
         gouged_cells: gouged,
         max_left,
         max_left_program: None,
+        max_left_reachable,
+        max_left_reachable_program: None,
         left_share_over_scallop: if cells > 0 {
             over_scallop as f64 / cells as f64
         } else {

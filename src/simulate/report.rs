@@ -96,6 +96,14 @@ pub struct PartComparison {
     /// When several programs were simulated: the one `max_left.line` is in.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_left_program: Option<String>,
+    /// Most material left above what the last program's tool can reach of
+    /// the part (`simulate::reach`), mm, and the line that last cut there:
+    /// the programs' own shortfall, without the valleys and corners the tool
+    /// is too large for.
+    pub max_left_reachable: Worst,
+    /// When several programs were simulated: the one `max_left_reachable.line` is in.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_left_reachable_program: Option<String>,
     /// Share of the compared cells with more than `scallop + tolerance` left.
     pub left_share_over_scallop: f64,
     /// The job's tolerance, mm.
@@ -238,7 +246,7 @@ impl PartComparison {
             None => format!("line {line}"),
         };
         format!(
-            "part ({}): max gouge {:.4} mm ({}), {} cell(s) below the part by more than the tolerance {} mm; max material left {:.3} mm ({}), {:.2} % of {} cells above scallop + tolerance ({} mm)",
+            "part ({}): max gouge {:.4} mm ({}), {} cell(s) below the part by more than the tolerance {} mm; max material left {:.3} mm ({}), {:.3} mm over what the last tool can reach ({}), {:.2} % of {} cells above scallop + tolerance ({} mm)",
             self.model,
             self.max_gouge.value,
             at(&self.max_gouge_program, self.max_gouge.line),
@@ -246,6 +254,8 @@ impl PartComparison {
             self.tolerance,
             self.max_left.value,
             at(&self.max_left_program, self.max_left.line),
+            self.max_left_reachable.value,
+            at(&self.max_left_reachable_program, self.max_left_reachable.line),
             100.0 * self.left_share_over_scallop,
             self.cells,
             self.scallop + self.tolerance
