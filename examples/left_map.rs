@@ -1,5 +1,6 @@
 //! Where material is left: `cargo run --release --example left_map -- JOB.toml A.nc [B.nc ...]`
-//! prints the cells farthest above the part after the programs, with x, y.
+//! prints the cells farthest above what the last program's tool can reach of
+//! the part (simulate::reach) after the programs, with x, y.
 use pfcam::simulate::part::part_heights;
 use pfcam::simulate::{job_facts, simulate_programs, SimOptions};
 fn main() {
@@ -21,13 +22,21 @@ fn main() {
     };
     let seq = simulate_programs(&progs, &opts).expect("sim");
     let h = part_heights(&seq.map, &part);
+    // Over what the last program's tool can reach of the part.
+    let last = texts
+        .last()
+        .map(|t| pfcam::simulate::header::read_header(&t.1).tool);
+    let env = last
+        .flatten()
+        .map(|t| pfcam::simulate::reach::envelope(&seq.map.grid, &h, &t));
     let g = seq.map.grid;
     let mut v: Vec<(f64, f64, f64)> = Vec::new();
     for j in 0..g.ny {
         for i in 0..g.nx {
             let p = h[j * g.nx + i];
+            let e = env.as_ref().map_or(p, |e| e[j * g.nx + i].max(p));
             if p.is_finite() {
-                v.push((seq.map.at(i, j) - p, g.cx(i), g.cy(j)));
+                v.push((seq.map.at(i, j) - e, g.cx(i), g.cy(j)));
             }
         }
     }

@@ -140,7 +140,11 @@ pub fn finish(
             loops.push(path::tip_loop(poly, k, *s, field, &p, mesh)?);
         }
     }
-    let order = path::order(&loops, path::LINK_WIDTHS * width + 2.0 * f.radius());
+    let order = path::order(
+        &loops,
+        2.0 * width,
+        path::LINK_WIDTHS * width + 2.0 * f.radius(),
+    );
     let toolpath = path::moves(&loops, &order, &p, mesh);
     Ok(Finished {
         toolpath,

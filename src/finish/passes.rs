@@ -7,12 +7,12 @@
 //! The passes are Δs = w / max over Γ(s) of that root apart (the widest place
 //! sets the step), where w is the cutter's pass width for the scallop bound
 //! ([`pass_width`]). Past the foot of the wall (where the roughing left
-//! `stock_to_leave` on the floor) the passes go on over the flat floor until
-//! they are `leave` + w/2 from the foot.
+//! `stock_to_leave` on the floor) the foot's loops are offset over the flat
+//! floor, w apart, until `leave` + w/2 is covered.
 
 use crate::field::isolines::{isolines, polygon_area, Grid};
 use crate::field::Field;
-use crate::geometry::{DistanceIndex, Vec2};
+use crate::geometry::Vec2;
 use crate::levels::plan::{refine, CHORD_FRACTION};
 use crate::levels::DepthProfile;
 
@@ -114,39 +114,30 @@ pub fn pass_levels(
     if foot_loops.is_empty() {
         return Err(format!("the foot of the wall Γ({foot:.4}) has no curve"));
     }
-    let foot_index = DistanceIndex::new(&foot_loops);
-    // Over the floor, outwards from the foot, until leave + w/2 from it.
-    let mut floor = Vec::new();
-    let mut s = foot;
-    for _ in 0..MAX_PASSES {
-        let loops = if s == foot {
-            foot_loops.clone()
-        } else {
-            curves.at(s)
-        };
-        let g = curves
-            .min_grad(&loops)
-            .ok_or_else(|| format!("∇u vanishes on Γ({s:.5})"))?;
-        let next = s - up * w / spread(g, 0.0);
-        if !(next > 0.0 && next < 1.0) {
-            break;
-        }
-        let next_loops = curves.at(next);
-        let near = next_loops
-            .iter()
-            .flatten()
-            .map(|&p| foot_index.distance(p))
-            .fold(f64::INFINITY, f64::min);
-        if next_loops.is_empty() || near > leave + w {
-            break;
-        }
-        floor.push((next, next_loops));
-        s = next;
-        if near >= leave + 0.5 * w {
-            break;
-        }
-    }
-    floor.reverse();
+    // Over the floor, outwards from the foot: the foot's loops offset along
+    // the field's downhill direction by k·w (k = 1, 2, ...) until leave + w/2
+    // is covered. Equipotentials would be as far apart there as |∇u| varies
+    // along the foot; the floor is flat, so plain offsets are the even
+    // spacing (a loop of the foot is smooth, far rounder than these few
+    // tenths of a millimetre). Their s lies just past φ's range: flat.
+    let away = if cavity { 1.0 } else { -1.0 };
+    let k_max = ((leave + 0.5 * w) / w).ceil() as usize;
+    let s_floor = foot - up * 1e-9;
+    let mut floor: Vec<Pass> = (1..=k_max)
+        .rev()
+        .map(|k| {
+            let d = k as f64 * w;
+            let loops = foot_loops
+                .iter()
+                .map(|l| {
+                    l.iter()
+                        .map(|&p| p + curves.field.grad(p).normalized() * (away * d))
+                        .collect()
+                })
+                .collect();
+            (s_floor, loops)
+        })
+        .collect();
     // Up the wall, from the foot to the top edge.
     let mut wall = vec![(foot, foot_loops)];
     let mut s = foot;

@@ -128,27 +128,34 @@ pub fn tip_loop(
     })
 }
 
-/// The parent of each loop: the nearest loop of the pass below (`None` for
-/// the first pass's loops, or when there is no pass below).
-fn parents(loops: &[Loop]) -> Vec<Option<usize>> {
+/// The parent of each loop: the nearest loop of the highest pass below it
+/// that has one within `reach` of the loop's first point, else the nearest
+/// loop below (passes added about an extremum of u hold only the loops there,
+/// so the pass just below need not hold a loop's neighbour); `None` for the
+/// first pass.
+fn parents(loops: &[Loop], reach: f64) -> Vec<Option<usize>> {
     let mut out = vec![None; loops.len()];
     for (i, l) in loops.iter().enumerate() {
-        if l.pass == 0 {
-            continue;
-        }
         let probe = l.contact[0];
-        out[i] = loops
-            .iter()
-            .enumerate()
-            .filter(|(_, m)| m.pass + 1 == l.pass)
-            .map(|(j, m)| {
-                (
-                    j,
-                    DistanceIndex::new(std::slice::from_ref(&m.contact)).distance(probe),
-                )
-            })
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(j, _)| j);
+        let mut best: Option<(usize, (bool, usize, f64))> = None;
+        for (j, m) in loops.iter().enumerate() {
+            if m.pass >= l.pass {
+                continue;
+            }
+            let d = DistanceIndex::new(std::slice::from_ref(&m.contact)).distance(probe);
+            // Within reach first, then the highest pass, then the nearest.
+            let key = (d > reach, usize::MAX - m.pass, d);
+            let better = best.is_none_or(|(_, b)| {
+                (key.0, key.1)
+                    .cmp(&(b.0, b.1))
+                    .then(key.2.total_cmp(&b.2))
+                    .is_lt()
+            });
+            if better {
+                best = Some((j, key));
+            }
+        }
+        out[i] = best.map(|(j, _)| j);
     }
     out
 }
@@ -156,8 +163,8 @@ fn parents(loops: &[Loop]) -> Vec<Option<usize>> {
 /// The loops in cutting order, each with whether it is reached by a feed link
 /// from the loop before it (else by a retract): a depth-first walk of the
 /// tree, nearest child first.
-pub fn order(loops: &[Loop], max_link: f64) -> Vec<(usize, bool)> {
-    let parent = parents(loops);
+pub fn order(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
+    let parent = parents(loops, reach);
     let mut children: Vec<Vec<usize>> = vec![Vec::new(); loops.len()];
     let mut roots = Vec::new();
     for (i, p) in parent.iter().enumerate() {
