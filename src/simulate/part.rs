@@ -280,8 +280,10 @@ pub fn compare(
         max_gouge.take(gouge, line as usize);
         max_left.take(-gouge, line as usize);
         if let Some(r) = &reach {
+            // Along the surface's normal, as a scallop is: on a wall at 80°
+            // a ridge 0.01 mm proud stands 0.06 mm over it vertically.
             let floor = if r[k].is_finite() { r[k].max(p) } else { p };
-            max_left_reachable.take(h - floor, line as usize);
+            max_left_reachable.take((h - floor) * cos[k], line as usize);
         }
         if gouge > job.tolerance {
             gouged += 1;

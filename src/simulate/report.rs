@@ -97,7 +97,9 @@ pub struct PartComparison {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_left_program: Option<String>,
     /// Most material left above what the last program's tool can reach of
-    /// the part (`simulate::reach`), mm, and the line that last cut there:
+    /// the part (`simulate::reach`), measured along the part's normal (the
+    /// vertical height times the cosine of the slope, as a scallop is), mm,
+    /// and the line that last cut there:
     /// the programs' own shortfall, without the valleys and corners the tool
     /// is too large for.
     pub max_left_reachable: Worst,
