@@ -355,11 +355,11 @@ fn letter_q(c: &mut Criterion) {
 
 /// `pfcam simulate` of the largest sample (docs/simulate.md gives its size) at 0.1 mm cells.
 fn simulate_mould(c: &mut Criterion) {
-    let text = std::fs::read_to_string("gcode-samples/mfs-mould.nc").unwrap();
+    let text = std::fs::read_to_string("gcode-samples/mfs-mould.rough.nc").unwrap();
     let opts = pfcam::simulate::SimOptions::default();
     let mut g = c.benchmark_group("simulate");
     g.sample_size(10);
-    g.bench_function("simulate mfs-mould.nc at 0.1 mm", |b| {
+    g.bench_function("simulate mfs-mould.rough.nc at 0.1 mm", |b| {
         b.iter(|| pfcam::simulate::simulate(black_box(&text), &opts).unwrap())
     });
     g.finish();

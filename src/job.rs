@@ -262,7 +262,8 @@ pub mod defaults {
     /// `machine.max_hours`: a working day; the longest shipped program
     /// (mfs-sign) is estimated at under 6 h.
     pub const MAX_HOURS: f64 = 8.0;
-    /// `machine.max_file_mb`: the largest shipped program (mfs-mould) is 3.8 MB.
+    /// `machine.max_file_mb`: the largest shipped program (mfs-mould.rough.nc)
+    /// is 1.9 MB.
     pub const MAX_FILE_MB: f64 = 100.0;
     /// `output.arcs`: on (GRBL 1.1 cuts arcs well and the file is smaller).
     pub const ARCS: bool = true;

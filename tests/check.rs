@@ -233,8 +233,13 @@ fn assert_passes(file: &Path) {
     if let Some(len) = header_numbers(&gcode, "(length:") {
         // The header rounds to 0.1 mm; the checker measures arcs about the
         // printed centres, which differ from the exact ones by up to 0.0036 mm,
-        // a relative error that adds up over a long file.
-        let tol = |x: f64| 0.051 + 1e-5 * x;
+        // a relative error that adds up over a long file; and every move's
+        // ends are rounded to 1 µm, which lengthens a polyline of tiny moves
+        // (ramps, micro-links) on average: mfs-mould.rough.nc's 62 396 blocks
+        // measure 1.16 mm more than its header, its lines-only version
+        // (`arcs = false`) 0.99 mm more, so it is not the arcs.
+        let blocks = num(&t["blocks"]);
+        let tol = |x: f64| 0.051 + 1e-5 * x + 2e-5 * blocks;
         assert!(
             (num(&t["cut_length"]) - len[0]).abs() <= tol(len[0]),
             "{shown}: {t}"
@@ -307,7 +312,12 @@ fn every_job_runs_to_gcode_that_passes() {
         );
     }
     let written = files(&out.display().to_string(), "nc");
-    assert_eq!(written.len(), jobs.len());
+    // One program per job, two for a job with a finishing tool.
+    let programs: usize = jobs
+        .iter()
+        .map(|j| pfcam::report::program_files(&pfcam::job::load_job(j).expect("job")).len())
+        .sum();
+    assert_eq!(written.len(), programs);
     for f in written {
         assert_passes(&f);
     }

@@ -1082,50 +1082,55 @@ fn header_figures(gcode: &str) -> (f64, f64, String) {
 #[test]
 fn the_report_gives_each_program_its_header_figures_and_bound() {
     let dir = scratch("programs-json");
-    for name in ["letter-i", "q-sign"] {
+    // A profile (one program) and a boss with a finishing ball (two).
+    for (name, files) in [
+        ("letter-i", vec!["letter-i.nc"]),
+        ("q-sign", vec!["q-sign.rough.nc", "q-sign.finish.nc"]),
+    ] {
         let o = pfcam(
             &["run", &shipped_job(&format!("{name}.toml")), "-o", "out"],
             &dir,
         );
         assert!(o.status.success(), "{}", text(&o.stderr));
-        let nc = fs::read_to_string(dir.join(format!("out/{name}.nc"))).expect("nc");
-        let (cut, rapid, time) = header_figures(&nc);
         let json: serde_json::Value = serde_json::from_str(
             &fs::read_to_string(dir.join(format!("out/{name}.json"))).expect("json"),
         )
         .expect("parse json");
         let programs = json["programs"].as_array().expect("programs");
-        assert_eq!(programs.len(), 1, "{name}");
-        let p = &programs[0];
-        let num = |k: &str| {
-            p[k].as_f64()
-                .unwrap_or_else(|| panic!("{name}: {k} in {p}"))
-        };
-        assert_eq!(p["file"], format!("{name}.nc"));
-        assert!(
-            (num("cut_length_mm") - cut).abs() <= 0.05,
-            "{name}: {p} against {cut}"
-        );
-        assert!(
-            (num("rapid_length_mm") - rapid).abs() <= 0.05,
-            "{name}: {p} against {rapid}"
-        );
-        assert_eq!(pfcam::gcode::format_duration(num("time_s")), time, "{name}");
-        let bound = num("lower_bound_s");
-        assert!(bound > 0.0 && bound <= num("time_s"), "{name}: {p}");
-        let parts = num("lower_bound_clearing_s") + num("lower_bound_outline_s");
-        assert!((parts - bound).abs() <= 1e-9 * bound, "{name}: {p}");
-        assert!(
-            (num("time_over_bound") - num("time_s") / bound).abs() < 1e-9,
-            "{name}: {p}"
-        );
+        assert_eq!(programs.len(), files.len(), "{name}");
+        let summary = text(&o.stdout);
+        for (p, file) in programs.iter().zip(&files) {
+            let nc = fs::read_to_string(dir.join("out").join(file)).expect("nc");
+            let (cut, rapid, time) = header_figures(&nc);
+            let num = |k: &str| {
+                p[k].as_f64()
+                    .unwrap_or_else(|| panic!("{file}: {k} in {p}"))
+            };
+            assert_eq!(p["file"], *file);
+            assert!(
+                (num("cut_length_mm") - cut).abs() <= 0.05,
+                "{file}: {p} against {cut}"
+            );
+            assert!(
+                (num("rapid_length_mm") - rapid).abs() <= 0.05,
+                "{file}: {p} against {rapid}"
+            );
+            assert_eq!(pfcam::gcode::format_duration(num("time_s")), time, "{file}");
+            let bound = num("lower_bound_s");
+            assert!(bound > 0.0 && bound <= num("time_s"), "{file}: {p}");
+            let parts = num("lower_bound_clearing_s") + num("lower_bound_outline_s");
+            assert!((parts - bound).abs() <= 1e-9 * bound, "{file}: {p}");
+            assert!(
+                (num("time_over_bound") - num("time_s") / bound).abs() < 1e-9,
+                "{file}: {p}"
+            );
+            let line = format!(
+                "program {file}: {cut:.1} mm cutting, {rapid:.1} mm rapid, estimated time {time} "
+            );
+            assert!(summary.contains(&line), "{file}: lacks {line:?}: {summary}");
+        }
         // The old totals stay.
         assert!(json["totals"]["time_s"].as_f64().is_some(), "{name}");
-        let summary = text(&o.stdout);
-        let line = format!(
-            "program {name}.nc: {cut:.1} mm cutting, {rapid:.1} mm rapid, estimated time {time} "
-        );
-        assert!(summary.contains(&line), "{name}: lacks {line:?}: {summary}");
         assert!(summary.contains("; lower bound "), "{summary}");
     }
 }

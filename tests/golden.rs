@@ -23,6 +23,20 @@ fn sample_path(name: &str) -> PathBuf {
     root().join("gcode-samples").join(format!("{name}.nc"))
 }
 
+/// The samples of a job's programs, without `.nc`.
+fn programs(job: &Job) -> Vec<String> {
+    pfcam::report::program_files(job)
+        .iter()
+        .map(|f| f.trim_end_matches(".nc").to_string())
+        .collect()
+}
+
+/// The sample of a shipped job's first (roughing) program, without `.nc`.
+fn first_program(name: &str) -> String {
+    let job = load_job(&root().join(format!("jobs/{name}.toml"))).expect("job");
+    programs(&job)[0].clone()
+}
+
 fn blessing() -> bool {
     std::env::var("PFCAM_BLESS").is_ok_and(|v| v == "1")
 }
@@ -152,7 +166,15 @@ fn every_job_matches_its_sample() {
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let g = pfcam::gcode::write_gcode_on(&out.toolpath, &job, out.stock)
             .unwrap_or_else(|e| panic!("{e}"));
-        check_golden(&job.name, &g);
+        // One sample per program: `<name>`, or `<name>.rough` and
+        // `<name>.finish` for a job with a finishing tool.
+        let names = programs(&job);
+        check_golden(&names[0], &g);
+        if let (Some(f), Some(fj)) = (&out.finish, job.finishing()) {
+            let gf = pfcam::gcode::write_gcode_on(&f.toolpath, &fj, out.stock)
+                .unwrap_or_else(|e| panic!("{e}"));
+            check_golden(&names[1], &gf);
+        }
         quoting += usize::from(check_run_figures(&job.name, &out));
     }
     assert_eq!(
@@ -274,7 +296,7 @@ fn gcode_doc_table_matches_the_samples() {
     let mut seen = 0;
     for (name, row_start) in [
         ("mfs-sign", "| mfs-sign (boss"),
-        ("mfs-mould", "| mfs-mould (cavity"),
+        ("mfs-mould.rough", "| mfs-mould.rough (cavity"),
     ] {
         let row = doc
             .lines()
@@ -373,8 +395,8 @@ fn readme_jobs_table_levels_match_the_samples() {
         let stated: usize = cells[2].parse().expect("a level count");
         assert_eq!(
             stated,
-            header_levels(name),
-            "README.md's {name} row against gcode-samples/{name}.nc"
+            header_levels(&first_program(name)),
+            "README.md's {name} row against its roughing sample"
         );
         checked += 1;
     }
@@ -389,14 +411,17 @@ fn readme_jobs_table_times_are_the_headers() {
     let readme = doc_figures::read("README.md");
     let rows: [(&str, &[&str]); 6] = [
         ("`jobs/mfs-sign.toml`", &["mfs-sign"]),
-        ("`jobs/mfs-mould.toml`", &["mfs-mould"]),
+        (
+            "`jobs/mfs-mould.toml`",
+            &["mfs-mould.rough", "mfs-mould.finish"],
+        ),
         ("`jobs/mfs-profile.toml`", &["mfs-profile"]),
         (
             "`jobs/letter-i.toml`, `letter-a.toml`, `letter-s.toml`",
             &["letter-i", "letter-a", "letter-s"],
         ),
-        ("`jobs/q-sign.toml`", &["q-sign"]),
-        ("`jobs/q-mould.toml`", &["q-mould"]),
+        ("`jobs/q-sign.toml`", &["q-sign.rough", "q-sign.finish"]),
+        ("`jobs/q-mould.toml`", &["q-mould.rough", "q-mould.finish"]),
     ];
     for (key, names) in rows {
         let cells = doc_figures::table_row(&readme, "README.md", key);

@@ -376,6 +376,23 @@ fn samples() -> Vec<std::path::PathBuf> {
     v
 }
 
+/// A sample's report; a finishing program (`X.finish.nc`) runs on what its
+/// roughing program (`X.rough.nc`) left, as on the machine.
+fn sample_report(p: &Path, opts: &SimOptions) -> pfcam::simulate::Report {
+    let text = std::fs::read_to_string(p).unwrap();
+    let name = p.file_name().unwrap().to_string_lossy().into_owned();
+    match name.strip_suffix(".finish.nc") {
+        Some(stem) => {
+            let rough = std::fs::read_to_string(p.with_file_name(format!("{stem}.rough.nc")))
+                .expect("the roughing program of a finishing sample");
+            let seq = simulate_programs(&[("rough", &rough), ("finish", &text)], opts)
+                .expect("simulates");
+            seq.programs[1].report.clone()
+        }
+        None => run(&text, opts).report,
+    }
+}
+
 /// Every sample simulates, its feed length agrees with `pfcam check`'s own
 /// measure of the file, and its figures are printed (`--nocapture`).
 #[test]
@@ -384,8 +401,8 @@ fn every_sample_simulates() {
     let mut bench_sample = false;
     for p in samples() {
         let text = std::fs::read_to_string(&p).unwrap();
-        let s = run(&text, &SimOptions::default());
-        let r = &s.report;
+        let report = sample_report(&p, &SimOptions::default());
+        let r = &report;
         let want = check_gcode(&text, &CheckOptions::default())
             .totals
             .cut_length;
@@ -446,7 +463,7 @@ fn every_sample_simulates() {
         for &(marker, line) in notes {
             assert_eq!(line_after(marker), line, "docs/simulate.md: `{marker}`");
         }
-        if name == "mfs-mould.nc" {
+        if name == "mfs-mould.rough.nc" {
             // The simulation bench's sample: its lines, feed and cells.
             let stated = doc_figures::numbers_after(
                 &doc,
@@ -468,7 +485,10 @@ fn every_sample_simulates() {
             bench_sample = true;
         }
     }
-    assert!(bench_sample, "gcode-samples/mfs-mould.nc was simulated");
+    assert!(
+        bench_sample,
+        "gcode-samples/mfs-mould.rough.nc was simulated"
+    );
 }
 
 /// Issue 11's "done when": no golden sample rapids into material or plunges
@@ -478,14 +498,8 @@ fn every_sample_simulates() {
 #[test]
 fn every_sample_is_clean() {
     for p in samples() {
-        let text = std::fs::read_to_string(&p).unwrap();
-        let s = run(&text, &SimOptions::default());
-        assert!(
-            s.report.is_clean(),
-            "{}: {:?}",
-            p.display(),
-            s.report.findings.first()
-        );
+        let r = sample_report(&p, &SimOptions::default());
+        assert!(r.is_clean(), "{}: {:?}", p.display(), r.findings.first());
     }
 }
 
@@ -566,18 +580,22 @@ fn a_job_measures_the_stock_against_its_part() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let job = pfcam::job::load_job(&root.join("jobs/q-sign.toml")).unwrap();
     let facts = pfcam::simulate::job_facts(&job, 0.2).unwrap();
-    let text = std::fs::read_to_string(root.join("gcode-samples/q-sign.nc")).unwrap();
-    let s = run(
-        &text,
+    // The job's two programs, rough then finish, as on the machine.
+    let rough = std::fs::read_to_string(root.join("gcode-samples/q-sign.rough.nc")).unwrap();
+    let finish = std::fs::read_to_string(root.join("gcode-samples/q-sign.finish.nc")).unwrap();
+    let seq = simulate_programs(
+        &[("rough", &rough), ("finish", &finish)],
         &SimOptions {
             job: Some(facts),
             ..SimOptions::default()
         },
-    );
-    let r = &s.report;
+    )
+    .unwrap();
+    let r = &seq.programs[0].report;
     assert_eq!(r.stock.source, "job");
     assert_eq!(r.tool_source, "job");
-    let p = r.part.as_ref().expect("compared with S2");
+    assert_eq!(seq.programs[1].report.tool_source, "header");
+    let p = seq.part.as_ref().expect("compared with S2");
     let total = r.stock.cells[0] * r.stock.cells[1];
     assert!(
         p.cells as f64 >= 0.99 * total as f64,
@@ -607,24 +625,40 @@ fn every_job_sample_is_within_its_part() {
     let mut quoted_runs = 0;
     for path in jobs {
         let job = pfcam::job::load_job(&path).unwrap();
-        let sample = root.join(format!("gcode-samples/{}.nc", job.name));
-        let text = std::fs::read_to_string(&sample).unwrap();
+        // Every program of the job, in order, on one stock.
+        let files = pfcam::report::program_files(&job);
+        let texts: Vec<String> = files
+            .iter()
+            .map(|f| std::fs::read_to_string(root.join("gcode-samples").join(f)).unwrap())
+            .collect();
+        // Named as the command line names them.
+        let paths: Vec<String> = files.iter().map(|f| format!("gcode-samples/{f}")).collect();
+        let progs: Vec<(&str, &str)> = paths
+            .iter()
+            .zip(&texts)
+            .map(|(f, t)| (f.as_str(), t.as_str()))
+            .collect();
         let facts = pfcam::simulate::job_facts(&job, 0.1).unwrap();
-        let s = run(
-            &text,
+        let seq = simulate_programs(
+            &progs,
             &SimOptions {
                 job: Some(facts),
                 ..SimOptions::default()
             },
-        );
-        let r = &s.report;
-        let p = r.part.as_ref().expect("compared with the part");
-        let summary = r.summary().lines().last().unwrap_or("").to_string();
+        )
+        .unwrap();
+        let p = seq.part.as_ref().expect("compared with the part");
+        let summary = p.summary();
         eprintln!("{}: {summary}", job.name);
-        // docs/simulate.md quotes what `pfcam simulate SAMPLE --job JOB` prints
-        // for the bosses and cavities, and the profiles' max gouge.
+        // docs/simulate.md quotes what `pfcam simulate SAMPLE... --job JOB`
+        // prints for the bosses and cavities, and the profiles' max gouge.
         let command = format!(
-            "$ pfcam simulate gcode-samples/{0}.nc --job jobs/{0}.toml",
+            "$ pfcam simulate {} --job jobs/{}.toml",
+            files
+                .iter()
+                .map(|f| format!("gcode-samples/{f}"))
+                .collect::<Vec<_>>()
+                .join(" "),
             job.name
         );
         if let Some(at) = doc.find(&command) {
@@ -640,14 +674,23 @@ fn every_job_sample_is_within_its_part() {
             let what = format!("docs/simulate.md, the profiles' max gouge ({})", job.name);
             doc_figures::assert_figure(&what, &stated, p.max_gouge.value);
         }
-        assert!(r.is_clean(), "{}: {:?}", job.name, r.findings.first());
+        assert!(seq.is_clean(), "{}: {:?}", job.name, seq.findings().next());
         assert_eq!(p.gouged_cells, 0, "{}: {p:?}", job.name);
         assert!(
             p.max_gouge.value <= job.operation.tolerance,
             "{}: {p:?}",
             job.name
         );
-        assert_eq!(p.left_share_over_scallop, 0.0, "{}: {p:?}", job.name);
+        match &job.finish {
+            // Finished: within the scallop (and the tolerance) wherever the
+            // ball reaches (issue 14's "done when").
+            Some(f) => assert!(
+                p.max_left_reachable.value <= f.scallop + 0.01,
+                "{}: {p:?}",
+                job.name
+            ),
+            None => assert_eq!(p.left_share_over_scallop, 0.0, "{}: {p:?}", job.name),
+        }
     }
     assert_eq!(
         quoted_runs, 4,
@@ -1273,20 +1316,16 @@ fn skipping_the_start_disk_changes_no_cell() {
     }
 }
 
-/// docs/simulate.md: mfs-mould.nc, planned for its flat end mill, run with a
+/// docs/simulate.md: mfs-mould.rough.nc, planned for its flat end mill, run with a
 /// ball and a bull nose, reads the straight plunges the doc states (the
 /// linker's `G1 Z` descents into what only a flat end mill cleared).
 #[test]
 fn the_flat_mould_with_curved_ends_reads_the_plunges_the_doc_states() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(root.join("gcode-samples/mfs-mould.nc")).unwrap();
+    let text = std::fs::read_to_string(root.join("gcode-samples/mfs-mould.rough.nc")).unwrap();
     let doc = doc_figures::read("docs/simulate.md");
-    let stated = doc_figures::numbers_after(
-        &doc,
-        "docs/simulate.md",
-        "that flat-tool program also reads",
-        2,
-    );
+    let stated =
+        doc_figures::numbers_after(&doc, "docs/simulate.md", "--corner-radius 0.5`) reads", 2);
     for (figure, shape, corner) in [
         (&stated[0], ToolShape::Ball, None),
         (&stated[1], ToolShape::Bull, Some(0.5)),
