@@ -202,8 +202,9 @@ fn job(path: &str) -> pfcam::job::Job {
     pfcam::job::load_job(std::path::Path::new(path)).unwrap()
 }
 
-/// Every shipped job end to end (`pipeline::run` and the G-code text; `pfcam
-/// run` also simulates the program, draws the preview and writes the files).
+/// Every shipped job end to end (`pipeline::run` and the G-code text of every
+/// program; `pfcam run` also simulates the roughing program, draws the
+/// preview and writes the files).
 /// Before timing, each job's machining time against its lower bound (issue
 /// 14: within 1.5× is the aim) is printed once, from the same run's report.
 fn shipped(c: &mut Criterion) {
@@ -218,20 +219,29 @@ fn shipped(c: &mut Criterion) {
     for path in paths {
         let j = pfcam::job::load_job(&path).unwrap();
         let out = pfcam::pipeline::run(&j, &mut |_| {}).unwrap();
-        let p = pfcam::report::ProgramReport::new(&j, &out);
-        eprintln!(
-            "{}: estimated {:.0} s, lower bound {:.0} s (clearing {:.0} s, outlines {:.0} s), ratio {:.2}",
-            j.name,
-            p.time_s,
-            p.lower_bound_s,
-            p.lower_bound_clearing_s,
-            p.lower_bound_outline_s,
-            p.time_over_bound.unwrap_or(f64::NAN)
-        );
+        // Every program: the roughing one, and the finishing one of a job
+        // with [finish].
+        for p in pfcam::report::ProgramReport::all(&j, &out) {
+            eprintln!(
+                "{}: estimated {:.0} s, lower bound {:.0} s (clearing {:.0} s, outlines {:.0} s), ratio {:.2}",
+                p.file,
+                p.time_s,
+                p.lower_bound_s,
+                p.lower_bound_clearing_s,
+                p.lower_bound_outline_s,
+                p.time_over_bound.unwrap_or(f64::NAN)
+            );
+        }
+        let fj = j.finishing();
         g.bench_function(format!("{} end to end", j.name), |b| {
             b.iter(|| {
                 let out = pfcam::pipeline::run(black_box(&j), &mut |_| {}).unwrap();
-                pfcam::gcode::write_gcode(&out.toolpath, &j).unwrap()
+                let rough = pfcam::gcode::write_gcode(&out.toolpath, &j).unwrap();
+                let finish = match (&out.finish, &fj) {
+                    (Some(f), Some(fj)) => pfcam::gcode::write_gcode(&f.toolpath, fj).unwrap(),
+                    _ => String::new(),
+                };
+                (rough, finish)
             })
         });
     }
