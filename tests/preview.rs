@@ -698,3 +698,33 @@ fn preview_header_and_report_count_the_same_levels() {
         .expect("a z range");
     assert!(svg.contains(&format!("z {range} mm")), "{name}: z {range}");
 }
+
+/// A job with a finishing tool: the preview draws the roughing program and
+/// names the finishing one in its header with the report's figures.
+#[test]
+fn the_preview_names_the_finishing_program() {
+    let text = "[job]\nname = \"fi\"\n[shape]\ntext = \"I\"\nheight = 20.0\n[tool]\ndiameter = 3.175\nstepdown = 1.5\n[stock]\nmargin = 4.0\n[operation]\nkind = \"boss\"\ndepth = 2.0\nmax_scallop = 1.0\n[profile]\nkind = \"sigmoid\"\ns1 = 0.97\ns2 = 0.85\n[finish]\ndiameter = 2.0\nfeed = 1200.0\n";
+    let job = pfcam::job::parse_job(text, "fi", Path::new(".")).expect("job");
+    let out = pipeline::run(&job, &mut |_| {}).expect("runs");
+    let report = RunReport::new(&job, &out);
+    assert_eq!(report.programs.len(), 2);
+    let svg = preview_svg(&job, &out, &report, &PreviewOptions::default()).expect("preview");
+    let p = &report.programs[1];
+    let want = format!(
+        "then fi.finish.nc: ball end mill ⌀2 mm · {:.1} mm cutting · est. time {} (not drawn)",
+        p.cut_length_mm,
+        pfcam::gcode::format_duration(p.time_s)
+    );
+    assert!(svg.contains(&want), "no {want:?} in the header");
+    // Without [finish], no such line.
+    let plain = pfcam::job::parse_job(
+        &text.replace("[finish]\ndiameter = 2.0\nfeed = 1200.0\n", ""),
+        "fi",
+        Path::new("."),
+    )
+    .expect("job");
+    let out = pipeline::run(&plain, &mut |_| {}).expect("runs");
+    let report = RunReport::new(&plain, &out);
+    let svg = preview_svg(&plain, &out, &report, &PreviewOptions::default()).expect("preview");
+    assert!(!svg.contains("(not drawn)"));
+}

@@ -720,6 +720,18 @@ pub fn preview_svg(
         ),
     ];
     let mut lines = lines.to_vec();
+    // A finishing program is its own file, not drawn here: say so, with its
+    // figures (the report's, as its header gives them).
+    if let (Some(f), Some(p)) = (&job.finish, report.programs.get(1)) {
+        lines.push(format!(
+            "then {}: {} ⌀{} mm · {:.1} mm cutting · est. time {} (not drawn)",
+            p.file,
+            f.shape.header_words(),
+            num(f.diameter),
+            p.cut_length_mm,
+            crate::gcode::format_duration(p.time_s)
+        ));
+    }
     if let Some(w) = report.warnings.first() {
         let mut w = format!(
             "{} warning{}: {w}",
