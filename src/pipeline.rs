@@ -562,7 +562,10 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
 }
 
 /// S2's mesh is built this fine (mm) for the finisher's drop-cutter: half the
-/// planner's grid, so the mesh follows the surface within a few µm.
+/// planner's grid. A 0.1 mm mesh changed no figure of q-sign's finish that
+/// `pfcam simulate` measures; on near-vertical walls (mfs-sign's power wall)
+/// the marching-squares chords at the letters' corners stray by up to about
+/// 0.1 mm across, over a millimetre in z (docs/method.md §13).
 pub const FINISH_MESH: f64 = 0.2;
 
 /// The finishing program of a boss or cavity (`crate::finish`): S2's mesh,
