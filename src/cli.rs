@@ -398,8 +398,8 @@ fn cmd_run(
             .map_err(|e| anyhow!(e))
             .with_context(|| format!("{}: nothing written", path.display()))?;
     }
-    // The finishing program (its own simulation needs the roughed stock:
-    // `pfcam simulate` takes both in order).
+    // The finishing program, simulated with its own tool on the stock the
+    // roughing program leaves (as `pfcam simulate ROUGH FINISH` would).
     let finish_gcode = match (&output.finish, job.finishing(), &finish_target) {
         (Some(f), Some(fj), Some(_)) => {
             let g = write_gcode_on(&f.toolpath, &fj, output.stock)?;
@@ -407,6 +407,12 @@ fn cmd_run(
             pfcam::estimate::check_program(time_s, g.len(), &job.machine)
                 .map_err(|e| anyhow!(e))
                 .with_context(|| format!("{}: nothing written", path.display()))?;
+            pfcam::simulate::verify_finish(&gcode, &g)
+                .context("simulating the finishing program")?
+                .map_err(|e| anyhow!(e))
+                .with_context(|| {
+                    format!("{}: the finishing program: nothing written", path.display())
+                })?;
             Some(g)
         }
         _ => None,

@@ -48,7 +48,7 @@ pub use part::{job_facts, JobFacts, PartModel};
 pub use report::{Finding, Kind, PartComparison, Report, StockInfo, Worst};
 pub use stock::{Grid, HeightMap};
 pub use tool::{Tool, ToolShape};
-pub use verify::{verify_program, UnsafeProgram};
+pub use verify::{verify_finish, verify_program, UnsafeProgram};
 
 /// A rapid removing more than this (mm) touches material: far below a chip,
 /// above the rounding of 3-decimal coordinates' binary values.

@@ -5,7 +5,7 @@
 //! catches what the writer (arc fitting, rounding) changed as well as what the
 //! linker planned.
 
-use super::{simulate, Finding, SimError, SimOptions};
+use super::{simulate, simulate_programs, Finding, SimError, SimOptions};
 
 /// A program its own simulation finds unsafe: how many findings, and the
 /// first (by line).
@@ -46,6 +46,28 @@ pub fn verify_program(
     })
 }
 
+/// The finishing program's own check: simulated with the tool its header
+/// names, on the stock the roughing program `rough` left (the two headers
+/// name the stock and the tools; the finish's findings only are returned).
+pub fn verify_finish(rough: &str, finish: &str) -> Result<Result<(), UnsafeProgram>, SimError> {
+    let seq = simulate_programs(
+        &[("rough", rough), ("finish", finish)],
+        &SimOptions::default(),
+    )?;
+    let findings = seq
+        .programs
+        .get(1)
+        .map(|p| p.report.findings.clone())
+        .unwrap_or_default();
+    Ok(match findings.first() {
+        None => Ok(()),
+        Some(first) => Err(UnsafeProgram {
+            count: findings.len(),
+            first: first.clone(),
+        }),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -60,6 +82,21 @@ mod tests {
         assert!(e.to_string().contains("line 5: straight plunge"), "{e}");
         let ramp = format!("{HEAD}G0 Z0.5\nG1 X25 Z-1 F100\nG1 X15\nM2\n");
         assert!(verify_program(&ramp, 3.0, 1.0).unwrap().is_ok());
+    }
+
+    #[test]
+    fn a_finish_is_checked_on_what_the_rough_left() {
+        let rough = "(tool: 3 mm end mill, feed 100, plunge 100 mm/min, spindle 0 rpm)\n(stock: X0..30 Y0..30, top 0, safe z 5 mm)\n(operation: boss outside climb, depth 1, stepdown 1, tol 0.01 mm)\nG21 G90\nG0 Z5\nG0 X5 Y15\nG0 Z0.5\nG1 X25 Z-1 F100\nG1 X5\nG0 Z5\nM2\n";
+        let ball = "(tool: 2 mm ball end mill, feed 100, plunge 100 mm/min, spindle 0 rpm)\n(stock: X0..30 Y0..30, top 0, safe z 5 mm)\nG21 G90\nG0 Z5\n";
+        // Down into the groove the rough cut: clean.
+        let inside = format!("{ball}G0 X15 Y15\nG0 Z-0.5\nG1 Z-1 F100\nG1 X20\nG0 Z5\nM2\n");
+        assert!(verify_finish(rough, &inside).unwrap().is_ok());
+        // Beside it, into uncut stock: refused at the finish's line.
+        let beside = format!("{ball}G0 X15 Y25\nG0 Z-0.5\nM2\n");
+        let e = verify_finish(rough, &beside).unwrap().unwrap_err();
+        assert_eq!(e.first.line, 6);
+        // Alone, on a fresh stock, the same inside move would be a collision.
+        assert!(verify_program(&inside, 2.0, 1.0).unwrap().is_err());
     }
 
     #[test]
