@@ -266,19 +266,28 @@ fn letter_i_mould(c: &mut Criterion) {
     g.finish();
 }
 
-/// `pfcam surface` on mfs-sign without its field solve (benched above): stock,
-/// grid, level crossings, isobands, walls and bottom.
-fn surface(c: &mut Criterion) {
-    let (sign, _, field, glyphs, _) = sign_field();
-    let sj = pfcam::surface::SurfaceJob {
-        field: &field,
-        glyphs: &glyphs,
+/// mfs-sign's surface inputs (a boss) from its job, field and glyphs.
+fn sign_surface<'a>(
+    sign: &'a pfcam::job::Job,
+    field: &'a field::Field,
+    glyphs: &'a [Vec<pfcam::geometry::Vec2>],
+) -> pfcam::surface::SurfaceJob<'a> {
+    pfcam::surface::SurfaceJob {
+        field,
+        glyphs,
         profile: sign.profile.as_ref().unwrap(),
         cavity: false,
         top: sign.stock.top,
         margin: sign.stock.margin,
         tol: sign.operation.tolerance,
-    };
+    }
+}
+
+/// `pfcam surface` on mfs-sign without its field solve (benched above): stock,
+/// grid, level crossings, isobands, walls and bottom.
+fn surface(c: &mut Criterion) {
+    let (sign, _, field, glyphs, _) = sign_field();
+    let sj = sign_surface(&sign, &field, &glyphs);
     let opts = pfcam::surface::SurfaceOptions::default();
     let mut g = c.benchmark_group("surface");
     g.sample_size(10);
@@ -296,15 +305,7 @@ fn surface(c: &mut Criterion) {
 fn dropcutter(c: &mut Criterion) {
     use pfcam::toolpath::dropcutter::{Cutter, MeshIndex};
     let (sign, _, field, glyphs, _) = sign_field();
-    let sj = pfcam::surface::SurfaceJob {
-        field: &field,
-        glyphs: &glyphs,
-        profile: sign.profile.as_ref().unwrap(),
-        cavity: false,
-        top: sign.stock.top,
-        margin: sign.stock.margin,
-        tol: sign.operation.tolerance,
-    };
+    let sj = sign_surface(&sign, &field, &glyphs);
     let opts = pfcam::surface::SurfaceOptions { resolution: 0.5 };
     let s = pfcam::surface::build(&sj, &opts, &mut |_| {}).unwrap();
     let tris: Vec<[[f64; 3]; 3]> = (0..s.mesh.triangles.len())

@@ -603,10 +603,7 @@ fn finish_program(
     let mesh = &surface.mesh;
     let up: Vec<[[f64; 3]; 3]> = (0..mesh.triangles.len())
         .map(|t| mesh.corners(t))
-        .filter(|c| {
-            (c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[2][0] - c[0][0]) * (c[1][1] - c[0][1])
-                > 1e-12
-        })
+        .filter(|c| crate::surface::up_area(c) > 1e-12)
         .collect();
     let walls = crate::finish::wall_area(&up);
     let index = crate::toolpath::dropcutter::MeshIndex::new(up, 4.0 * FINISH_MESH);

@@ -248,6 +248,12 @@ impl SurfaceJob<'_> {
     }
 }
 
+/// Twice the signed XY area of a triangle: positive when its corners run
+/// counter-clockwise seen from above, i.e. its normal points up.
+pub fn up_area(c: &[[f64; 3]; 3]) -> f64 {
+    (c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[2][0] - c[0][0]) * (c[1][1] - c[0][1])
+}
+
 /// The mesh with what it was built from.
 #[derive(Clone, Debug)]
 pub struct Surface {

@@ -10,10 +10,10 @@
 //! `stock_to_leave` on the floor) the foot's loops are offset over the flat
 //! floor, w apart, until `leave` + w/2 is covered.
 
-use crate::field::isolines::{isolines, polygon_area, Grid};
+use crate::field::isolines::Grid;
 use crate::field::Field;
 use crate::geometry::Vec2;
-use crate::levels::plan::{refine, CHORD_FRACTION};
+use crate::levels::plan::curves;
 use crate::levels::DepthProfile;
 
 /// Most passes of one program (a bound on work and file size; the job's
@@ -45,8 +45,8 @@ pub fn dphi_ds(profile: &DepthProfile, s: f64) -> f64 {
     (profile.z(b) - profile.z(a)) / (b - a)
 }
 
-/// The curves Γ(s) of a field, from one grid (as the level planner extracts
-/// them: marching squares, slivers dropped, chords refined onto the level).
+/// The curves Γ(s) of a field, from one grid (`levels::plan::curves`, as the
+/// level planner extracts them).
 pub struct Curves<'a> {
     /// The field.
     pub field: &'a Field,
@@ -63,14 +63,7 @@ pub struct Curves<'a> {
 impl Curves<'_> {
     /// Γ(s) as closed polygons (the first point is not repeated).
     pub fn at(&self, s: f64) -> Vec<Vec<Vec2>> {
-        if s >= 1.0 - 1e-12 {
-            return self.glyphs.to_vec();
-        }
-        isolines(&self.grid, s, self.field, self.glyphs)
-            .into_iter()
-            .filter(|p| polygon_area(p).abs() > 4.0 * self.h * self.h)
-            .map(|p| refine(&p, self.field, s, CHORD_FRACTION * self.tol))
-            .collect()
+        curves(&self.grid, self.field, self.glyphs, s, self.h, self.tol)
     }
 
     /// The smallest |∇u| over the points of `loops` (where the passes are

@@ -97,6 +97,28 @@ pub fn level_error_bound(s: f64) -> f64 {
     (1.0 - s) / 100.0
 }
 
+/// Γ(s) as closed polygons (first point not repeated) from u sampled on
+/// `grid` (spacing `h`): the glyphs themselves at s = 1, else marching
+/// squares with slivers under 4h² dropped and chords refined onto the level
+/// within [`CHORD_FRACTION`] of `tol`.
+pub fn curves(
+    grid: &Grid,
+    f: &Field,
+    glyphs: &[Vec<Vec2>],
+    s: f64,
+    h: f64,
+    tol: f64,
+) -> Vec<Vec<Vec2>> {
+    if s >= 1.0 - 1e-12 {
+        return glyphs.to_vec();
+    }
+    isolines(grid, s, f, glyphs)
+        .into_iter()
+        .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
+        .map(|p| refine(&p, f, s, CHORD_FRACTION * tol))
+        .collect()
+}
+
 /// Newton's method along ∇u from `p` to Γ(s) (a few steps; `None` if it wanders).
 fn project(field: &Field, p: Vec2, s: f64, limit: f64) -> Option<Vec2> {
     let mut q = p;
@@ -247,15 +269,7 @@ pub fn plan_levels_reporting(
         if let Some(c) = cache.lock().ok().and_then(|m| m.get(&s.to_bits()).cloned()) {
             return c;
         }
-        let polys: Vec<Vec<Vec2>> = if s >= 1.0 - 1e-12 {
-            job.glyphs.to_vec()
-        } else {
-            isolines(&grid, s, f, job.glyphs)
-                .into_iter()
-                .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
-                .map(|p| refine(&p, f, s, CHORD_FRACTION * tol))
-                .collect()
-        };
+        let polys = curves(&grid, f, job.glyphs, s, h, tol);
         if let Ok(mut m) = cache.lock() {
             m.insert(s.to_bits(), polys.clone());
         }

@@ -13,7 +13,7 @@ use super::report::{Finding, Kind, PartComparison, Worst};
 use super::stock::HeightMap;
 use super::{SimError, StockBox};
 use crate::job::{Job, OperationKind};
-use crate::surface::{job_surface, SurfaceOptions};
+use crate::surface::{job_surface, up_area, SurfaceOptions};
 use std::collections::BTreeMap;
 
 /// The part as a height field: triangles whose normal points up (+z), and
@@ -106,12 +106,6 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         outline_z: job.stock.top,
     });
     Ok(facts)
-}
-
-/// Twice the signed XY area of a triangle: positive when its corners run
-/// counter-clockwise seen from above, i.e. its normal points up.
-fn up_area(c: &[[f64; 3]; 3]) -> f64 {
-    (c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[2][0] - c[0][0]) * (c[1][1] - c[0][1])
 }
 
 /// |n_z| of the triangle's unit normal: the cosine of its slope.

@@ -219,17 +219,21 @@ enum Under {
     /// The segment has no XY length (under 1 nm): the tool stands still over
     /// the centre, at squared distance `rho2`.
     Still { rho2: f64 },
-    /// Within r for t in [t1, t2] ⊂ [0, 1]; `ex`, `ey`: a − c, `dx`, `dy`:
-    /// b − a in XY, `aa` = dx² + dy².
-    Along {
-        t1: f64,
-        t2: f64,
-        ex: f64,
-        ey: f64,
-        dx: f64,
-        dy: f64,
-        aa: f64,
-    },
+    /// Within r along a part of the segment.
+    Along(Span),
+}
+
+/// Where a cell centre is under the tool: for t in [t1, t2] ⊂ [0, 1]; `ex`,
+/// `ey`: a − c, `dx`, `dy`: b − a in XY, `aa` = dx² + dy².
+#[derive(Clone, Copy)]
+struct Span {
+    t1: f64,
+    t2: f64,
+    ex: f64,
+    ey: f64,
+    dx: f64,
+    dy: f64,
+    aa: f64,
 }
 
 impl Segment {
@@ -312,7 +316,7 @@ impl Segment {
         let t1 = ((-b - q) / (2.0 * aa)).max(0.0);
         let t2 = ((-b + q) / (2.0 * aa)).min(1.0);
         if t1 <= t2 {
-            Under::Along {
+            Under::Along(Span {
                 t1,
                 t2,
                 ex,
@@ -320,7 +324,7 @@ impl Segment {
                 dx,
                 dy,
                 aa,
-            }
+            })
         } else {
             Under::Never
         }
@@ -344,7 +348,7 @@ impl Segment {
         match self.under(cx, cy, r) {
             Under::Never => None,
             Under::Still { .. } => Some(self.z_min()),
-            Under::Along { t1, t2, .. } => Some(self.z(t1).min(self.z(t2))),
+            Under::Along(s) => Some(self.z(s.t1).min(self.z(s.t2))),
         }
     }
 
@@ -353,21 +357,22 @@ impl Segment {
     /// (see the module docs), or `None` if the point is never within `r` of
     /// the axis.
     pub fn ball_over(&self, cx: f64, cy: f64, r: f64) -> Option<f64> {
-        let (t1, t2, ex, ey, dx, dy, aa) = match self.under(cx, cy, r) {
+        let span = match self.under(cx, cy, r) {
             Under::Never => return None,
             Under::Still { rho2 } => {
                 return Some(self.z_min() + r - (r * r - rho2).max(0.0).sqrt())
             }
-            Under::Along {
-                t1,
-                t2,
-                ex,
-                ey,
-                dx,
-                dy,
-                aa,
-            } => (t1, t2, ex, ey, dx, dy, aa),
+            Under::Along(s) => s,
         };
+        let Span {
+            t1,
+            t2,
+            ex,
+            ey,
+            dx,
+            dy,
+            aa,
+        } = span;
         let f = |t: f64| {
             let (px, py) = (ex + t * dx, ey + t * dy);
             self.z(t) + r - (r * r - (px * px + py * py)).max(0.0).sqrt()
@@ -393,19 +398,20 @@ impl Segment {
     /// within `r` of the axis.
     pub fn bull_over(&self, cx: f64, cy: f64, r: f64, rc: f64) -> Option<f64> {
         let r0 = r - rc;
-        let (t1, t2, ex, ey, dx, dy, aa) = match self.under(cx, cy, r) {
+        let span = match self.under(cx, cy, r) {
             Under::Never => return None,
             Under::Still { rho2 } => return Some(self.z_min() + corner_lift(rho2.sqrt(), r0, rc)),
-            Under::Along {
-                t1,
-                t2,
-                ex,
-                ey,
-                dx,
-                dy,
-                aa,
-            } => (t1, t2, ex, ey, dx, dy, aa),
+            Under::Along(s) => s,
         };
+        let Span {
+            t1,
+            t2,
+            ex,
+            ey,
+            dx,
+            dy,
+            aa,
+        } = span;
         let dz = self.b[2] - self.a[2];
         // f(t) and f'(t) = Δz + p'(ρ) ρ'(t), ρ' = (p(t) − c)·d / ρ,
         // p'(ρ) = (ρ − r0) / √(rc² − (ρ − r0)²) on the corner (infinite at

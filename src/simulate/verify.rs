@@ -36,14 +36,18 @@ pub fn verify_program(
         ..SimOptions::default()
     };
     let sim = simulate(text, &opts)?;
-    let findings = sim.report.findings;
-    Ok(match findings.first() {
+    Ok(verdict(&sim.report.findings))
+}
+
+/// `Ok` without findings, else their count and the first.
+fn verdict(findings: &[Finding]) -> Result<(), UnsafeProgram> {
+    match findings.first() {
         None => Ok(()),
         Some(first) => Err(UnsafeProgram {
             count: findings.len(),
             first: first.clone(),
         }),
-    })
+    }
 }
 
 /// The finishing program's own check: simulated with the tool its header
@@ -54,18 +58,10 @@ pub fn verify_finish(rough: &str, finish: &str) -> Result<Result<(), UnsafeProgr
         &[("rough", rough), ("finish", finish)],
         &SimOptions::default(),
     )?;
-    let findings = seq
+    Ok(seq
         .programs
         .get(1)
-        .map(|p| p.report.findings.clone())
-        .unwrap_or_default();
-    Ok(match findings.first() {
-        None => Ok(()),
-        Some(first) => Err(UnsafeProgram {
-            count: findings.len(),
-            first: first.clone(),
-        }),
-    })
+        .map_or(Ok(()), |p| verdict(&p.report.findings)))
 }
 
 #[cfg(test)]
