@@ -94,6 +94,9 @@ pub struct Stock {
     pub top: f64,
     /// Z for rapid moves, mm (above `top`).
     pub safe_z: f64,
+    /// Z for the rapids between the cuts of one program, mm: above `top`, at
+    /// most `safe_z` (which the program starts and ends at).
+    pub retract_z: f64,
     /// Stock around the part's largest level (a boss's base), mm on every side.
     pub margin: f64,
 }
@@ -524,6 +527,8 @@ pub struct RawStock {
     pub top: Option<f64>,
     /// `safe_z`, mm
     pub safe_z: Option<f64>,
+    /// `retract_z`, mm
+    pub retract_z: Option<f64>,
     /// `margin`, mm
     pub margin: Option<f64>,
 }
@@ -952,6 +957,28 @@ fn key_at(text: &str, pos: usize) -> Option<String> {
 }
 
 /// `x` as the user wrote it, short: `-3`, `0.5`, `1e300` (never 300 digits).
+/// `stock.retract_z`: above the stock top (nothing is ever higher: the
+/// tool may rapid over any of it there), at most `stock.safe_z`; `safe_z` when
+/// not given.
+fn resolve_retract(retract_z: Option<f64>, top: f64, safe_z: f64) -> Result<f64, JobError> {
+    let Some(z) = retract_z else {
+        return Ok(safe_z);
+    };
+    let z = finite("stock.retract_z", z)?;
+    if z <= top || z > safe_z {
+        return Err(invalid(
+            "stock.retract_z",
+            format!(
+                "must be above stock.top ({}) and at most stock.safe_z ({}), got {}",
+                show(top),
+                show(safe_z),
+                show(z)
+            ),
+        ));
+    }
+    Ok(z)
+}
+
 fn show(x: f64) -> String {
     if x.fract() == 0.0 && x.abs() < 1e15 {
         format!("{x}")
@@ -1117,10 +1144,12 @@ impl RawJob {
                 ),
             ));
         }
+        let retract_z = resolve_retract(s.retract_z, top, safe_z)?;
         let margin = limits::MARGIN.check("stock.margin", s.margin.unwrap_or(defaults::MARGIN))?;
         let stock = Stock {
             top,
             safe_z,
+            retract_z,
             margin,
         };
 
@@ -2190,6 +2219,19 @@ depth = 3.0
     }
 
     #[test]
+    fn retract_z_between_top_and_safe_z() {
+        for bad in ["retract_z = 6.0", "retract_z = 0.0", "retract_z = -1.0"] {
+            let (k, msg) = err_key(&with("stock", &format!("safe_z = 5.0\n{bad}")));
+            assert_eq!(k, "stock.retract_z", "{bad}");
+            assert!(msg.contains("at most stock.safe_z (5)"), "{msg}");
+        }
+        let j = parse(&with("stock", "safe_z = 5.0\nretract_z = 1.0")).unwrap();
+        assert_eq!((j.stock.safe_z, j.stock.retract_z), (5.0, 1.0));
+        let j = parse(&with("stock", "safe_z = 4.0")).unwrap();
+        assert_eq!(j.stock.retract_z, 4.0);
+    }
+
+    #[test]
     fn exactly_one_shape_source() {
         let (k, msg) = err_key(&with("shape", "svg_path = \"M0 0 L1 0 L1 1 Z\""));
         assert_eq!(k, "shape.text");
@@ -2915,6 +2957,7 @@ mod doc_tests {
             "stepdown",
             "top",
             "safe_z",
+            "retract_z",
             "kind",
             "side",
             "depth",

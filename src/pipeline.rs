@@ -458,6 +458,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         feed: job.tool.feed,
         plunge_feed: job.tool.plunge_feed,
         safe_z: job.stock.safe_z,
+        retract_z: job.stock.retract_z,
         top: job.stock.top,
         stepdown: job.tool.stepdown,
         rapid_rate: job.machine.rapid_rate,

@@ -33,8 +33,10 @@ pub struct FinishParams<'a> {
     pub plunge_feed: f64,
     /// Ramp angle, degrees.
     pub ramp_angle: f64,
-    /// Safe Z, mm.
+    /// Safe Z, mm: where the program starts and ends.
     pub safe_z: f64,
+    /// Z of the rapids between passes (`stock.retract_z`), mm.
+    pub retract_z: f64,
     /// Height above the surface at which an entry's ramp starts, mm: the most
     /// the roughing can have left over S2 (a stepdown and the stock to leave).
     pub entry: f64,
@@ -116,6 +118,7 @@ pub fn finish(
         plunge_feed: f.plunge_feed,
         ramp_angle: job.tool.ramp_angle,
         safe_z: job.stock.safe_z,
+        retract_z: job.stock.retract_z,
         entry: job.tool.stepdown + job.operation.stock_to_leave + 0.5,
         tol: job.operation.tolerance,
     };

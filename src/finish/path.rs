@@ -267,15 +267,17 @@ pub fn moves(
                 });
             }
         } else {
-            if at.z < p.safe_z {
+            // Over at the retract height, or higher where the tool already is.
+            let over = at.z.max(p.retract_z);
+            if at.z < over {
                 mv.push(Move::Rapid {
-                    to: Vec3::new(at.x, at.y, p.safe_z),
+                    to: Vec3::new(at.x, at.y, over),
                 });
             }
             mv.push(Move::Rapid {
-                to: Vec3::new(first.x, first.y, p.safe_z),
+                to: Vec3::new(first.x, first.y, over),
             });
-            let top = (first.z + p.entry).min(p.safe_z);
+            let top = (first.z + p.entry).min(over);
             mv.push(Move::Rapid {
                 to: Vec3::new(first.x, first.y, top),
             });

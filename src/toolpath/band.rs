@@ -11,7 +11,7 @@
 //! bands needed well under one).
 
 use super::profile::ProfileError;
-use super::trace::{trace, Navigator, TraceParams};
+use super::trace::{trace, NearestWall, TraceParams};
 use super::zlevel::{CutPath, LevelParams};
 use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
 
@@ -56,10 +56,9 @@ fn cavity_points(part: &[Vec<Vec2>], index: &DistanceIndex, h: f64) -> Vec<(f64,
 /// Every loop of the rolling disk's path at radius `rj` inside the cavity: a
 /// trace from each grid point just clear of that radius that no loop traced so
 /// far passes near.
-fn loops_at<N: Navigator>(
+fn loops_at(
     points: &[(f64, Vec2)],
     index: &DistanceIndex,
-    nav: &N,
     p: &LevelParams,
     rj: f64,
     h: f64,
@@ -80,7 +79,7 @@ fn loops_at<N: Navigator>(
         if loops.len() == MAX_LOOPS {
             return Ok(None);
         }
-        let t = trace(nav, index, q, tp).map_err(|source| ProfileError::Trace {
+        let t = trace(&NearestWall(index), index, q, tp).map_err(|source| ProfileError::Trace {
             label: format!("{label}: ring at {rj:.3} mm from the wall"),
             source,
         })?;
@@ -89,8 +88,15 @@ fn loops_at<N: Navigator>(
         let before = seeds.len();
         seeds.retain(|&s| !ring.closer_than(s, 3.0 * h + p.tol, &hint));
         if seeds.len() == before {
-            // The trace did not pass its own seed: drop the seed, keep going.
+            // The trace did not pass its own seed: drop the seed, and the loop
+            // too if it is one already kept.
             seeds.remove(0);
+            let start = t.points[0];
+            if loops.iter().any(|l: &Vec<Vec2>| {
+                DistanceIndex::new(&[l[..l.len() - 1].to_vec()]).distance(start) <= 2.0 * p.tol
+            }) {
+                continue;
+            }
         }
         loops.push(t.points);
     }
@@ -100,10 +106,9 @@ fn loops_at<N: Navigator>(
 /// The rings that cut a cavity level's band `band` wide next to the wall,
 /// innermost first, without the wall loops themselves (at r, traced by the
 /// caller). `None` when a radius has more than [`MAX_LOOPS`] loops.
-pub fn band_rings<N: Navigator>(
+pub fn band_rings(
     part: &[Vec<Vec2>],
     index: &DistanceIndex,
-    nav: &N,
     p: &LevelParams,
     label: &str,
     band: f64,
@@ -117,7 +122,7 @@ pub fn band_rings<N: Navigator>(
     let mut paths = Vec::new();
     for j in (1..=n).rev() {
         let rj = p.wall() + j as f64 * p.stepover;
-        let Some(loops) = loops_at(&points, index, nav, p, rj, h, label)? else {
+        let Some(loops) = loops_at(&points, index, p, rj, h, label)? else {
             return Ok(None);
         };
         for pts in loops {
@@ -134,15 +139,6 @@ pub fn band_rings<N: Navigator>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Toward the nearest point of the part: a navigator that needs no field.
-    struct Nearest(DistanceIndex);
-
-    impl Navigator for Nearest {
-        fn grad(&self, p: Vec2) -> Vec2 {
-            (self.0.nearest(p).1 - p).normalized()
-        }
-    }
 
     fn square(c: Vec2, half: f64, ccw: bool) -> Vec<Vec2> {
         let mut s = vec![
@@ -168,6 +164,7 @@ mod tests {
             plunge_feed: 200.0,
             rapid_rate: 1000.0,
             safe_z: 5.0,
+            retract_z: 5.0,
             top: 0.0,
             stepdown: 1.0,
             leave: 0.0,
@@ -188,10 +185,9 @@ mod tests {
             square(Vec2::new(3.0, -2.0), 5.0, true),
         ];
         let index = DistanceIndex::new(&part);
-        let nav = Nearest(DistanceIndex::new(&part));
         let p = params();
         let band = 5.0;
-        let rings = band_rings(&part, &index, &nav, &p, "test", band)
+        let rings = band_rings(&part, &index, &p, "test", band)
             .expect("traced")
             .expect("few loops");
         // ⌈5 / 1.27⌉ − 1 = 3 radii, two loops each.
@@ -213,7 +209,7 @@ mod tests {
         }
         let h = 0.25 * p.stepover.min(p.radius);
         let pts = cavity_points(&part, &index, h);
-        let walls = loops_at(&pts, &index, &nav, &p, p.radius, h, "test")
+        let walls = loops_at(&pts, &index, &p, p.radius, h, "test")
             .expect("traced")
             .expect("few loops");
         assert_eq!(walls.len(), 2);

@@ -1,6 +1,7 @@
 //! Tool paths: the one intermediate representation that G-code, previews, time
 //! estimates and the gouge check all read (see `docs/architecture.md`).
 
+pub mod air;
 pub mod arcfit;
 pub mod band;
 pub mod bays;
@@ -8,6 +9,7 @@ pub mod dropcutter;
 pub mod entry;
 pub mod gouge;
 pub mod profile;
+pub mod runs;
 pub mod stock;
 pub mod trace;
 pub mod zlevel;

@@ -41,6 +41,17 @@ impl Navigator for Field {
     }
 }
 
+/// Directions from plain geometry: toward the nearest point of the part, the
+/// gradient of the distance to it. For offset rings inside a cavity, where a
+/// level's field (solved outside Γ(s), its charges inside) points anywhere.
+pub struct NearestWall<'a>(pub &'a DistanceIndex);
+
+impl Navigator for NearestWall<'_> {
+    fn grad(&self, p: Vec2) -> Vec2 {
+        (self.0.nearest(p).1 - p).normalized()
+    }
+}
+
 /// Tracing parameters, all in mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceParams {

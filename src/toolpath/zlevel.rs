@@ -1,8 +1,10 @@
 //! Z-level operations (boss and cavity): the paths of one level and the linking of
 //! all levels into a tool path with ramped entries.
 
+use super::air::Keepout;
 use super::entry::{enter, ramp_start, start_near, Entry, CLEARANCE};
 use super::profile::{deepest_point, ProfileError};
+use super::runs::order_runs;
 use super::stock::{model_radius, StockMap};
 use super::trace::{trace, Navigator, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
@@ -28,8 +30,10 @@ pub struct LevelParams {
     /// Rate of rapids, mm/min (for choosing between a link at depth and a
     /// retract).
     pub rapid_rate: f64,
-    /// Safe Z for rapids.
+    /// Safe Z: where the tool path starts and ends.
     pub safe_z: f64,
+    /// Z of the rapids between paths (`stock.retract_z`), at most `safe_z`.
+    pub retract_z: f64,
     /// Stock top Z.
     pub top: f64,
     /// Deepest cut allowed in one move (the tool's stepdown): a sideways link
@@ -59,7 +63,7 @@ impl LevelParams {
             ramp_angle: self.ramp_angle,
             plunge_feed: self.plunge_feed,
             feed: self.feed,
-            safe_z: self.safe_z,
+            safe_z: self.retract_z,
             top: self.top,
         }
     }
@@ -246,18 +250,29 @@ pub fn boss_paths<N: Navigator + Sync>(
             Ok(out)
         })
         .collect();
-    let mut paths = Vec::new();
+    // The runs that cross the stock first, in corner order (`runs`); then the
+    // closed rings, outermost first.
+    let (mut open, mut closed) = (Vec::new(), Vec::new());
     for res in traced {
         for (j, ring) in res? {
-            for (run, closed) in clip_ring(&ring, lo, hi) {
-                paths.push(CutPath {
-                    label: format!("{label}: ring {j} around the part"),
-                    points: run,
-                    closed,
-                });
+            for (run, whole) in clip_ring(&ring, lo, hi) {
+                if whole {
+                    closed.push((j, run));
+                } else {
+                    open.push((j, run));
+                }
             }
         }
     }
+    let keep = Keepout::around_stock(p.stock_lo, p.stock_hi, p.radius);
+    let open = order_runs(open, 1.5 * p.stepover + p.tol, &keep, lo);
+    let ring_path = |(j, run): (usize, Vec<Vec2>), closed: bool| CutPath {
+        label: format!("{label}: ring {j} around the part"),
+        points: run,
+        closed,
+    };
+    let mut paths: Vec<CutPath> = open.into_iter().map(|r| ring_path(r, false)).collect();
+    paths.extend(closed.into_iter().map(|r| ring_path(r, true)));
     // Holes (counters of the sign): rings from the innermost out to the finishing ring.
     for (h, hole) in holes.iter().enumerate() {
         let (deep, room) = deepest_point(hole, &index);
@@ -324,6 +339,7 @@ pub fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
     let e = p.entry();
     let mut pos = start;
     let mut sections = Vec::new();
+    let keep = Keepout::around_stock(p.stock_lo, p.stock_hi, p.radius);
     for lv in levels {
         let index = DistanceIndex::new(&lv.part);
         let mut moves = Vec::new();
@@ -345,7 +361,27 @@ pub fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
                         <= reentry_time(&stock, &pts, path.closed, a, lv.z, p);
                 clear_of_part && (near || cleared)
             });
-            if sideways.is_some() {
+            // Both ends beside the stock: round it at depth, through air,
+            // when that beats leaving and coming back.
+            let around = at.filter(|&a| {
+                sideways.is_none()
+                    && keep.clear(a)
+                    && keep.clear(first)
+                    && keep.route_length(a, first) / p.feed
+                        <= reentry_time(&stock, &pts, path.closed, a, lv.z, p)
+            });
+            if let Some(a) = around {
+                for q in keep
+                    .route(a, first)
+                    .into_iter()
+                    .chain(pts[1..].iter().copied())
+                {
+                    moves.push(Move::Linear {
+                        to: Vec3::new(q.x, q.y, lv.z),
+                        feed: p.feed,
+                    });
+                }
+            } else if sideways.is_some() {
                 for q in &pts {
                     moves.push(Move::Linear {
                         to: Vec3::new(q.x, q.y, lv.z),
@@ -355,11 +391,11 @@ pub fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
             } else {
                 if let Some(a) = at {
                     moves.push(Move::Rapid {
-                        to: Vec3::new(a.x, a.y, p.safe_z),
+                        to: Vec3::new(a.x, a.y, p.retract_z),
                     });
                 }
                 moves.push(Move::Rapid {
-                    to: Vec3::new(first.x, first.y, p.safe_z),
+                    to: Vec3::new(first.x, first.y, pos.z.max(p.retract_z)),
                 });
                 enter(&stock, &pts, path.closed, lv.z, &e, &mut moves);
                 if !path.closed {
@@ -376,9 +412,9 @@ pub fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
         }
         if let Some(a) = at {
             moves.push(Move::Rapid {
-                to: Vec3::new(a.x, a.y, p.safe_z),
+                to: Vec3::new(a.x, a.y, p.retract_z),
             });
-            pos.z = p.safe_z;
+            pos.z = p.retract_z;
         }
         let from = sections
             .last()
@@ -407,8 +443,8 @@ fn reentry_time(
 ) -> f64 {
     let e = p.entry();
     let z_from = ramp_start(stock, pts, closed, z, &e).max(z);
-    let down_to = (z_from + CLEARANCE).min(p.safe_z);
-    let rapid = (p.safe_z - z) + a.dist(pts[0]) + (p.safe_z - down_to);
+    let down_to = (z_from + CLEARANCE).min(p.retract_z);
+    let rapid = (p.retract_z - z) + a.dist(pts[0]) + (p.retract_z - down_to);
     let ramp = (z_from - z) / p.ramp_angle.to_radians().sin();
     rapid / p.rapid_rate + (down_to - z_from) / p.plunge_feed + ramp / e.ramp_feed()
 }
@@ -580,6 +616,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
         })?;
         finish.push(t.points);
     }
+    let n_pocket_walls = finish.len();
     for (i, is) in islands.iter().enumerate() {
         let start = lowest(is) - Vec2::new(0.0, rw + p.tol);
         match trace(nav, &index, start, tp) {
@@ -607,10 +644,26 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // A wider band, up to a few stepovers: offset rings, then the walls; the
     // offsets cover the band by construction, and `pfcam simulate` measures it.
     if let Some(d) = band.filter(|&d| d <= super::band::MAX_BAND_STEPOVERS * p.stepover) {
-        if let Some(mut paths) = super::band::band_rings(part, &index, nav, p, label, d)? {
+        if let Some(mut paths) = super::band::band_rings(part, &index, p, label, d)? {
             paths.extend(wall_paths(finish, label));
             return Ok((paths, 0.0));
         }
+    }
+    // A whole level, or a wider band: offset rings too, from the deepest in
+    // out to the wall, then loops at what they leave (`cover_left`). They are
+    // a stepover apart everywhere, so they cut about area ÷ stepover; the
+    // inverse problem's equipotentials, a stepover apart only where they are
+    // farthest apart, cut 24.9 m on mfs-mould's first level where these cut
+    // 11.9 m (docs/method.md §13).
+    let deepest = pockets
+        .iter()
+        .map(|pk| deepest_in_pocket(pk).1)
+        .fold(0.0, f64::max);
+    let reach = band.map_or(deepest, |b| b.min(deepest));
+    if let Some(mut paths) = super::band::band_rings(part, &index, p, label, reach)? {
+        let v = orient_v(&finish, n_pocket_walls);
+        paths.extend(wall_paths(finish, label));
+        return cover_left(part, &index, &v, paths, p, band, label);
     }
     // A second loop one stepover in from the wall, again by the rolling disk: it
     // keeps the wall's sharp corners, which the equipotential rings would cut by
@@ -649,26 +702,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     };
     // V's boundary, oriented for the inverse problem: pocket loops clockwise
     // (outside V on their left), island loops counter-clockwise.
-    let loops: Vec<Vec<Vec2>> = finish
-        .iter()
-        .map(|l| {
-            let q: Vec<Vec2> = l[..l.len() - 1].to_vec();
-            q
-        })
-        .collect();
-    let n_pockets = pockets_in_finish.min(loops.len());
-    let oriented: Vec<Vec<Vec2>> = loops
-        .iter()
-        .enumerate()
-        .map(|(i, l)| {
-            let want_cw = i < n_pockets;
-            if (polygon_area(l) < 0.0) == want_cw {
-                l.clone()
-            } else {
-                l.iter().rev().copied().collect()
-            }
-        })
-        .collect();
+    let oriented = orient_v(&finish, pockets_in_finish);
     let vindex = DistanceIndex::new(&oriented);
     let (mut lo, mut hi) = (oriented[0][0], oriented[0][0]);
     for q in oriented.iter().flatten() {
@@ -907,6 +941,56 @@ pub fn cavity_paths<N: Navigator + Sync>(
         }
     }
     paths.extend(wall_paths(finish_all, label));
+    cover_left(part, &index, &oriented, paths, p, band, label)
+}
+
+/// The region a cavity level's tool centre may go, from its closed wall
+/// loops (the first `n_pockets` around pockets, the rest around islands),
+/// oriented for the inverse problem and the coverage masks: pocket loops
+/// clockwise (outside the region on their left), island loops
+/// counter-clockwise; the closing point dropped.
+fn orient_v(loops: &[Vec<Vec2>], n_pockets: usize) -> Vec<Vec<Vec2>> {
+    loops
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let l = &l[..l.len() - 1];
+            if (signed_area(l) < 0.0) == (i < n_pockets) {
+                l.to_vec()
+            } else {
+                l.iter().rev().copied().collect()
+            }
+        })
+        .collect()
+}
+
+/// Coverage of a cavity level by its paths, and loops at the spots they
+/// leave. `v` is the region the tool centre may go (pocket loops clockwise,
+/// island loops counter-clockwise). Returns the paths, the spots' loops first,
+/// and the share of the reachable area still uncut.
+fn cover_left(
+    part: &[Vec<Vec2>],
+    index: &DistanceIndex,
+    v: &[Vec<Vec2>],
+    mut paths: Vec<CutPath>,
+    p: &LevelParams,
+    band: Option<f64>,
+    label: &str,
+) -> Result<(Vec<CutPath>, f64), ProfileError> {
+    use crate::field::isolines::Grid;
+    let r = p.radius;
+    let vindex = DistanceIndex::new(v);
+    let Some((lo, hi)) = polygons_bbox(v) else {
+        return Ok((paths, 0.0));
+    };
+    let pad = Vec2::new(2.0 * r, 2.0 * r);
+    let mut mask = vec![vec![
+        lo - pad,
+        Vec2::new(hi.x + pad.x, lo.y - pad.y),
+        hi + pad,
+        Vec2::new(lo.x - pad.x, hi.y + pad.y),
+    ]];
+    mask.extend(v.iter().cloned());
     // 4. Coverage: reachable points (in V, or within r of V) not within r of a path,
     // on a grid of r/10. Where points are left (between rings that part around a
     // lobe), small loops of radius r/2 are added at them, centred where the tool
