@@ -8,8 +8,8 @@
 (cut max: X63.709 Y71.269 Z-0.004)
 (levels: 1, z -3)
 (moves: 26057 lines, 0 arcs of radius <= 1000 mm)
-(length: cut 12444.6 mm, rapid 50.5 mm)
-(estimated time: 12 min 50 s, rapids at 1000 mm/min, acceleration ignored)
+(length: cut 12444.6 mm, rapid 42.5 mm)
+(estimated time: 12 min 49 s, rapids at 1000 mm/min, acceleration ignored)
 G21 G90 G17 G94
 G0 Z5
 G0 X0 Y0
@@ -15012,7 +15012,7 @@ G1 X-2.274 Y-0.374
 G1 X-1.899 Y-0.773
 G1 X-1.357 Y-1.328
 (finish pass 1 s 0.97000)
-G0 Z5
+G0 Z1
 G0 X14.802 Y12.331
 G0 Z-0.8
 G1 X14.651 Y12.514 Z-0.812 F200

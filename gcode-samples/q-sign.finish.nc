@@ -8,7 +8,7 @@
 (cut max: X64.566 Y72.126 Z-0.004)
 (levels: 1, z -3)
 (moves: 24765 lines, 0 arcs of radius <= 1000 mm)
-(length: cut 12297.6 mm, rapid 42.7 mm)
+(length: cut 12297.6 mm, rapid 34.7 mm)
 (estimated time: 12 min 36 s, rapids at 1000 mm/min, acceleration ignored)
 G21 G90 G17 G94
 G0 Z5
@@ -15371,7 +15371,7 @@ G1 X5.614 Y3.864
 G1 X5.281 Y4.204
 G1 X4.81 Y4.709
 (finish pass 1 s 0.90000)
-G0 Z5
+G0 Z1
 G0 X17.046 Y16.887
 G0 Z-1.3
 G1 X17.251 Y16.69 Z-1.315 F200

@@ -456,8 +456,10 @@ fn every_sample_simulates() {
         };
         let notes: &[(&str, usize)] = match name.as_str() {
             "letter-a.nc" => &[("(`letter-a.nc` line", r.max_axial.line)],
-            "mfs-sign.nc" => &[("on `mfs-sign.nc`** (line", r.steepest_entry_deg.line)],
-            "q-mould.nc" => &[("on `q-mould.nc`, line", r.steepest_entry_deg.line)],
+            "mfs-mould.rough.nc" => {
+                &[("on `mfs-mould.rough.nc`** (line", r.steepest_entry_deg.line)]
+            }
+            "q-mould.rough.nc" => &[("on `q-mould.rough.nc`, line", r.steepest_entry_deg.line)],
             _ => &[],
         };
         for &(marker, line) in notes {

@@ -490,7 +490,7 @@ fn cavity_error_warning(info: &[LevelInfo]) -> Option<String> {
         })
         .copied()?;
     Some(format!(
-        "{} of {} levels have fields that err above a hundredth of 1 − s (worst: level {}, z {:.3}, s = {:.6}, {:.2e} against {:.1e}): each cut follows its level's polygon and is checked by geometry, so the part is as modelled; only the clearing rings there may be unevenly spaced (every level's error is in the JSON report)",
+        "{} of {} levels have fields that err above a hundredth of 1 − s (worst: level {}, z {:.3}, s = {:.6}, {:.2e} against {:.1e}): each cut follows its level's polygon and is checked by geometry, so the part is as modelled; the field only steers the tracer there (every level's error is in the JSON report)",
         over.len(),
         info.len(),
         k + 1,

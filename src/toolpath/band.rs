@@ -10,7 +10,6 @@
 //! spots in its lobes (q-mould's band levels cut 7.5 m and 4.3 m where their
 //! bands needed well under one).
 
-use super::profile::ProfileError;
 use super::trace::{trace, NearestWall, TraceParams};
 use super::zlevel::{CutPath, LevelParams};
 use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
@@ -62,8 +61,7 @@ fn loops_at(
     p: &LevelParams,
     rj: f64,
     h: f64,
-    label: &str,
-) -> Result<Option<Vec<Vec<Vec2>>>, ProfileError> {
+) -> Option<Vec<Vec<Vec2>>> {
     let mut seeds: Vec<Vec2> = points
         .iter()
         .filter(|&&(d, _)| d >= rj + p.tol && d <= rj + p.tol + 2.0 * h)
@@ -77,12 +75,12 @@ fn loops_at(
     let mut loops = Vec::new();
     while let Some(&q) = seeds.first() {
         if loops.len() == MAX_LOOPS {
-            return Ok(None);
+            return None;
         }
-        let t = trace(&NearestWall(index), index, q, tp).map_err(|source| ProfileError::Trace {
-            label: format!("{label}: ring at {rj:.3} mm from the wall"),
-            source,
-        })?;
+        // A trace that does not close (the distance's gradient turns
+        // abruptly on the medial axis) hands the level to the caller's
+        // fallback, as too many loops do.
+        let t = trace(&NearestWall(index), index, q, tp).ok()?;
         let ring = DistanceIndex::new(&[t.points[..t.points.len() - 1].to_vec()]);
         let hint = std::cell::Cell::new(0);
         let before = seeds.len();
@@ -98,9 +96,32 @@ fn loops_at(
                 continue;
             }
         }
-        loops.push(t.points);
+        loops.push(without_crumbs(t.points, 0.5 * p.tol));
     }
-    Ok(Some(loops))
+    Some(loops)
+}
+
+/// A closed path without points nearer than `eps` to the last one kept (the
+/// trace's compass can land a few µm from its last point at a sharp turn;
+/// such a crumb, rounded to the G-code's 1 µm, reads as a steep step of a
+/// ramp). The chord over a dropped point strays from it by less than `eps`.
+fn without_crumbs(points: Vec<Vec2>, eps: f64) -> Vec<Vec2> {
+    let n = points.len();
+    if n < 4 {
+        return points;
+    }
+    let mut out: Vec<Vec2> = Vec::with_capacity(n);
+    for &q in &points[..n - 1] {
+        if out.last().is_none_or(|l| l.dist(q) >= eps) {
+            out.push(q);
+        }
+    }
+    // The last kept point must not sit on top of the first either.
+    while out.len() > 3 && out[out.len() - 1].dist(out[0]) < eps {
+        out.pop();
+    }
+    out.push(out[0]);
+    out
 }
 
 /// The rings that cut a cavity level's band `band` wide next to the wall,
@@ -112,28 +133,27 @@ pub fn band_rings(
     p: &LevelParams,
     label: &str,
     band: f64,
-) -> Result<Option<Vec<CutPath>>, ProfileError> {
+) -> Option<Vec<CutPath>> {
     let n = ((band / p.stepover).ceil() as usize).saturating_sub(1);
     if n == 0 {
-        return Ok(Some(Vec::new()));
+        return Some(Vec::new());
     }
     let h = 0.25 * p.stepover.min(p.radius);
     let points = cavity_points(part, index, h);
     let mut paths = Vec::new();
     for j in (1..=n).rev() {
         let rj = p.wall() + j as f64 * p.stepover;
-        let Some(loops) = loops_at(&points, index, p, rj, h, label)? else {
-            return Ok(None);
-        };
+        let loops = loops_at(&points, index, p, rj, h)?;
         for pts in loops {
             paths.push(CutPath {
                 label: format!("{label}: ring {j} of the band"),
                 points: pts,
                 closed: true,
+                ring: None,
             });
         }
     }
-    Ok(Some(paths))
+    Some(paths)
 }
 
 #[cfg(test)]
@@ -187,9 +207,7 @@ mod tests {
         let index = DistanceIndex::new(&part);
         let p = params();
         let band = 5.0;
-        let rings = band_rings(&part, &index, &p, "test", band)
-            .expect("traced")
-            .expect("few loops");
+        let rings = band_rings(&part, &index, &p, "test", band).expect("traced, few loops");
         // ⌈5 / 1.27⌉ − 1 = 3 radii, two loops each.
         assert_eq!(
             rings.len(),
@@ -209,9 +227,7 @@ mod tests {
         }
         let h = 0.25 * p.stepover.min(p.radius);
         let pts = cavity_points(&part, &index, h);
-        let walls = loops_at(&pts, &index, &p, p.radius, h, "test")
-            .expect("traced")
-            .expect("few loops");
+        let walls = loops_at(&pts, &index, &p, p.radius, h).expect("traced, few loops");
         assert_eq!(walls.len(), 2);
         let mut all: Vec<Vec<Vec2>> = walls.clone();
         all.extend(rings.iter().map(|c| c.points.clone()));

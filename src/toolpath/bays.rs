@@ -176,6 +176,7 @@ pub fn clear_bays<N: Navigator>(
                 label: format!("{label}: ring in a bay"),
                 points: pts,
                 closed: true,
+                ring: None,
             });
         }
     }
@@ -199,6 +200,7 @@ mod tests {
                 Vec2::new(10.0, 0.0),
             ],
             closed: false,
+            ring: None,
         };
         let idx = DistanceIndex::new(&[as_loop(&run)]);
         assert!((idx.distance(Vec2::new(5.0, 0.0)) - 5.0).abs() < 1e-12);

@@ -4,7 +4,7 @@
 use super::air::Keepout;
 use super::entry::{enter, ramp_start, start_near, Entry, CLEARANCE};
 use super::profile::{deepest_point, ProfileError};
-use super::runs::order_runs;
+use super::runs;
 use super::stock::{model_radius, StockMap};
 use super::trace::{trace, Navigator, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
@@ -79,6 +79,10 @@ pub struct CutPath {
     /// Closed loop (entered by a ramp) or open run (starts and ends outside the
     /// stock, entered by a plunge in air).
     pub closed: bool,
+    /// A boss's clearing ring around the part: its index j (radius r +
+    /// j·stepover). The linker orders these ([`runs::order`]); every other
+    /// path keeps its place after them.
+    pub ring: Option<usize>,
 }
 
 /// All the paths of one level.
@@ -250,8 +254,8 @@ pub fn boss_paths<N: Navigator + Sync>(
             Ok(out)
         })
         .collect();
-    // The runs that cross the stock first, in corner order (`runs`); then the
-    // closed rings, outermost first.
+    // The runs that cross the stock, then the closed rings, outermost first
+    // (the linker orders them, `runs::order`).
     let (mut open, mut closed) = (Vec::new(), Vec::new());
     for res in traced {
         for (j, ring) in res? {
@@ -264,12 +268,11 @@ pub fn boss_paths<N: Navigator + Sync>(
             }
         }
     }
-    let keep = Keepout::around_stock(p.stock_lo, p.stock_hi, p.radius);
-    let open = order_runs(open, 1.5 * p.stepover + p.tol, &keep, lo);
     let ring_path = |(j, run): (usize, Vec<Vec2>), closed: bool| CutPath {
         label: format!("{label}: ring {j} around the part"),
         points: run,
         closed,
+        ring: Some(j),
     };
     let mut paths: Vec<CutPath> = open.into_iter().map(|r| ring_path(r, false)).collect();
     paths.extend(closed.into_iter().map(|r| ring_path(r, true)));
@@ -317,6 +320,7 @@ pub fn boss_paths<N: Navigator + Sync>(
                 label: format!("{label}: ring {j} in hole {}", h + 1),
                 points: t.points,
                 closed: true,
+                ring: None,
             });
         }
     }
@@ -344,10 +348,11 @@ pub fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
         let index = DistanceIndex::new(&lv.part);
         let mut moves = Vec::new();
         let mut at: Option<Vec2> = None; // XY when the tool is down at this level
-        for path in &lv.paths {
-            let pts = match (path.closed, at) {
-                (true, Some(a)) => start_near(&path.points, a),
-                _ => path.points.clone(),
+        for path in cutting_order(&lv.paths, p, &keep, Vec2::new(pos.x, pos.y)) {
+            let pts = if path.closed {
+                start_near(&path.points, at.unwrap_or(Vec2::new(pos.x, pos.y)))
+            } else {
+                path.points.clone()
             };
             let first = pts[0];
             let mark = moves.len();
@@ -427,7 +432,38 @@ pub fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
             moves,
         });
     }
+    // The program ends at safe Z (the rapids between cuts were at retract Z).
+    if let Some(last) = sections.last_mut() {
+        if pos.z < p.safe_z {
+            last.moves.push(Move::Rapid {
+                to: Vec3::new(pos.x, pos.y, p.safe_z),
+            });
+        }
+    }
     Toolpath { start, sections }
+}
+
+/// A level's paths in the order to cut them: its boss rings as
+/// [`runs::order`] puts them from `from`, where the tool is, then the rest
+/// in their own order.
+fn cutting_order<'a>(
+    paths: &'a [CutPath],
+    p: &LevelParams,
+    keep: &Keepout,
+    from: Vec2,
+) -> Vec<&'a CutPath> {
+    let (rings, rest): (Vec<&CutPath>, Vec<&CutPath>) =
+        paths.iter().partition(|c| c.ring.is_some());
+    let pieces: Vec<runs::Piece> = rings
+        .iter()
+        .map(|c| runs::Piece {
+            ring: c.ring.unwrap_or(0),
+            points: &c.points,
+            closed: c.closed,
+        })
+        .collect();
+    let order = runs::order(&pieces, 1.5 * p.stepover + p.tol, keep, from);
+    order.into_iter().map(|i| rings[i]).chain(rest).collect()
 }
 
 /// Minutes the tool takes to leave the level at `a`, rapid over and enter
@@ -517,6 +553,7 @@ fn wall_paths(loops: Vec<Vec<Vec2>>, label: &str) -> Vec<CutPath> {
             label: format!("{label}: wall"),
             points: pts,
             closed: true,
+            ring: None,
         })
         .collect()
 }
@@ -644,7 +681,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // A wider band, up to a few stepovers: offset rings, then the walls; the
     // offsets cover the band by construction, and `pfcam simulate` measures it.
     if let Some(d) = band.filter(|&d| d <= super::band::MAX_BAND_STEPOVERS * p.stepover) {
-        if let Some(mut paths) = super::band::band_rings(part, &index, p, label, d)? {
+        if let Some(mut paths) = super::band::band_rings(part, &index, p, label, d) {
             paths.extend(wall_paths(finish, label));
             return Ok((paths, 0.0));
         }
@@ -660,7 +697,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
         .map(|pk| deepest_in_pocket(pk).1)
         .fold(0.0, f64::max);
     let reach = band.map_or(deepest, |b| b.min(deepest));
-    if let Some(mut paths) = super::band::band_rings(part, &index, p, label, reach)? {
+    if let Some(mut paths) = super::band::band_rings(part, &index, p, label, reach) {
         let v = orient_v(&finish, n_pocket_walls);
         paths.extend(wall_paths(finish, label));
         return cover_left(part, &index, &v, paths, p, band, label);
@@ -928,6 +965,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
                 label: format!("{label}: ring {}", k + 1),
                 points: pts,
                 closed: true,
+                ring: None,
             });
         }
     }
@@ -937,6 +975,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
                 label: format!("{label}: one stepover from the wall"),
                 points: pts,
                 closed: true,
+                ring: None,
             });
         }
     }
@@ -984,11 +1023,16 @@ fn cover_left(
         return Ok((paths, 0.0));
     };
     let pad = Vec2::new(2.0 * r, 2.0 * r);
+    // The mask's outer rectangle reaches past the grid (whose last row and
+    // column may overshoot `hi + pad` by a spacing): outside it the mask
+    // reads "not material", which would put a sliver of the part's thin
+    // serifs beyond V's box into V.
+    let (mlo, mhi) = (lo - pad * 2.0, hi + pad * 2.0);
     let mut mask = vec![vec![
-        lo - pad,
-        Vec2::new(hi.x + pad.x, lo.y - pad.y),
-        hi + pad,
-        Vec2::new(lo.x - pad.x, hi.y + pad.y),
+        mlo,
+        Vec2::new(mhi.x, mlo.y),
+        mhi,
+        Vec2::new(mlo.x, mhi.y),
     ]];
     mask.extend(v.iter().cloned());
     // 4. Coverage: reachable points (in V, or within r of V) not within r of a path,
@@ -1075,6 +1119,7 @@ fn cover_left(
                 label: format!("{label}: loop at an uncut spot"),
                 points: pts,
                 closed: true,
+                ring: None,
             });
         }
         // Cut first, each next to the last, so the linker can step from one to
