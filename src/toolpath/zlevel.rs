@@ -685,6 +685,8 @@ pub fn cavity_paths<N: Navigator + Sync>(
     let mut mask = vec![rect];
     mask.extend(oriented.iter().cloned());
     let h = (p.stepover / 4.0).max(0.05);
+    use crate::field::count::{set_stage, Stage};
+    set_stage(Stage::LevelSolve);
     // 2. Sinks: farthest points from ∂V inside V, spaced by 2.5× their depth.
     let probe = Grid::sample(&crate::field::Field::new(vec![], vec![]), lo, hi, h, &mask);
     let mut cand: Vec<(f64, Vec2)> = Vec::new();
@@ -768,6 +770,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     )?;
     // Local expansions over the grid's box (docs/method.md §12).
     let inv = &solved.solution.field.accelerated_around(lo, hi);
+    set_stage(Stage::InverseGrid);
     let mut grid = Grid::sample(inv, lo, hi, h, &mask);
     // Inside the sinks the sum is singular at the charges: pin the values to 0.
     for j in 0..grid.ny {
@@ -911,6 +914,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // on a grid of r/10. Where points are left (between rings that part around a
     // lobe), small loops of radius r/2 are added at them, centred where the tool
     // centre may go, and coverage is measured again.
+    set_stage(Stage::Coverage);
     let hc = (r / 10.0).max(0.05);
     let empty = crate::field::Field::new(vec![], vec![]);
     let pocket_mask: Vec<Vec<Vec2>> = part
