@@ -463,10 +463,23 @@ fn last_point(c: &CutPath) -> Vec2 {
 /// corner by about √(1 − c) while it follows straight walls at a distance ∝ 1 − c;
 /// what that leaves uncut is measured by the coverage check instead.)
 fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
-    if a.is_empty() || b.is_empty() {
+    ring_gap_from(ring_index(a).as_ref(), b)
+}
+
+/// The index `ring_gap` measures to, None for no rings (built once per ring
+/// for the bisection's eight tries, issue 13).
+fn ring_index(a: &[Vec<Vec2>]) -> Option<DistanceIndex> {
+    (!a.is_empty()).then(|| DistanceIndex::new(a))
+}
+
+/// [`ring_gap`] with the index of `a` already built (`ring_index`).
+fn ring_gap_from(ia: Option<&DistanceIndex>, b: &[Vec<Vec2>]) -> f64 {
+    let Some(ia) = ia else {
+        return f64::INFINITY;
+    };
+    if b.is_empty() {
         return f64::INFINITY;
     }
-    let ia = DistanceIndex::new(a);
     b.iter()
         .flatten()
         .map(|&p| ia.distance(p))
@@ -808,6 +821,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
             })
         };
         let (mut a, mut bnd) = (0.0_f64, c_prev);
+        let prev_index = ring_index(&prev);
         let mut best: Option<f64> = None;
         // The safe ring with the smallest gap, for when none meets the target.
         let mut fallback: Option<(f64, f64)> = None;
@@ -823,9 +837,12 @@ pub fn cavity_paths<N: Navigator + Sync>(
             // The first ring is bounded one way (see `ring_gap`); between two inner
             // rings both ways, so that no lobe of an outer ring is left behind.
             let g = if rings.is_empty() {
-                ring_gap(&prev, &set)
+                ring_gap_from(prev_index.as_ref(), &set)
             } else {
-                crate::num::max_or_nan(ring_gap(&prev, &set), ring_gap(&set, &prev))
+                crate::num::max_or_nan(
+                    ring_gap_from(prev_index.as_ref(), &set),
+                    ring_gap(&set, &prev),
+                )
             };
             if g.is_nan() {
                 return Err(ProfileError::NotFinite(format!(
