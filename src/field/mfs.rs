@@ -250,7 +250,24 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
         )));
     }
     super::count::pairs(m * n);
-    let mut a = Mat::<f64>::from_fn(m, n, |i, j| kernel(problem.colloc[i].p, problem.charges[j]));
+    // The kernel matrix column by column in parallel (each entry is the same
+    // `kernel` call whichever thread makes it, so the matrix does not depend
+    // on the thread count): its M·N logarithms were a third of the shape
+    // solve on one thread (issue 13).
+    let cols = {
+        use rayon::prelude::*;
+        let mut cols = vec![0.0; m * n];
+        cols.par_chunks_mut(m)
+            .zip(problem.charges.par_iter())
+            .for_each(|(col, &q)| {
+                for (v, c) in col.iter_mut().zip(&problem.colloc) {
+                    *v = kernel(c.p, q);
+                }
+            });
+        cols
+    };
+    let mut a = Mat::<f64>::from_fn(m, n, |i, j| cols[j * m + i]);
+    drop(cols);
     let mut scale = vec![0.0; n];
     for (j, s) in scale.iter_mut().enumerate() {
         let norm = a.col(j).norm_l2();
