@@ -486,6 +486,14 @@ fn ring_gap_from(ia: Option<&DistanceIndex>, b: &[Vec<Vec2>]) -> f64 {
         .fold(0.0, crate::num::max_or_nan)
 }
 
+/// The least f64 above a positive finite `x` (f64::next_up, stable only
+/// after the crate's MSRV): `closer_than(p, next_up(x))`, "nearer than the
+/// next number up", is exactly `distance(p) <= x`.
+fn next_up(x: f64) -> f64 {
+    debug_assert!(x > 0.0 && x.is_finite());
+    f64::from_bits(x.to_bits() + 1)
+}
+
 /// A cavity level's wall loops as its paths.
 fn wall_paths(loops: Vec<Vec<Vec2>>, label: &str) -> Vec<CutPath> {
     loops
@@ -946,6 +954,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
             .map(|c| c.points[..c.points.len() - 1].to_vec())
             .collect();
         let pindex = DistanceIndex::new(&all);
+        let hints: [std::cell::Cell<u32>; 3] = Default::default();
         let mut reach = 0usize;
         let mut left = Vec::new();
         for j in 0..in_cavity.ny {
@@ -958,13 +967,17 @@ pub fn cavity_paths<N: Navigator + Sync>(
                     in_cavity.origin.x + hc * i as f64,
                     in_cavity.origin.y + hc * j as f64,
                 );
-                if band.is_some_and(|d| index.distance(q) > d + r) {
+                // `closer_than(q, next_up(x))` is exactly `distance(q) <= x`
+                // (the same minimum over the edges), but stops at the first
+                // edge that decides it and needs no nearest point: the
+                // coverage grid asks millions of these (issue 13).
+                if band.is_some_and(|d| !index.closer_than(q, next_up(d + r), &hints[0])) {
                     continue;
                 }
                 let in_v = !out_v.inside[k];
-                if in_v || vindex.distance(q) <= r {
+                if in_v || vindex.closer_than(q, next_up(r), &hints[1]) {
                     reach += 1;
-                    if pindex.distance(q) > r + 1e-9 {
+                    if !pindex.closer_than(q, next_up(r + 1e-9), &hints[2]) {
                         left.push(q);
                     }
                 }
@@ -1030,6 +1043,48 @@ pub fn cavity_paths<N: Navigator + Sync>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The coverage measure's shortcut: `closer_than(q, next_up(x))` answers
+    /// `distance(q) <= x` exactly, including points at exactly x from an edge
+    /// (integer coordinates: the distances below are exact).
+    #[test]
+    fn closer_than_next_up_is_distance_at_most() {
+        let square = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(4.0, 0.0),
+            Vec2::new(4.0, 4.0),
+            Vec2::new(0.0, 4.0),
+        ];
+        let index = DistanceIndex::new(&[square]);
+        let hint = std::cell::Cell::new(0);
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut ties, mut both) = (0, [0, 0]);
+        for k in 0..20_000 {
+            // Half on the integer lattice (exact ties), half anywhere.
+            let q = if k % 2 == 0 {
+                Vec2::new((rnd() * 10.0).floor() - 3.0, (rnd() * 10.0).floor() - 3.0)
+            } else {
+                Vec2::new(rnd() * 10.0 - 3.0, rnd() * 10.0 - 3.0)
+            };
+            for x in [1.0, 2.0, 0.5 + rnd()] {
+                let d = index.distance(q);
+                let exact = d <= x;
+                ties += usize::from(d == x);
+                both[usize::from(exact)] += 1;
+                assert_eq!(index.closer_than(q, next_up(x), &hint), exact, "{q:?} {x}");
+            }
+        }
+        assert!(
+            ties > 100 && both[0] > 100 && both[1] > 100,
+            "{ties} {both:?}"
+        );
+    }
 
     /// A NaN point makes the gap between rings NaN (f64::max would have
     /// dropped it and read the gap as the others' largest), which
