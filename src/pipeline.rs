@@ -439,6 +439,8 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
 /// A boss or cavity: the shape's field, the levels (each with its own MFS solve on
 /// Γ(s_k)), linking, and the gouge check of every level against its Γ(s_k).
 fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
+    use crate::field::count::{set_stage, Stage};
+    set_stage(Stage::ShapeSolve);
     let (shape, mut solves) = job_shape(job, progress)?;
     let tol = job.operation.tolerance;
     let flat_tol = tol * FLATTEN_FRACTION;
@@ -485,7 +487,9 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         max_hours: job.machine.max_hours,
     };
     let leave = job.operation.stock_to_leave;
+    set_stage(Stage::LevelGrid);
     let mut planned = plan_with_progress(&lj, progress)?;
+    set_stage(Stage::Other);
     check_coverage(&planned.info, &mut planned.warnings)?;
     // The levels in cutting order; sections[i] is the level order[i].
     let in_order: Vec<&LevelCut> = planned.order.iter().map(|&k| &planned.cuts[k]).collect();
@@ -524,6 +528,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         min_clearance = min_clearance.min(rep.min_clearance + leave);
         planned.info[k].min_clearance = rep.min_clearance + leave;
     }
+    set_stage(Stage::Finishing);
     let finish = match &job.finish {
         Some(f) => Some(finish_program(
             job,
@@ -535,6 +540,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         )?),
         None => None,
     };
+    set_stage(Stage::Other);
     solves.push(shape_report);
     for (k, li) in planned.info.iter().enumerate() {
         solves.push(SolveReport {

@@ -2,6 +2,7 @@
 
 pub mod adaptive;
 pub mod contour;
+pub mod count;
 pub mod fast;
 pub mod isolines;
 pub mod mfs;

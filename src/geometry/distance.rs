@@ -8,6 +8,18 @@ use super::Vec2;
 #[derive(Clone, Debug)]
 pub struct DistanceIndex {
     edges: Vec<(Vec2, Vec2)>,
+    /// The bucket grid `segment_distance` scans, built the first time it is
+    /// asked: most indexes (ring gaps, coverage, the tracer) only ever answer
+    /// point queries, which the hierarchy serves (issue 13: building the
+    /// grid was 5 % of a mould's run for nothing).
+    buckets: std::sync::OnceLock<Buckets>,
+    /// The hierarchy `nearest` searches (the grid serves `segment_distance`).
+    bvh: super::bvh::Bvh,
+}
+
+/// A uniform grid of edge buckets.
+#[derive(Clone, Debug)]
+struct Buckets {
     origin: Vec2,
     cell: f64,
     nx: usize,
@@ -15,8 +27,6 @@ pub struct DistanceIndex {
     /// Edge indices per cell, row-major; `starts[c]..starts[c+1]` index into `items`.
     starts: Vec<u32>,
     items: Vec<u32>,
-    /// The hierarchy `nearest` searches (the grid serves `segment_distance`).
-    bvh: super::bvh::Bvh,
 }
 
 fn seg_dist2(p: Vec2, a: Vec2, b: Vec2) -> (f64, Vec2) {
@@ -41,8 +51,23 @@ impl DistanceIndex {
                 edges.push((poly[i], poly[(i + 1) % n]));
             }
         }
+        let bvh = super::bvh::Bvh::new(&edges);
+        DistanceIndex {
+            bvh,
+            edges,
+            buckets: std::sync::OnceLock::new(),
+        }
+    }
+
+    fn buckets(&self) -> &Buckets {
+        self.buckets.get_or_init(|| Buckets::new(&self.edges))
+    }
+}
+
+impl Buckets {
+    fn new(edges: &[(Vec2, Vec2)]) -> Buckets {
         let (mut lo, mut hi) = (Vec2::new(f64::MAX, f64::MAX), Vec2::new(f64::MIN, f64::MIN));
-        for &(a, _) in &edges {
+        for &(a, _) in edges {
             lo = Vec2::new(lo.x.min(a.x), lo.y.min(a.y));
             hi = Vec2::new(hi.x.max(a.x), hi.y.max(a.y));
         }
@@ -87,7 +112,7 @@ impl DistanceIndex {
             }
         };
         let mut cells = Vec::new();
-        for &(a, b) in &edges {
+        for &(a, b) in edges {
             cells_of(a, b, &mut cells);
             for &c in &cells {
                 counts[c + 1] += 1;
@@ -106,10 +131,7 @@ impl DistanceIndex {
                 fill[c] += 1;
             }
         }
-        let bvh = super::bvh::Bvh::new(&edges);
-        DistanceIndex {
-            bvh,
-            edges,
+        Buckets {
             origin: lo,
             cell,
             nx,
@@ -118,7 +140,9 @@ impl DistanceIndex {
             items,
         }
     }
+}
 
+impl DistanceIndex {
     /// Number of edges indexed.
     pub fn edge_count(&self) -> usize {
         self.edges.len()
@@ -150,6 +174,7 @@ impl DistanceIndex {
 
     /// The search behind both: distance, nearest point and the edge found.
     fn nearest_from(&self, p: Vec2, hint: Option<u32>) -> (f64, Vec2, Option<u32>) {
+        crate::field::count::query();
         if !(p.x.is_finite() && p.y.is_finite()) {
             return (f64::NAN, p, None);
         }
@@ -166,6 +191,7 @@ impl DistanceIndex {
     /// stops at the first such edge. `hint` is
     /// tried first and updated, as in [`nearest_hinted`](Self::nearest_hinted).
     pub fn closer_than(&self, p: Vec2, r: f64, hint: &std::cell::Cell<u32>) -> bool {
+        crate::field::count::query();
         // Boxes are pruned with a relative margin far above the rounding of
         // their bound, so no edge that passes the exact test is skipped.
         let reach2 = r * r * (1.0 + 1e-9) + 1e-300;
@@ -201,20 +227,22 @@ impl DistanceIndex {
     /// grown by `reach`, overlaps; edges further than `reach` may be missed, so the
     /// result is exact whenever it is below `reach`).
     pub fn segment_distance(&self, a: Vec2, b: Vec2, reach: f64) -> f64 {
+        crate::field::count::query();
         if self.edges.is_empty() {
             return f64::INFINITY;
         }
+        let g = self.buckets();
         let cell_of =
-            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        let i0 = cell_of(a.x.min(b.x) - reach, self.origin.x, self.nx);
-        let i1 = cell_of(a.x.max(b.x) + reach, self.origin.x, self.nx);
-        let j0 = cell_of(a.y.min(b.y) - reach, self.origin.y, self.ny);
-        let j1 = cell_of(a.y.max(b.y) + reach, self.origin.y, self.ny);
+            |v: f64, o: f64, n: usize| (((v - o) / g.cell).floor().max(0.0) as usize).min(n - 1);
+        let i0 = cell_of(a.x.min(b.x) - reach, g.origin.x, g.nx);
+        let i1 = cell_of(a.x.max(b.x) + reach, g.origin.x, g.nx);
+        let j0 = cell_of(a.y.min(b.y) - reach, g.origin.y, g.ny);
+        let j1 = cell_of(a.y.max(b.y) + reach, g.origin.y, g.ny);
         let mut best = f64::INFINITY;
         for j in j0..=j1 {
             for i in i0..=i1 {
-                let c = j * self.nx + i;
-                for &e in &self.items[self.starts[c] as usize..self.starts[c + 1] as usize] {
+                let c = j * g.nx + i;
+                for &e in &g.items[g.starts[c] as usize..g.starts[c + 1] as usize] {
                     let (p, q) = self.edges[e as usize];
                     best = best.min(seg_seg_dist(a, b, p, q));
                 }
@@ -439,11 +467,8 @@ mod tests {
         }
         assert!(worst <= 1e-12, "{worst:e}");
         // Only the cells along the diagonals hold them: far fewer than their boxes.
-        assert!(
-            idx.items.len() < 20 * idx.edges.len(),
-            "{} items",
-            idx.items.len()
-        );
+        let items = idx.buckets().items.len();
+        assert!(items < 20 * idx.edges.len(), "{items} items");
     }
 
     #[test]

@@ -348,6 +348,8 @@ pub fn plan_levels_reporting(
     let results: Vec<LevelResult> = levels
         .par_iter()
         .map(|&(k, z, z_below)| {
+            use crate::field::count::{set_stage, Stage};
+            set_stage(Stage::LevelGrid);
             let s = s_of(z);
             let polys = contours_at(s);
             if polys.is_empty() {
@@ -369,6 +371,7 @@ pub fn plan_levels_reporting(
             let t0 = std::time::Instant::now();
             let label = format!("level {k} (z {:.3})", job.top + z);
             let mut warnings = Vec::new();
+            set_stage(Stage::LevelSolve);
             let level = if job.cavity {
                 cavity_level_field(&oriented, tol, job.outer_radius, s, &label)?
             } else {
@@ -385,6 +388,7 @@ pub fn plan_levels_reporting(
             // A level added for the scallop bound clears only the band out to the
             // contour of the level below it (wider for a boss, narrower for a
             // cavity), which is cut first: the largest distance between the two.
+            set_stage(Stage::LevelGrid);
             let reach = z_below.map(|zb| {
                 let other = contours_at(s_of(zb));
                 let (wide, narrow) = if job.cavity {
@@ -403,6 +407,7 @@ pub fn plan_levels_reporting(
                     "{label}: the band it clears"
                 ))));
             }
+            set_stage(Stage::Rings);
             let (paths, uncut) = if job.cavity {
                 let (p, f) = crate::toolpath::zlevel::cavity_paths(
                     &oriented,

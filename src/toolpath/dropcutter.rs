@@ -296,6 +296,7 @@ impl Cutter {
     /// [`Cutter::drop`] with the part point that sets the tip (one of them
     /// when several touch at once).
     pub fn drop_contact(&self, mesh: &MeshIndex, x: f64, y: f64) -> Option<Contact> {
+        crate::field::count::drop();
         if self.validate().is_err() || !(x.is_finite() && y.is_finite()) {
             return None;
         }

@@ -535,14 +535,35 @@ fn last_point(c: &CutPath) -> Vec2 {
 /// corner by about √(1 − c) while it follows straight walls at a distance ∝ 1 − c;
 /// what that leaves uncut is measured by the coverage check instead.)
 fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
-    if a.is_empty() || b.is_empty() {
+    ring_gap_from(ring_index(a).as_ref(), b)
+}
+
+/// The index `ring_gap` measures to, None for no rings (built once per ring
+/// for the bisection's eight tries, issue 13).
+fn ring_index(a: &[Vec<Vec2>]) -> Option<DistanceIndex> {
+    (!a.is_empty()).then(|| DistanceIndex::new(a))
+}
+
+/// [`ring_gap`] with the index of `a` already built (`ring_index`).
+fn ring_gap_from(ia: Option<&DistanceIndex>, b: &[Vec<Vec2>]) -> f64 {
+    let Some(ia) = ia else {
+        return f64::INFINITY;
+    };
+    if b.is_empty() {
         return f64::INFINITY;
     }
-    let ia = DistanceIndex::new(a);
     b.iter()
         .flatten()
         .map(|&p| ia.distance(p))
         .fold(0.0, crate::num::max_or_nan)
+}
+
+/// The least f64 above a positive finite `x` (f64::next_up, stable only
+/// after the crate's MSRV): `closer_than(p, next_up(x))`, "nearer than the
+/// next number up", is exactly `distance(p) <= x`.
+fn next_up(x: f64) -> f64 {
+    debug_assert!(x > 0.0 && x.is_finite());
+    f64::from_bits(x.to_bits() + 1)
 }
 
 /// A cavity level's wall loops as its paths.
@@ -756,6 +777,8 @@ pub fn cavity_paths<N: Navigator + Sync>(
     let mut mask = vec![rect];
     mask.extend(oriented.iter().cloned());
     let h = (p.stepover / 4.0).max(0.05);
+    use crate::field::count::{set_stage, Stage};
+    set_stage(Stage::LevelSolve);
     // 2. Sinks: farthest points from ∂V inside V, spaced by 2.5× their depth.
     let probe = Grid::sample(&crate::field::Field::new(vec![], vec![]), lo, hi, h, &mask);
     let mut cand: Vec<(f64, Vec2)> = Vec::new();
@@ -839,6 +862,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     )?;
     // Local expansions over the grid's box (docs/method.md §12).
     let inv = &solved.solution.field.accelerated_around(lo, hi);
+    set_stage(Stage::InverseGrid);
     let mut grid = Grid::sample(inv, lo, hi, h, &mask);
     // Inside the sinks the sum is singular at the charges: pin the values to 0.
     for j in 0..grid.ny {
@@ -876,6 +900,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
             })
         };
         let (mut a, mut bnd) = (0.0_f64, c_prev);
+        let prev_index = ring_index(&prev);
         let mut best: Option<f64> = None;
         // The safe ring with the smallest gap, for when none meets the target.
         let mut fallback: Option<(f64, f64)> = None;
@@ -891,9 +916,12 @@ pub fn cavity_paths<N: Navigator + Sync>(
             // The first ring is bounded one way (see `ring_gap`); between two inner
             // rings both ways, so that no lobe of an outer ring is left behind.
             let g = if rings.is_empty() {
-                ring_gap(&prev, &set)
+                ring_gap_from(prev_index.as_ref(), &set)
             } else {
-                crate::num::max_or_nan(ring_gap(&prev, &set), ring_gap(&set, &prev))
+                crate::num::max_or_nan(
+                    ring_gap_from(prev_index.as_ref(), &set),
+                    ring_gap(&set, &prev),
+                )
             };
             if g.is_nan() {
                 return Err(ProfileError::NotFinite(format!(
@@ -1039,6 +1067,7 @@ fn cover_left(
     // on a grid of r/10. Where points are left (between rings that part around a
     // lobe), small loops of radius r/2 are added at them, centred where the tool
     // centre may go, and coverage is measured again.
+    set_stage(Stage::Coverage);
     let hc = (r / 10.0).max(0.05);
     let empty = crate::field::Field::new(vec![], vec![]);
     let pocket_mask: Vec<Vec<Vec2>> = part
@@ -1053,6 +1082,7 @@ fn cover_left(
             .map(|c| c.points[..c.points.len() - 1].to_vec())
             .collect();
         let pindex = DistanceIndex::new(&all);
+        let hints: [std::cell::Cell<u32>; 3] = Default::default();
         let mut reach = 0usize;
         let mut left = Vec::new();
         for j in 0..in_cavity.ny {
@@ -1065,13 +1095,17 @@ fn cover_left(
                     in_cavity.origin.x + hc * i as f64,
                     in_cavity.origin.y + hc * j as f64,
                 );
-                if band.is_some_and(|d| index.distance(q) > d + r) {
+                // `closer_than(q, next_up(x))` is exactly `distance(q) <= x`
+                // (the same minimum over the edges), but stops at the first
+                // edge that decides it and needs no nearest point: the
+                // coverage grid asks millions of these (issue 13).
+                if band.is_some_and(|d| !index.closer_than(q, next_up(d + r), &hints[0])) {
                     continue;
                 }
                 let in_v = !out_v.inside[k];
-                if in_v || vindex.distance(q) <= r {
+                if in_v || vindex.closer_than(q, next_up(r), &hints[1]) {
                     reach += 1;
-                    if pindex.distance(q) > r + 1e-9 {
+                    if !pindex.closer_than(q, next_up(r + 1e-9), &hints[2]) {
                         left.push(q);
                     }
                 }
@@ -1138,6 +1172,48 @@ fn cover_left(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The coverage measure's shortcut: `closer_than(q, next_up(x))` answers
+    /// `distance(q) <= x` exactly, including points at exactly x from an edge
+    /// (integer coordinates: the distances below are exact).
+    #[test]
+    fn closer_than_next_up_is_distance_at_most() {
+        let square = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(4.0, 0.0),
+            Vec2::new(4.0, 4.0),
+            Vec2::new(0.0, 4.0),
+        ];
+        let index = DistanceIndex::new(&[square]);
+        let hint = std::cell::Cell::new(0);
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut ties, mut both) = (0, [0, 0]);
+        for k in 0..20_000 {
+            // Half on the integer lattice (exact ties), half anywhere.
+            let q = if k % 2 == 0 {
+                Vec2::new((rnd() * 10.0).floor() - 3.0, (rnd() * 10.0).floor() - 3.0)
+            } else {
+                Vec2::new(rnd() * 10.0 - 3.0, rnd() * 10.0 - 3.0)
+            };
+            for x in [1.0, 2.0, 0.5 + rnd()] {
+                let d = index.distance(q);
+                let exact = d <= x;
+                ties += usize::from(d == x);
+                both[usize::from(exact)] += 1;
+                assert_eq!(index.closer_than(q, next_up(x), &hint), exact, "{q:?} {x}");
+            }
+        }
+        assert!(
+            ties > 100 && both[0] > 100 && both[1] > 100,
+            "{ties} {both:?}"
+        );
+    }
 
     /// A NaN point makes the gap between rings NaN (f64::max would have
     /// dropped it and read the gap as the others' largest), which
