@@ -718,6 +718,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
         .map(|pk| deepest_in_pocket(pk).1)
         .fold(0.0, f64::max);
     let reach = band.map_or(deepest, |b| b.min(deepest));
+    set_stage(Stage::Rings);
     if let Some(mut paths) = super::band::band_rings(part, &index, p, label, reach) {
         let v = orient_v(&finish, n_pocket_walls);
         paths.extend(wall_paths(finish, label));
@@ -1044,6 +1045,7 @@ fn cover_left(
     band: Option<f64>,
     label: &str,
 ) -> Result<(Vec<CutPath>, f64), ProfileError> {
+    use crate::field::count::{set_stage, Stage};
     use crate::field::isolines::Grid;
     let r = p.radius;
     let vindex = DistanceIndex::new(v);
