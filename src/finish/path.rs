@@ -135,6 +135,11 @@ pub fn tip_loop(
 /// first pass.
 fn parents(loops: &[Loop], reach: f64) -> Vec<Option<usize>> {
     let mut out = vec![None; loops.len()];
+    // One index per loop, built once (not once per loop that asks).
+    let index: Vec<DistanceIndex> = loops
+        .iter()
+        .map(|m| DistanceIndex::new(std::slice::from_ref(&m.contact)))
+        .collect();
     for (i, l) in loops.iter().enumerate() {
         let probe = l.contact[0];
         let mut best: Option<(usize, (bool, usize, f64))> = None;
@@ -142,7 +147,7 @@ fn parents(loops: &[Loop], reach: f64) -> Vec<Option<usize>> {
             if m.pass >= l.pass {
                 continue;
             }
-            let d = DistanceIndex::new(std::slice::from_ref(&m.contact)).distance(probe);
+            let d = index[j].distance(probe);
             // Within reach first, then the highest pass, then the nearest.
             let key = (d > reach, usize::MAX - m.pass, d);
             let better = best.is_none_or(|(_, b)| {
