@@ -87,23 +87,24 @@ pub fn tip_loop(
     let mut contact = resample(poly, SAMPLE);
     let sign = if p.cavity { 1.0 } else { -1.0 };
     let dphi = super::passes::dphi_ds(p.profile, s).abs();
-    let mut away: Vec<Vec2> = contact
-        .iter()
-        .map(|&q| field.grad(q).normalized() * sign)
-        .collect();
+    // ∇u once per contact point: its direction is `away`, its length the slope.
+    let mut grads: Vec<Vec2> = contact.iter().map(|&q| field.grad(q)).collect();
+    let mut away: Vec<Vec2> = grads.iter().map(|g| g.normalized() * sign).collect();
     // Climb: the material on the right; conventional: on the left.
     let want = if p.climb { 1.0 } else { -1.0 };
     if material_side(&contact, &away) != want {
         contact.reverse();
         away.reverse();
+        grads.reverse();
     }
     let cutter = p.cutter;
     let flat = cutter.radius - cutter.corner;
     let axes: Vec<Vec2> = contact
         .iter()
         .zip(&away)
-        .map(|(&q, &d)| {
-            let t = dphi * field.grad(q).norm();
+        .zip(&grads)
+        .map(|((&q, &d), g)| {
+            let t = dphi * g.norm();
             let sin = t / (1.0 + t * t).sqrt();
             q + d * (flat + cutter.corner * sin)
         })
