@@ -1,9 +1,11 @@
 //! Shapes: lines and cubic Béziers, closed contours, regions (an outline and its
 //! counters), built-in glyphs, fonts and SVG path data. Knows nothing of fields.
 
+mod arrangement;
 mod bvh;
 mod contour;
 mod distance;
+pub mod fill;
 pub mod font;
 pub mod glyphs;
 mod nesting;
