@@ -23,6 +23,11 @@ pub const MAX_EDGES: usize = 1_000_000;
 /// edges crossing each other n² times cannot fill the memory.
 pub const MAX_PIECES: usize = 4_000_000;
 
+/// At most this many pairs of edges whose x-ranges overlap are tested for a
+/// crossing (about a second): thousands of long edges side by side would
+/// otherwise take hours.
+pub const MAX_PAIR_TESTS: u64 = 400_000_000;
+
 /// A point on the grid.
 pub type P = [i64; 2];
 
@@ -54,7 +59,8 @@ pub struct Arrangement {
     pub crossed: bool,
 }
 
-/// Too many edges or pieces (see [`MAX_EDGES`], [`MAX_PIECES`]).
+/// Too many edges, pieces or tests (see [`MAX_EDGES`], [`MAX_PIECES`],
+/// [`MAX_PAIR_TESTS`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TooComplex;
 
@@ -127,6 +133,7 @@ fn split_points(raw: &[(P, P)]) -> Result<(Vec<Vec<P>>, bool), TooComplex> {
     order.sort_by_key(|&i| xmin(i));
     let mut splits: Vec<Vec<P>> = vec![Vec::new(); raw.len()];
     let mut pieces = raw.len();
+    let mut tests = 0u64;
     let mut crossed = false;
     for (k, &i) in order.iter().enumerate() {
         let (a, b) = raw[i];
@@ -134,6 +141,10 @@ fn split_points(raw: &[(P, P)]) -> Result<(Vec<Vec<P>>, bool), TooComplex> {
         for &j in &order[k + 1..] {
             if xmin(j) > xmax(i) {
                 break;
+            }
+            tests += 1;
+            if tests > MAX_PAIR_TESTS {
+                return Err(TooComplex);
             }
             let (c, d) = raw[j];
             if c[1].max(d[1]) < ylo || c[1].min(d[1]) > yhi {

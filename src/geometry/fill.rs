@@ -35,7 +35,7 @@ impl FillRule {
 /// holes clockwise, none crossing another.
 pub fn fill_outlines(polys: &[Vec<Vec2>], rule: FillRule) -> Result<Vec<Vec<Vec2>>, TooComplex> {
     let arr = arrange(polys)?;
-    let directed = boundary_edges(&arr, rule);
+    let directed = boundary_edges(&arr, rule)?;
     Ok(chain(&arr, &directed)
         .into_iter()
         .map(|l| l.into_iter().map(|p| arr.at(p)).collect())
@@ -48,10 +48,28 @@ pub fn crosses(polys: &[Vec<Vec2>]) -> Result<bool, TooComplex> {
     Ok(arrange(polys)?.crossed)
 }
 
+/// At most this many band entries are held (edges × the bands each spans):
+/// 400 MB.
+const MAX_BAND_ENTRIES: usize = 100_000_000;
+
+/// At most this many edges are looked at by all the rays together (about a
+/// second).
+const MAX_RAY_TESTS: usize = 400_000_000;
+
 /// The edges with the filled side on the left, as (from, to) point indices.
-fn boundary_edges(arr: &Arrangement, rule: FillRule) -> Vec<(usize, usize)> {
+fn boundary_edges(arr: &Arrangement, rule: FillRule) -> Result<Vec<(usize, usize)>, TooComplex> {
     let rays = Rays::new(arr);
-    arr.edges
+    let work: usize = arr
+        .edges
+        .iter()
+        .enumerate()
+        .map(|(k, _)| rays.candidates(k))
+        .sum();
+    if work > MAX_RAY_TESTS {
+        return Err(TooComplex);
+    }
+    Ok(arr
+        .edges
         .iter()
         .enumerate()
         .filter_map(|(k, e)| {
@@ -62,7 +80,7 @@ fn boundary_edges(arr: &Arrangement, rule: FillRule) -> Vec<(usize, usize)> {
                 _ => None,
             }
         })
-        .collect()
+        .collect())
 }
 
 /// The graph's edges in doubled coordinates, bucketed in bands of y (for rays
@@ -94,7 +112,19 @@ impl Bands {
             .map(|s| s.0[axis].max(s.1[axis]))
             .max()
             .unwrap_or(0);
-        let n = ((segs.len() as f64).sqrt() as i64).clamp(1, 4096);
+        // About √E bands, fewer when long edges would fill too many.
+        let mut n = ((segs.len() as f64).sqrt() as i64).clamp(1, 4096);
+        let entries = |step: i64| -> usize {
+            segs.iter()
+                .map(|s| {
+                    let (a, b) = (s.0[axis].min(s.1[axis]), s.0[axis].max(s.1[axis]));
+                    ((b - lo) / step - (a - lo) / step + 1) as usize
+                })
+                .sum()
+        };
+        while n > 1 && entries(((hi - lo) / n + 1).max(1)) > MAX_BAND_ENTRIES {
+            n /= 2;
+        }
         let step = ((hi - lo) / n + 1).max(1);
         let mut bands = vec![Vec::new(); ((hi - lo) / step + 1) as usize];
         for (k, s) in segs.iter().enumerate() {
@@ -131,6 +161,17 @@ impl Rays {
         let rows = Bands::new(&segs, 1);
         let cols = Bands::new(&segs, 0);
         Rays { segs, rows, cols }
+    }
+
+    /// How many edges the ray from edge `k` looks at.
+    fn candidates(&self, k: usize) -> usize {
+        let (a, b, _) = self.segs[k];
+        let m = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+        if a[1] != b[1] {
+            self.rows.at(m[1]).len()
+        } else {
+            self.cols.at(m[0]).len()
+        }
     }
 
     /// Winding numbers (left, right) of edge `k`'s two sides, a → b.
@@ -352,6 +393,24 @@ mod tests {
         assert_eq!(eo.len(), 5);
         let tips: f64 = eo.iter().map(|l| area(l)).sum();
         assert!(tips > 0.0 && tips < area(&nz[0]));
+    }
+
+    #[test]
+    fn a_dense_hatch_is_refused_before_it_fills_the_memory() {
+        // 1200 thin bars across 1200 others: 5.8 million crossings, past
+        // MAX_PIECES, refused as it counts them.
+        let bar = |k: usize, across: bool| {
+            let (a, b) = (k as f64, k as f64 + 0.5);
+            if across {
+                vec![v(0.0, a), v(1200.0, a), v(1200.0, b), v(0.0, b)]
+            } else {
+                vec![v(a, 0.0), v(b, 0.0), v(b, 1200.0), v(a, 1200.0)]
+            }
+        };
+        let polys: Vec<Vec<Vec2>> = (0..1200)
+            .flat_map(|k| [bar(k, true), bar(k, false)])
+            .collect();
+        assert_eq!(fill_outlines(&polys, FillRule::NonZero), Err(TooComplex));
     }
 
     #[test]
