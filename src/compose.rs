@@ -882,7 +882,7 @@ fn primitive_contours(part: &Part) -> Result<Option<Vec<Contour>>, ComposeError>
             }
             Some(cs)
         }
-        PartSource::Svg(d) => Some(svgpath::parse_path(d).map_err(geo)?),
+        PartSource::Svg(d) => Some(svgpath::path_contours(d).map_err(geo)?),
         PartSource::Text { text, font, size } => {
             let shape = build_shape(&ShapeSource::Text {
                 text: text.clone(),

@@ -7,6 +7,7 @@
 //! syntax error names the line and column. The keys, units and defaults are
 //! documented in `docs/job-format.md`.
 
+use crate::geometry::svgfile::SvgSize;
 use crate::geometry::{
     glyphs, BoolOp, Composition, FontSource, Part, PartSource, ShapeSource, Vec2,
 };
@@ -18,6 +19,7 @@ mod exact;
 pub mod extent;
 pub mod finish;
 pub mod limits;
+mod svgfile;
 
 pub use finish::{CutterShape, Finish};
 
@@ -325,6 +327,14 @@ pub enum JobError {
         /// what is wrong, starting with a verb (`must be > 0, got -3`)
         message: String,
     },
+    /// A file named by a key (`shape.svg_file`) that does not exist.
+    #[error("{key}: no such file: {}", echo::clip(&path.display().to_string()))]
+    FileNotFound {
+        /// the key
+        key: String,
+        /// the resolved path
+        path: PathBuf,
+    },
     /// A font file that does not exist.
     #[error("{key}: no such file: {}", echo::clip(&path.display().to_string()))]
     FontNotFound {
@@ -353,7 +363,7 @@ impl JobError {
             JobError::Read { .. } | JobError::NotAJob { .. } => None,
             JobError::Parse { key, .. } => key.as_deref(),
             JobError::Invalid { key, .. } => Some(key),
-            JobError::FontNotFound { key, .. } => Some(key),
+            JobError::FontNotFound { key, .. } | JobError::FileNotFound { key, .. } => Some(key),
         }
     }
 }
@@ -430,6 +440,14 @@ pub struct RawShape {
     pub text: Option<String>,
     /// `svg_path`
     pub svg_path: Option<String>,
+    /// `svg_file`: an SVG document, relative to the job file's directory
+    pub svg_file: Option<String>,
+    /// `id`: the one element of `svg_file` to use
+    pub id: Option<String>,
+    /// `scale`: the `svg_file` drawing's size times this
+    pub scale: Option<f64>,
+    /// `width`, mm: the `svg_file` drawing's width
+    pub width: Option<f64>,
     /// `font`
     pub font: Option<String>,
     /// `height`, mm
@@ -1114,7 +1132,7 @@ impl RawJob {
             )?,
         };
 
-        let shape = resolve_shape(self.shape.unwrap_or_default(), diameter, base_dir)?;
+        let mut shape = resolve_shape(self.shape.unwrap_or_default(), diameter, base_dir)?;
         check_height_per_tool(&shape, diameter)?;
 
         let s = self.stock.unwrap_or_default();
@@ -1198,6 +1216,9 @@ impl RawJob {
             ));
         }
         limits::TOLERANCE.check("operation.tolerance", tolerance)?;
+        if let ShapeSource::SvgFile(f) = &mut shape {
+            f.tolerance = tolerance;
+        }
         let max_scallop = limits::MAX_SCALLOP.check(
             "operation.max_scallop",
             o.max_scallop.unwrap_or(defaults::MAX_SCALLOP),
@@ -1463,6 +1484,10 @@ fn check_height_per_tool(shape: &ShapeSource, diameter: f64) -> Result<(), JobEr
     let height = match shape {
         ShapeSource::Text { height, .. } => Some(*height),
         ShapeSource::SvgPath { height, .. } => *height,
+        ShapeSource::SvgFile(f) => match f.size {
+            SvgSize::Height(h) => Some(h),
+            _ => None,
+        },
         ShapeSource::Composite(c) => c.height,
     };
     match height {
@@ -1528,6 +1553,7 @@ fn resolve_shape(
         for (key, given) in [
             ("shape.text", s.text.is_some()),
             ("shape.svg_path", s.svg_path.is_some()),
+            ("shape.svg_file", s.svg_file.is_some()),
         ] {
             if given {
                 return Err(invalid(
@@ -1562,6 +1588,47 @@ fn resolve_shape(
             "only applies to a composition: it names one of the [[shape.part]] tables",
         ));
     }
+    let given: Vec<&str> = [
+        ("shape.text", s.text.is_some()),
+        ("shape.svg_path", s.svg_path.is_some()),
+        ("shape.svg_file", s.svg_file.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(k, g)| g.then_some(k))
+    .collect();
+    if let [first, second, ..] = given[..] {
+        return Err(invalid(
+            first,
+            format!("and {second} are both given; give exactly one"),
+        ));
+    }
+    if s.svg_file.is_none() {
+        for (key, given) in [
+            ("shape.id", s.id.is_some()),
+            ("shape.scale", s.scale.is_some()),
+            ("shape.width", s.width.is_some()),
+        ] {
+            if given {
+                return Err(invalid(key, "only applies to shape.svg_file"));
+            }
+        }
+    }
+    if let Some(file) = s.svg_file {
+        return svgfile::resolve(
+            svgfile::RawSvgFile {
+                file,
+                id: s.id,
+                scale: s.scale,
+                width: s.width,
+                height,
+                font: s.font.is_some(),
+                letter_spacing: s.letter_spacing.is_some(),
+            },
+            origin,
+            tool_diameter,
+            base_dir,
+        );
+    }
     match (s.text, s.svg_path) {
         (Some(_), Some(_)) => Err(invalid(
             "shape.text",
@@ -1569,7 +1636,7 @@ fn resolve_shape(
         )),
         (None, None) => Err(invalid(
             "shape.text",
-            "or shape.svg_path or [[shape.part]] is required (exactly one of them)",
+            "or shape.svg_path or shape.svg_file or [[shape.part]] is required (exactly one of them)",
         )),
         (Some(text), None) => {
             check_text("shape.text", &text)?;

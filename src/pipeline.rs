@@ -89,11 +89,19 @@ pub enum Progress {
     Step,
 }
 
+/// A shape error as the run reports it: `shape: ...`, or the key it names.
+fn shape_message(e: &crate::geometry::GeometryError) -> String {
+    match e {
+        crate::geometry::GeometryError::SvgFile { .. } => e.to_string(),
+        _ => format!("shape: {e}"),
+    }
+}
+
 /// What can go wrong in a run.
 #[derive(Debug, thiserror::Error)]
 pub enum PipelineError {
-    /// The shape source is bad.
-    #[error("shape: {0}")]
+    /// The shape source is bad (an SVG file's error names its own key).
+    #[error("{}", shape_message(.0))]
     Geometry(#[from] crate::geometry::GeometryError),
     /// The field could not be built or solved.
     #[error("field: {0}")]

@@ -409,7 +409,7 @@ fn readme_jobs_table_levels_match_the_samples() {
 #[test]
 fn readme_jobs_table_times_are_the_headers() {
     let readme = doc_figures::read("README.md");
-    let rows: [(&str, &[&str]); 6] = [
+    let rows: [(&str, &[&str]); 7] = [
         ("`jobs/mfs-sign.toml`", &["mfs-sign"]),
         (
             "`jobs/mfs-mould.toml`",
@@ -422,6 +422,7 @@ fn readme_jobs_table_times_are_the_headers() {
         ),
         ("`jobs/q-sign.toml`", &["q-sign.rough", "q-sign.finish"]),
         ("`jobs/q-mould.toml`", &["q-mould.rough", "q-mould.finish"]),
+        ("`jobs/svg-logo.toml`", &["svg-logo"]),
     ];
     for (key, names) in rows {
         let cells = doc_figures::table_row(&readme, "README.md", key);

@@ -671,7 +671,7 @@ fn every_job_sample_is_within_its_part() {
             let stated = doc_figures::number_after(
                 &doc,
                 "docs/simulate.md",
-                "`letter-s`, `mfs-profile`): max gouge",
+                "`mfs-profile`, `svg-logo`): max gouge",
             );
             let what = format!("docs/simulate.md, the profiles' max gouge ({})", job.name);
             doc_figures::assert_figure(&what, &stated, p.max_gouge.value);

@@ -1,13 +1,16 @@
 //! Shapes: lines and cubic Béziers, closed contours, regions (an outline and its
 //! counters), built-in glyphs, fonts and SVG path data. Knows nothing of fields.
 
+mod arrangement;
 mod bvh;
 mod contour;
 mod distance;
+pub mod fill;
 pub mod font;
 pub mod glyphs;
 mod nesting;
 mod segment;
+pub mod svgfile;
 pub mod svgpath;
 pub mod text;
 mod vec2;
@@ -55,6 +58,15 @@ pub enum GeometryError {
         /// character offset into the `d` string, counted from 0
         offset: usize,
         /// what was found and what was expected
+        message: String,
+    },
+    /// An SVG document that cannot be used, with the job key to look at
+    /// (`shape.svg_file`, `shape.id`, `shape.width`, ...).
+    #[error("{key}: {message}")]
+    SvgFile {
+        /// the key
+        key: String,
+        /// what is wrong
         message: String,
     },
     /// Anything else wrong with the shape source, said in words.
@@ -196,6 +208,8 @@ pub enum ShapeSource {
         /// Where the bottom-left of the bounding box goes, mm.
         origin: Vec2,
     },
+    /// A whole SVG document (`shape.svg_file`).
+    SvgFile(svgfile::SvgFileSource),
     /// Parts combined by the paper's Boolean operations on fields (Section 4);
     /// built by `field::boolean`, since every step needs a potential field.
     Composite(Composition),

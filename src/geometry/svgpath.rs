@@ -1,21 +1,35 @@
-//! SVG path data (the `d` attribute): `M L H V C S Q T Z`, absolute (upper case)
-//! and relative (lower case), with implicit repetition of a command's arguments
-//! (extra pairs after `M`/`m` are `L`/`l`), smooth reflections for `S` and `T`, and
-//! the compact number syntax (`1.5.5` is 1.5 then .5; `10-5` is 10 then −5).
-//! Elliptical arcs (`A`/`a`) are refused with an error for now.
+//! SVG path data (the `d` attribute), read by svgtypes (the parser usvg and
+//! resvg use): `M L H V C S Q T A Z`, absolute (upper case) and relative
+//! (lower case), implicit repetition, smooth reflections, compact numbers and
+//! elliptical arcs. Arcs become cubic Béziers within [`ARC_TOL`] of their
+//! radius (kurbo's conversion).
 //!
-//! Every subpath must be closed: by `Z`, or by ending where it started. The result
-//! is flipped (SVG y points down, machine y up), scaled so that the tight bounding
-//! box is `height` mm high when a height is given (else 1 unit = 1 mm), moved so
-//! the box's bottom-left corner is at `origin`, then nested into outlines and
-//! counters by [`regions_from_contours`].
+//! Every subpath must be closed: by `Z`, or by ending where it started. A
+//! subpath that crosses itself (a bow-tie) is replaced by the outline of what it
+//! fills under SVG's default rule, `nonzero` (`fill.rs`), flattened within
+//! [`UNTANGLE_TOL`] of its size. The result is flipped (SVG y points down,
+//! machine y up), scaled so that the tight bounding box is `height` mm high when
+//! a height is given (else 1 unit = 1 mm), moved so the box's bottom-left corner
+//! is at `origin`, then nested into outlines and counters by
+//! [`regions_from_contours`].
 
+use svgtypes::{PathParser, PathSegment};
+
+use super::fill::{crosses, fill_outlines, FillRule};
 use super::{regions_from_contours, Contour, GeometryError, Segment, Shape, Vec2};
 
 /// A subpath whose end is within this distance (relative to the size of the path's
 /// control-point box, at least 1 unit) of its start counts as closed; the gap is then
 /// snapped shut. Relative coordinates summed in floating point leave ~1e-15.
 const CLOSE_EPS: f64 = 1e-9;
+
+/// An elliptical arc becomes cubics within this fraction of its larger radius
+/// (kurbo's estimate; about 15 cubics a full turn).
+pub const ARC_TOL: f64 = 1e-7;
+
+/// A subpath that crosses itself is flattened within this fraction of its
+/// bounding box's diagonal before it is split into loops.
+pub const UNTANGLE_TOL: f64 = 1e-5;
 
 fn err(offset: usize, message: impl Into<String>) -> GeometryError {
     GeometryError::Svg {
@@ -29,10 +43,11 @@ const NO_AREA: &str = "no subpath of the path data encloses any area";
 
 /// The shape described by the path data `d` (see the module documentation).
 pub fn svg_shape(d: &str, height: Option<f64>, origin: Vec2) -> Result<Shape, GeometryError> {
-    let contours = parse_path(d)?;
-    // Flip y, then scale and place by the tight box of the subpaths that
-    // enclose area (the others are no part of the shape: a line drawn forth and
-    // back would otherwise stretch the box the height and origin apply to).
+    let contours = path_contours(d)?;
+    // Flip y, nest, then scale and place by the tight box of the regions (the
+    // contours that enclose no area, or that nesting leaves out, are no part of
+    // the shape: a line drawn forth and back would otherwise stretch the box
+    // the height and origin apply to).
     let flipped: Vec<Contour> = contours
         .iter()
         .map(|c| c.map(|p| Vec2::new(p.x, -p.y)))
@@ -41,20 +56,17 @@ pub fn svg_shape(d: &str, height: Option<f64>, origin: Vec2) -> Result<Shape, Ge
     if flipped.is_empty() && !contours.is_empty() {
         return Err(err(0, NO_AREA));
     }
-    let bbox = flipped
-        .iter()
-        .filter_map(Contour::tight_bbox)
-        .reduce(|(a, b), (c, d)| {
-            (
-                Vec2::new(a.x.min(c.x), a.y.min(c.y)),
-                Vec2::new(b.x.max(d.x), b.y.max(d.y)),
-            )
-        });
-    let Some((lo, hi)) = bbox else {
+    if flipped.is_empty() {
         return Err(err(
             0,
             "the path data draws nothing; expected at least one closed subpath",
         ));
+    }
+    let shape = Shape {
+        regions: regions_from_contours("path", flipped),
+    };
+    let Some((lo, hi)) = shape.tight_bbox() else {
+        return Err(err(0, NO_AREA));
     };
     let scale = match height {
         Some(h) => {
@@ -69,172 +81,239 @@ pub fn svg_shape(d: &str, height: Option<f64>, origin: Vec2) -> Result<Shape, Ge
         }
         None => 1.0,
     };
-    let placed: Vec<Contour> = flipped
-        .iter()
-        .map(|c| c.map(|p| origin + (p - lo) * scale))
-        .collect();
-    let regions = regions_from_contours("path", placed);
-    if regions.is_empty() {
-        return Err(err(0, NO_AREA));
+    Ok(shape.map(|p| origin + (p - lo) * scale))
+}
+
+/// The closed contours of `d` in SVG coordinates (y down), a subpath that crosses
+/// itself split into the loops it fills (nonzero).
+pub fn path_contours(d: &str) -> Result<Vec<Contour>, GeometryError> {
+    let mut out = Vec::new();
+    for (k, c) in parse_path(d)?.into_iter().enumerate() {
+        let loops = untangle(c).map_err(|_| {
+            err(
+                0,
+                format!(
+                    "subpath {} crosses itself too often to be split into loops",
+                    k + 1
+                ),
+            )
+        })?;
+        out.extend(loops);
     }
-    Ok(Shape { regions })
+    Ok(out)
+}
+
+/// `c` as it is when it does not cross itself, else the loops it fills under
+/// the nonzero rule (flattened within [`UNTANGLE_TOL`] of its size).
+fn untangle(c: Contour) -> Result<Vec<Contour>, super::arrangement::TooComplex> {
+    let diag = c.bbox().map_or(0.0, |(lo, hi)| (hi - lo).norm());
+    if !(diag > 0.0 && diag.is_finite()) {
+        return Ok(vec![c]);
+    }
+    let flat = c.flatten(UNTANGLE_TOL * diag);
+    let one = std::slice::from_ref(&flat);
+    if !crosses(one)? {
+        return Ok(vec![c]);
+    }
+    Ok(fill_outlines(one, FillRule::NonZero)?
+        .iter()
+        .filter_map(|l| Contour::polygon(l).ok())
+        .collect())
 }
 
 /// Parses `d` into closed contours, in SVG coordinates (y down), one per subpath
 /// that draws something.
 pub fn parse_path(d: &str) -> Result<Vec<Contour>, GeometryError> {
-    let mut p = Parser {
-        chars: d.chars().collect(),
-        i: 0,
-    };
-    let mut b = PathBuilder::default();
-    // The command in force and where it was written.
-    let mut cmd: Option<(char, usize)> = None;
-    loop {
-        p.skip_separators();
-        let Some(c) = p.peek() else { break };
-        let at = p.i;
-        let this = if c.is_ascii_alphabetic() {
-            p.i += 1;
-            if !"MmZzLlHhVvCcSsQqTtAa".contains(c) {
-                return Err(err(
-                    at,
-                    format!("unknown path command `{c}`; expected one of M L H V C S Q T Z (or lower case)"),
-                ));
-            }
-            if cmd.is_none() && c != 'M' && c != 'm' {
-                return Err(err(
-                    at,
-                    format!("path data must start with a moveto (`M` or `m`), found `{c}`"),
-                ));
-            }
-            (c, at)
-        } else if is_number_start(c) {
-            match cmd {
-                None => {
-                    return Err(err(
-                        at,
-                        "path data must start with a moveto (`M` or `m`), found a number",
-                    ))
-                }
-                Some(('Z' | 'z', _)) => {
-                    return Err(err(at, "expected a command after `Z`, found a number"));
-                }
-                // Extra coordinate pairs after a moveto are linetos.
-                Some(('M', _)) => ('L', at),
-                Some(('m', _)) => ('l', at),
-                Some((k, _)) => (k, at),
-            }
-        } else {
-            return Err(err(
-                at,
-                format!("unexpected character {c:?}; expected a path command or a number"),
-            ));
-        };
-        if this.0 == 'A' || this.0 == 'a' {
-            return Err(err(at, "elliptical arcs are not supported yet"));
-        }
-        b.command(&mut p, this.0, at)?;
-        cmd = Some(this);
-    }
-    if cmd.is_none() {
+    if d.chars().all(|c| c.is_ascii_whitespace() || c == ',') {
         return Err(err(
             0,
             "the path data is empty; expected a moveto (`M` or `m`)",
         ));
     }
+    let marks = Marks::of(d);
+    let mut b = PathBuilder::default();
+    for seg in PathParser::from(d) {
+        let seg = seg.map_err(|e| parse_error(d, e))?;
+        b.segment(seg, &marks)
+            .map_err(|e| finite_error(d).unwrap_or(e))?;
+    }
     b.end_subpath(None)?;
     Ok(b.contours)
 }
 
-fn is_number_start(c: char) -> bool {
-    c.is_ascii_digit() || c == '.' || c == '-' || c == '+'
+/// Where subpaths begin, in characters from 0: each `M`/`m`, and the command
+/// after each `Z`/`z` (a subpath drawn on from a closed one's start).
+#[derive(Default)]
+struct Marks {
+    moves: Vec<usize>,
+    after_close: Vec<usize>,
 }
 
-struct Parser {
-    chars: Vec<char>,
-    i: usize,
-}
-
-impl Parser {
-    fn peek(&self) -> Option<char> {
-        self.chars.get(self.i).copied()
-    }
-
-    fn skip_separators(&mut self) {
-        while let Some(c) = self.peek() {
-            if c.is_ascii_whitespace() || c == ',' {
-                self.i += 1;
-            } else {
-                break;
+impl Marks {
+    fn of(d: &str) -> Marks {
+        let mut m = Marks::default();
+        let mut after_z = false;
+        for (i, c) in d.chars().enumerate() {
+            if !"MmZzLlHhVvCcSsQqTtAa".contains(c) {
+                continue;
+            }
+            if after_z {
+                m.after_close.push(i);
+                after_z = false;
+            }
+            match c {
+                'M' | 'm' => m.moves.push(i),
+                'Z' | 'z' => after_z = true,
+                _ => {}
             }
         }
+        m
     }
+}
 
-    fn digits(&mut self) -> usize {
-        let start = self.i;
-        while self.peek().is_some_and(|c| c.is_ascii_digit()) {
-            self.i += 1;
-        }
-        self.i - start
-    }
-
-    /// The next number, argument `what` of command `cmd` (written at `cmd_at`).
-    fn number(&mut self, cmd: char, what: &str) -> Result<f64, GeometryError> {
-        self.skip_separators();
-        let start = self.i;
-        let found = |p: &Parser| match p.peek() {
+/// An svgtypes error in pfcam's words, at a character offset from 0.
+fn parse_error(d: &str, e: svgtypes::Error) -> GeometryError {
+    let chars: Vec<char> = d.chars().collect();
+    let found = |at: usize| {
+        let word: String = chars[at.min(chars.len())..]
+            .iter()
+            .take_while(|c| !c.is_ascii_whitespace() && **c != ',')
+            .take(8)
+            .collect();
+        match word.chars().next() {
+            None if at >= chars.len() => "found the end of the data".to_string(),
+            None => format!("found {:?}", chars[at]),
+            Some(c) if c.is_ascii_digit() || ".+-".contains(c) => format!("found {word:?}"),
             Some(c) => format!("found {c:?}"),
-            None => "found the end of the data".to_string(),
-        };
-        if !self.peek().is_some_and(is_number_start) {
-            return Err(err(
-                start,
-                format!("expected a number ({what}) for `{cmd}`, {}", found(self)),
-            ));
         }
-        if matches!(self.peek(), Some('+' | '-')) {
-            self.i += 1;
+    };
+    // The command in force: the last command letter before `at`, and where.
+    let command = |at: usize| {
+        chars[..at.min(chars.len())]
+            .iter()
+            .enumerate()
+            .rev()
+            .find(|(_, c)| "MmZzLlHhVvCcSsQqTtAa".contains(**c))
+            .map(|(i, c)| (i, *c))
+    };
+    // `for `L``, with the argument's number when the command has several.
+    let wanted = |at: usize| match command(at) {
+        Some((i, c)) if arity(c) > 1 => {
+            let before = number_tokens(&chars[i..at.min(chars.len())]).len();
+            format!(
+                " (argument {} of {}) for `{c}`",
+                before % arity(c) + 1,
+                arity(c)
+            )
         }
-        let int = self.digits();
-        let mut frac = 0;
-        if self.peek() == Some('.') {
-            self.i += 1;
-            frac = self.digits();
-        }
-        if int + frac == 0 {
-            self.i = start;
-            return Err(err(
-                start,
-                format!(
-                    "expected a number ({what}) for `{cmd}`, found {:?}",
-                    self.chars[start..].iter().take(3).collect::<String>()
+        Some((_, c)) => format!(" for `{c}`"),
+        None => String::new(),
+    };
+    match e {
+        svgtypes::Error::UnexpectedData(pos) => {
+            let at = pos.saturating_sub(1);
+            let c = chars.get(at).copied().unwrap_or(' ');
+            let message = match command(at).map(|(_, c)| c) {
+                None if c.is_ascii_alphabetic() => {
+                    format!("path data must start with a moveto (`M` or `m`), found `{c}`")
+                }
+                None => "path data must start with a moveto (`M` or `m`), found a number".into(),
+                Some('Z' | 'z') if c.is_ascii_digit() || ".-+".contains(c) => {
+                    "expected a command after `Z`, found a number".into()
+                }
+                Some('A' | 'a') if c.is_ascii_digit() => {
+                    format!("expected an arc flag (0 or 1) for `A`, {}", found(at))
+                }
+                _ if c.is_ascii_alphabetic() => format!(
+                    "unknown path command `{c}`; expected one of M L H V C S Q T A Z (or lower case)"
                 ),
-            ));
+                _ => format!("unexpected character {c:?}; expected a path command or a number"),
+            };
+            err(at, message)
         }
-        if matches!(self.peek(), Some('e' | 'E')) {
-            self.i += 1;
-            if matches!(self.peek(), Some('+' | '-')) {
-                self.i += 1;
+        svgtypes::Error::InvalidNumber(pos) => {
+            let at = pos.saturating_sub(1);
+            match finite_error(d) {
+                Some(e @ GeometryError::Svg { offset, .. }) if offset == at => e,
+                _ => err(
+                    at,
+                    format!("expected a number{}, {}", wanted(at), found(at)),
+                ),
             }
-            if self.digits() == 0 {
-                return Err(err(
-                    self.i,
-                    format!("expected the digits of an exponent, {}", found(self)),
-                ));
-            }
         }
-        let text: String = self.chars[start..self.i].iter().collect();
-        match text.parse::<f64>() {
-            Ok(x) if x.is_finite() => Ok(x),
-            _ => Err(err(start, format!("the number {text} is out of range"))),
-        }
+        svgtypes::Error::UnexpectedEndOfStream => err(
+            chars.len(),
+            format!(
+                "expected a number{}, found the end of the data",
+                wanted(chars.len())
+            ),
+        ),
+        other => err(0, other.to_string()),
     }
+}
 
-    fn pair(&mut self, cmd: char, what: &str) -> Result<Vec2, GeometryError> {
-        let x = self.number(cmd, &format!("x of {what}"))?;
-        let y = self.number(cmd, &format!("y of {what}"))?;
-        Ok(Vec2::new(x, y))
+/// The first number in `d` too large for a double (`1e999`), as an error at
+/// its place.
+fn finite_error(d: &str) -> Option<GeometryError> {
+    let chars: Vec<char> = d.chars().collect();
+    number_tokens(&chars).into_iter().find_map(|(start, end)| {
+        let text: String = chars[start..end].iter().collect();
+        text.parse::<f64>()
+            .is_ok_and(f64::is_infinite)
+            .then(|| err(start, format!("the number {text} is out of range")))
+    })
+}
+
+/// Where the numbers of path data are, as character ranges: sign, digits,
+/// fraction, exponent (the compact forms `1.5.5` and `10-5` are two each).
+fn number_tokens(chars: &[char]) -> Vec<(usize, usize)> {
+    let digits = |j: &mut usize| {
+        let s = *j;
+        while *j < chars.len() && chars[*j].is_ascii_digit() {
+            *j += 1;
+        }
+        *j - s
+    };
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let mut j = i;
+        if matches!(chars[j], '+' | '-') {
+            j += 1;
+        }
+        let mut n = digits(&mut j);
+        if j < chars.len() && chars[j] == '.' {
+            j += 1;
+            n += digits(&mut j);
+        }
+        if n == 0 {
+            i += 1;
+            continue;
+        }
+        if j < chars.len() && matches!(chars[j], 'e' | 'E') {
+            let mut k = j + 1;
+            if k < chars.len() && matches!(chars[k], '+' | '-') {
+                k += 1;
+            }
+            if digits(&mut k) > 0 {
+                j = k;
+            }
+        }
+        out.push((i, j));
+        i = j;
+    }
+    out
+}
+
+/// How many numbers command letter `c` takes.
+fn arity(c: char) -> usize {
+    match c.to_ascii_uppercase() {
+        'H' | 'V' => 1,
+        'M' | 'L' | 'T' => 2,
+        'S' | 'Q' => 4,
+        'C' => 6,
+        'A' => 7,
+        _ => 0,
     }
 }
 
@@ -250,6 +329,9 @@ struct PathBuilder {
     start_at: usize,
     /// Subpaths begun so far (1-based number of the current one).
     count: usize,
+    /// Movetos and closepaths seen so far.
+    moves: usize,
+    closes: usize,
     /// True between a `Z` and the next command.
     closed: bool,
     /// Second control point of the previous `C`/`S`, for the reflection of `S`.
@@ -323,98 +405,173 @@ impl PathBuilder {
         Ok(())
     }
 
-    fn command(&mut self, p: &mut Parser, c: char, at: usize) -> Result<(), GeometryError> {
-        let rel = c.is_ascii_lowercase();
-        let base = if rel { self.cur } else { Vec2::ZERO };
-        let upper = c.to_ascii_uppercase();
-        if upper == 'M' {
-            let to = p.pair(c, "the point")? + base;
-            self.end_subpath(None)?;
-            self.start = to;
-            self.cur = to;
-            self.start_at = at;
-            self.count += 1;
-            self.closed = false;
-            self.last_cubic = None;
-            self.last_quad = None;
-            return Ok(());
-        }
-        if upper == 'Z' {
-            self.end_subpath(Some(at))?;
-            self.closed = true;
-            self.last_cubic = None;
-            self.last_quad = None;
-            return Ok(());
+    fn segment(&mut self, seg: PathSegment, marks: &Marks) -> Result<(), GeometryError> {
+        let base = if seg.is_abs() { Vec2::ZERO } else { self.cur };
+        let pt = |x: f64, y: f64| base + Vec2::new(x, y);
+        let (mut cubic_ctrl, mut quad_ctrl) = (None, None);
+        match seg {
+            PathSegment::MoveTo { x, y, .. } => {
+                let to = pt(x, y);
+                self.end_subpath(None)?;
+                self.start = to;
+                self.cur = to;
+                self.start_at = marks.moves.get(self.moves).copied().unwrap_or(0);
+                self.moves += 1;
+                self.count += 1;
+                self.closed = false;
+                self.last_cubic = None;
+                self.last_quad = None;
+                return finite(to);
+            }
+            PathSegment::ClosePath { .. } => {
+                let at = self.start_at;
+                self.end_subpath(Some(at))?;
+                self.closed = true;
+                self.closes += 1;
+                self.last_cubic = None;
+                self.last_quad = None;
+                return Ok(());
+            }
+            _ => {}
         }
         // Drawing after `Z` without an `M` starts a new subpath at the old start.
         if self.closed {
             self.closed = false;
-            self.start_at = at;
+            self.start_at = marks.after_close.get(self.closes - 1).copied().unwrap_or(0);
             self.count += 1;
         }
         let from = self.cur;
-        let (mut cubic_ctrl, mut quad_ctrl) = (None, None);
-        match upper {
-            'L' => {
-                let to = p.pair(c, "the end point")? + base;
-                self.push(Segment::Line { a: from, b: to });
-            }
-            'H' => {
-                let x = p.number(c, "x")? + base.x;
-                self.push(Segment::Line {
-                    a: from,
-                    b: Vec2::new(x, from.y),
-                });
-            }
-            'V' => {
-                let y = p.number(c, "y")? + base.y;
-                self.push(Segment::Line {
-                    a: from,
-                    b: Vec2::new(from.x, y),
-                });
-            }
-            'C' => {
-                let p1 = p.pair(c, "the first control point")? + base;
-                let p2 = p.pair(c, "the second control point")? + base;
-                let p3 = p.pair(c, "the end point")? + base;
+        match seg {
+            PathSegment::LineTo { x, y, .. } => self.push(Segment::Line {
+                a: from,
+                b: pt(x, y),
+            }),
+            PathSegment::HorizontalLineTo { x, .. } => self.push(Segment::Line {
+                a: from,
+                b: Vec2::new(base.x + x, from.y),
+            }),
+            PathSegment::VerticalLineTo { y, .. } => self.push(Segment::Line {
+                a: from,
+                b: Vec2::new(from.x, base.y + y),
+            }),
+            PathSegment::CurveTo {
+                x1,
+                y1,
+                x2,
+                y2,
+                x,
+                y,
+                ..
+            } => {
+                let p2 = pt(x2, y2);
                 self.push(Segment::Cubic {
                     p0: from,
-                    p1,
+                    p1: pt(x1, y1),
                     p2,
-                    p3,
+                    p3: pt(x, y),
                 });
                 cubic_ctrl = Some(p2);
             }
-            'S' => {
+            PathSegment::SmoothCurveTo { x2, y2, x, y, .. } => {
                 let p1 = self.last_cubic.map_or(from, |q| from * 2.0 - q);
-                let p2 = p.pair(c, "the second control point")? + base;
-                let p3 = p.pair(c, "the end point")? + base;
+                let p2 = pt(x2, y2);
                 self.push(Segment::Cubic {
                     p0: from,
                     p1,
                     p2,
-                    p3,
+                    p3: pt(x, y),
                 });
                 cubic_ctrl = Some(p2);
             }
-            'Q' => {
-                let q = p.pair(c, "the control point")? + base;
-                let to = p.pair(c, "the end point")? + base;
-                self.push(Segment::quad(from, q, to));
+            PathSegment::Quadratic { x1, y1, x, y, .. } => {
+                let q = pt(x1, y1);
+                self.push(Segment::quad(from, q, pt(x, y)));
                 quad_ctrl = Some(q);
             }
-            'T' => {
+            PathSegment::SmoothQuadratic { x, y, .. } => {
                 let q = self.last_quad.map_or(from, |q| from * 2.0 - q);
-                let to = p.pair(c, "the end point")? + base;
-                self.push(Segment::quad(from, q, to));
+                self.push(Segment::quad(from, q, pt(x, y)));
                 quad_ctrl = Some(q);
             }
-            _ => return Err(err(at, format!("unknown path command `{c}`"))),
+            PathSegment::EllipticalArc {
+                rx,
+                ry,
+                x_axis_rotation,
+                large_arc,
+                sweep,
+                x,
+                y,
+                ..
+            } => {
+                let to = pt(x, y);
+                finite(to)?;
+                for s in arc_segments(from, to, rx, ry, x_axis_rotation, large_arc, sweep) {
+                    self.push(s);
+                }
+            }
+            PathSegment::MoveTo { .. } | PathSegment::ClosePath { .. } => {}
         }
         self.last_cubic = cubic_ctrl;
         self.last_quad = quad_ctrl;
-        Ok(())
+        finite(self.cur)
     }
+}
+
+/// An error when `p` is not finite (a number past the range of a double, or a
+/// sum of huge relative steps).
+fn finite(p: Vec2) -> Result<(), GeometryError> {
+    if p.is_finite() {
+        Ok(())
+    } else {
+        Err(err(0, "a coordinate is out of range"))
+    }
+}
+
+/// The SVG arc from `from` to `to` as cubics (kurbo's conversion, within
+/// [`ARC_TOL`] of the larger radius), ending exactly at `to`. Zero radii give
+/// the straight line, as SVG says; equal ends give nothing.
+fn arc_segments(
+    from: Vec2,
+    to: Vec2,
+    rx: f64,
+    ry: f64,
+    rotation_deg: f64,
+    large_arc: bool,
+    sweep: bool,
+) -> Vec<Segment> {
+    let kp = |p: Vec2| kurbo::Point::new(p.x, p.y);
+    let vp = |p: kurbo::Point| Vec2::new(p.x, p.y);
+    let svg_arc = kurbo::SvgArc {
+        from: kp(from),
+        to: kp(to),
+        radii: kurbo::Vec2::new(rx.abs(), ry.abs()),
+        x_rotation: rotation_deg.to_radians(),
+        large_arc,
+        sweep,
+    };
+    if from == to {
+        return Vec::new();
+    }
+    let Some(arc) = kurbo::Arc::from_svg_arc(&svg_arc) else {
+        return vec![Segment::Line { a: from, b: to }];
+    };
+    let tol = ARC_TOL * arc.radii.x.max(arc.radii.y);
+    let mut out = Vec::new();
+    let mut p0 = from;
+    arc.to_cubic_beziers(tol, |p1, p2, p3| {
+        let p3 = vp(p3);
+        out.push(Segment::Cubic {
+            p0,
+            p1: vp(p1),
+            p2: vp(p2),
+            p3,
+        });
+        p0 = p3;
+    });
+    if let Some(Segment::Cubic { p3, .. }) = out.last_mut() {
+        *p3 = to;
+    }
+    out
 }
 
 #[cfg(test)]
@@ -548,15 +705,113 @@ mod tests {
         assert!((hi.x - lo.x - 20.0).abs() < 1e-12);
     }
 
+    /// The area of a contour's flattening within `tol`.
+    fn flat_area(c: &Contour, tol: f64) -> f64 {
+        let p = c.flatten(tol);
+        let n = p.len();
+        (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum::<f64>() / 2.0
+    }
+
     #[test]
-    fn arcs_are_refused_with_the_position() {
-        let e = parse_path("M0 0 L10 0 A5 5 0 0 1 0 0 Z").expect_err("arc");
-        assert_eq!(
-            e.to_string(),
-            "SVG path data: elliptical arcs are not supported yet, at character 11"
+    fn arcs_make_circles_ellipses_and_rounded_corners() {
+        use std::f64::consts::PI;
+        // A circle of radius 10 from two half-turn arcs, absolute and relative.
+        let abs = parse_path("M-10 0 A10 10 0 0 1 10 0 A10 10 0 0 1 -10 0 Z").expect("abs");
+        let rel = parse_path("m-10 0 a10 10 0 0 1 20 0 a10 10 0 0 1 -20 0 z").expect("rel");
+        same(&abs, &rel);
+        let c = &abs[0];
+        // Every point of every cubic lies on the circle within ARC_TOL · r.
+        let worst = c
+            .segments
+            .iter()
+            .flat_map(|s| (0..=50).map(move |k| s.eval(k as f64 / 50.0)))
+            .map(|p| (p.norm() - 10.0).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 10.0 * ARC_TOL, "radial error {worst}");
+        assert!(
+            (c.signed_area().abs() - 100.0 * PI).abs() < 1e-4,
+            "{}",
+            c.signed_area()
         );
-        let e = parse_path("M0 0 a5 5 0 0 1 0 0").expect_err("arc");
-        assert!(e.to_string().contains("at character 5"), "{e}");
+        // The sweep flag picks the side: sweep 1 in SVG's y-down space is
+        // clockwise on screen, so the upper half (y < 0) is drawn first.
+        let mid = c.segments[0].eval(1.0);
+        assert!(mid.y < 0.0 || c.segments.len() > 1, "{mid:?}");
+        // An ellipse (radii 20, 10) turned 30°: area π·20·10.
+        let e = parse_path(
+            "M17.320508075688775 10 A20 10 30 0 1 -17.320508075688775 -10 \
+             A20 10 30 0 1 17.320508075688775 10 Z",
+        )
+        .expect("ellipse");
+        assert!(
+            (e[0].signed_area().abs() - 200.0 * PI).abs() < 1e-3,
+            "{}",
+            e[0].signed_area()
+        );
+        // A rounded rectangle 40 × 30 with corner radius 5: 40·30 − (4 − π)·25.
+        let r = parse_path(
+            "M5 0 H35 A5 5 0 0 1 40 5 V25 A5 5 0 0 1 35 30 H5 A5 5 0 0 1 0 25 V5 A5 5 0 0 1 5 0 Z",
+        )
+        .expect("rounded");
+        let want = 1200.0 - (4.0 - PI) * 25.0;
+        assert!(
+            (r[0].signed_area().abs() - want).abs() < 1e-5,
+            "{}",
+            r[0].signed_area()
+        );
+        // Flags: the large arc of radius 10 between points 10 apart is the
+        // larger part of the circle.
+        let small = parse_path("M0 0 A10 10 0 0 1 10 0 Z").expect("small");
+        let large = parse_path("M0 0 A10 10 0 1 1 10 0 Z").expect("large");
+        let (a_small, a_large) = (small[0].signed_area().abs(), large[0].signed_area().abs());
+        assert!(
+            (a_small + a_large - 100.0 * PI).abs() < 1e-4,
+            "{a_small} + {a_large}"
+        );
+        assert!(a_large > 30.0 * a_small);
+        // Flags may be written together.
+        same(
+            &parse_path("M0 0 a5 5 0 01 10 0 z").expect("packed"),
+            &parse_path("M0 0 a5 5 0 0 1 10 0 z").expect("spaced"),
+        );
+        // Radii too small to reach are scaled up (SVG's rule): a half circle.
+        let half = parse_path("M0 0 A1 1 0 0 1 10 0 Z").expect("half");
+        assert!((half[0].signed_area().abs() - 12.5 * PI).abs() < 1e-4);
+        // Zero radii draw a straight line; a flat result encloses nothing.
+        let line = svg_shape("M0 0 A0 5 0 0 1 10 0 L10 10 Z", None, Vec2::ZERO).expect("line");
+        assert!((flat_area(&line.regions[0].outline, 1e-3) - 50.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_bow_tie_is_split_into_its_two_triangles() {
+        let shape = svg_shape("M0 0 L20 20 L20 0 L0 20 Z", None, Vec2::ZERO).expect("bow-tie");
+        assert_eq!(shape.regions.len(), 2);
+        for r in &shape.regions {
+            assert!(r.outline.is_ccw());
+            assert!(
+                (r.outline.signed_area() - 100.0).abs() < 1e-6,
+                "{}",
+                r.outline.signed_area()
+            );
+            assert!(r.counters.is_empty());
+        }
+        // A curved figure eight crosses itself where two cubics meet: two
+        // lobes, one drawn each way, both filled (nonzero), area kept within
+        // the flattening's bound (perimeter × UNTANGLE_TOL × diagonal).
+        let d =
+            "M0 0 C10 10 20 10 20 0 C20 -10 10 -10 0 0 C-10 10 -20 10 -20 0 C-20 -10 -10 -10 0 0 Z";
+        let whole = parse_path(d).expect("eight");
+        let lobe = Contour::new(whole[0].segments[..2].to_vec()).expect("lobe");
+        let eight = svg_shape(d, None, Vec2::ZERO).expect("eight");
+        assert_eq!(eight.regions.len(), 2);
+        for r in &eight.regions {
+            let a = r.outline.signed_area();
+            assert!(
+                (a - lobe.signed_area().abs()).abs() < 0.05,
+                "{a} vs {}",
+                lobe.signed_area()
+            );
+        }
     }
 
     #[test]
@@ -575,25 +830,34 @@ mod tests {
 
     #[test]
     fn malformed_data_errors() {
-        let cases: [(&str, usize, &str); 10] = [
+        let cases: [(&str, usize, &str); 11] = [
             (
                 "M0 0 L10 x",
                 9,
-                "expected a number (y of the end point) for `L`, found 'x'",
+                "expected a number (argument 2 of 2) for `L`, found 'x'",
             ),
             (
                 "M0 0 L10",
                 8,
-                "expected a number (y of the end point) for `L`, found the end",
+                "expected a number (argument 2 of 2) for `L`, found the end",
             ),
             ("L0 0", 0, "must start with a moveto"),
             ("10 10", 0, "must start with a moveto"),
             ("M0 0 X 1", 5, "unknown path command `X`"),
-            ("M0 0 L1 1e+ Z", 11, "digits of an exponent"),
+            (
+                "M0 0 L1 1e+ Z",
+                8,
+                "expected a number (argument 2 of 2) for `L`, found \"1e+\"",
+            ),
             ("M0 0 L1 1 Z 5", 12, "expected a command after `Z`"),
             ("M0 0 L1 1 # Z", 10, "unexpected character '#'"),
-            ("M0 0 C1 1 2 2 3", 15, "y of the end point"),
+            ("M0 0 C1 1 2 2 3", 15, "(argument 6 of 6) for `C`"),
             ("M0 0 L- 3", 6, "expected a number"),
+            (
+                "M0 0 A5 5 0 2 1 10 0 Z",
+                12,
+                "expected an arc flag (0 or 1) for `A`",
+            ),
         ];
         for (d, at, want) in cases {
             let (got_at, msg) = svg_err(d);
@@ -602,7 +866,8 @@ mod tests {
         }
         assert!(svg_err("").1.contains("empty"));
         assert!(svg_err("  ,").1.contains("empty"));
-        assert!(svg_err("M0 0 L1e999 0 z").1.contains("out of range"));
+        let huge = svg_err("M0 0 L1e999 0 z");
+        assert!(huge.1.contains("out of range") && huge.0 == 6, "{huge:?}");
         // Nothing enclosed, or no height to scale.
         let flat = svg_shape("M0 0 H10 Z", Some(5.0), Vec2::ZERO).expect_err("flat");
         assert!(flat.to_string().contains("encloses any area"), "{flat}");

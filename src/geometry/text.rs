@@ -79,6 +79,7 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
             check_point("origin", *origin)?;
             svgpath::svg_shape(d, *height, *origin)
         }
+        ShapeSource::SvgFile(src) => super::svgfile::svg_file_shape(src),
         ShapeSource::Composite(_) => Err(GeometryError::Invalid(
             "a composition of parts is built with its fields (pipeline::job_shape)".into(),
         )),

@@ -5,6 +5,7 @@
 //! otherwise be traced, cleared and written as G-code for hours.
 
 use super::{limits, show, JobError};
+use crate::geometry::svgfile::SvgSize;
 use crate::geometry::{Shape, ShapeSource};
 
 /// The largest side accepted for a shape cut with a tool of `diameter` mm:
@@ -40,6 +41,15 @@ pub fn check_extent(source: &ShapeSource, shape: &Shape, diameter: f64) -> Resul
             "shape.svg_path",
             "the path is wide for its height: lower shape.height",
         ),
+        ShapeSource::SvgFile(f) => match f.size {
+            SvgSize::Natural => (
+                "shape.svg_file",
+                "the document's own size is used without shape.width, shape.height or shape.scale: set one to scale it",
+            ),
+            SvgSize::Scale(_) => ("shape.scale", "lower shape.scale"),
+            SvgSize::Width(_) => ("shape.width", "the drawing is tall for its width: lower shape.width"),
+            SvgSize::Height(_) => ("shape.height", "the drawing is wide for its height: lower shape.height"),
+        },
         ShapeSource::Composite(c) if c.height.is_none() => (
             "shape.result",
             "1 design unit is 1 mm without shape.height: set shape.height to scale it",

@@ -124,6 +124,10 @@ pub const MAX_SCALLOP: Range = Range::closed(0.01, 50.0, "mm");
 /// router's bed. The width and height of the built shape are bounded by the
 /// same 2000 mm ([`MAX_EXTENT`]).
 pub const SHAPE_HEIGHT: Range = Range::closed(0.1, 2000.0, "mm");
+/// `shape.width` (with `shape.svg_file`): as `shape.height`.
+pub const SHAPE_WIDTH: Range = Range::closed(0.1, 2000.0, "mm");
+/// `shape.scale` (with `shape.svg_file`): the document's size times this.
+pub const SVG_SCALE: Range = Range::open(0.0, 1000.0, "");
 /// `shape.origin`, each coordinate.
 pub const ORIGIN: Range = Range::closed(-10_000.0, 10_000.0, "mm");
 /// `shape.letter_spacing`.
@@ -181,6 +185,8 @@ pub const KEYS: &[(&str, Range)] = &[
     ("finish.spindle", SPINDLE),
     ("finish.scallop", SCALLOP),
     ("shape.height", SHAPE_HEIGHT),
+    ("shape.width", SHAPE_WIDTH),
+    ("shape.scale", SVG_SCALE),
     ("shape.origin", ORIGIN),
     ("shape.letter_spacing", LETTER_SPACING),
     ("shape.part.size", PART_SIZE),
