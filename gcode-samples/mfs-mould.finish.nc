@@ -6,7 +6,7 @@
 (operation: cavity outside climb, depth 3, stepdown 1.5, tol 0.01 mm)
 (cut min: X-18.458 Y-36.072 Z-3)
 (cut max: X177.401 Y86.31 Z-0.001)
-(levels: 1, z -3)
+(passes: 83 along the surface from the floor up, lowest z -3 to -0.002)
 (moves: 43492 lines, 0 arcs of radius <= 1000 mm)
 (length: cut 39259.1 mm, rapid 11.3 mm)
 (estimated time: 39 min 26 s, rapids at 1000 mm/min, acceleration ignored)

@@ -6,7 +6,7 @@
 (operation: cavity outside climb, depth 3, stepdown 1.5, tol 0.01 mm)
 (cut min: X-13.525 Y-11.729 Z-3)
 (cut max: X63.709 Y71.269 Z-0.004)
-(levels: 1, z -3)
+(passes: 38 along the surface from the floor up, lowest z -3 to -0.008)
 (moves: 26057 lines, 0 arcs of radius <= 1000 mm)
 (length: cut 12444.6 mm, rapid 42.5 mm)
 (estimated time: 12 min 49 s, rapids at 1000 mm/min, acceleration ignored)

@@ -6,7 +6,7 @@
 (operation: boss outside climb, depth 3, stepdown 1, tol 0.01 mm)
 (cut min: X-14.365 Y-12.58 Z-3)
 (cut max: X64.566 Y72.126 Z-0.004)
-(levels: 1, z -3)
+(passes: 38 along the surface from the floor up, lowest z -3 to -0.026)
 (moves: 24765 lines, 0 arcs of radius <= 1000 mm)
 (length: cut 12297.6 mm, rapid 34.7 mm)
 (estimated time: 12 min 36 s, rapids at 1000 mm/min, acceleration ignored)

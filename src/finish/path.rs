@@ -326,7 +326,12 @@ pub fn moves(
         at = first;
         let z = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
         sections.push(Section {
-            label: format!("finish pass {} s {:.5}", l.pass + 1, l.s),
+            label: format!(
+                "{} {} s {:.5}",
+                crate::toolpath::FINISH_PASS,
+                l.pass + 1,
+                l.s
+            ),
             z,
             moves: simplify(at_start, mv, p.tol),
         });

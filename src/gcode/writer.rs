@@ -357,6 +357,44 @@ pub fn levels(tp: &Toolpath) -> Vec<f64> {
     zs
 }
 
+/// The header's line on the program's depths: its z-levels, or for a
+/// finishing program (every section a [`FINISH_PASS`](crate::toolpath::FINISH_PASS))
+/// its passes along the surface, whose z changes along each.
+fn levels_line(tp: &Toolpath) -> String {
+    let finishing = !tp.sections.is_empty()
+        && tp
+            .sections
+            .iter()
+            .all(|s| s.label.starts_with(crate::toolpath::FINISH_PASS));
+    if finishing {
+        let passes = tp
+            .sections
+            .iter()
+            .filter_map(|s| s.label.split_whitespace().nth(2))
+            .collect::<std::collections::BTreeSet<_>>()
+            .len();
+        // Each section's z is its pass's lowest tip.
+        let (lo, hi) = tp
+            .sections
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+                (lo.min(s.z), hi.max(s.z))
+            });
+        return format!(
+            "passes: {passes} along the surface from the floor up, lowest z {} to {}",
+            fmt_num(lo),
+            fmt_num(hi)
+        );
+    }
+    let zs = levels(tp);
+    let shown: Vec<String> = zs.iter().map(|&z| fmt_num(z)).collect();
+    match zs.len() {
+        0 => "levels: none".to_string(),
+        n if n <= 8 => format!("levels: {n}, z {}", shown.join(" ")),
+        n => format!("levels: {n}, z {} to {}", shown[0], shown[n - 1]),
+    }
+}
+
 /// Lengths and estimated time of the program [`write_gcode_on`] writes for
 /// `tp`: its arcs legalised as the writer does, so these are the header's
 /// figures.
@@ -526,13 +564,7 @@ pub fn write_gcode_on(
             fmt_num(hi.z)
         )));
     }
-    let zs = levels(tp);
-    let shown: Vec<String> = zs.iter().map(|&z| fmt_num(z)).collect();
-    l.push(comment(&match zs.len() {
-        0 => "levels: none".to_string(),
-        n if n <= 8 => format!("levels: {n}, z {}", shown.join(" ")),
-        n => format!("levels: {n}, z {} to {}", shown[0], shown[n - 1]),
-    }));
+    l.push(comment(&levels_line(tp)));
     let (arcs, lines) = tp.moves().fold((0, 0), |(a, b), m| match m {
         Move::Arc { .. } => (a + 1, b),
         Move::Linear { .. } => (a, b + 1),
@@ -820,6 +852,51 @@ mod tests {
         );
         assert!(g.contains("acceleration ignored)\n"), "{g}");
         assert!(!g.contains("M8") && !g.contains("M9"), "{g}");
+    }
+
+    /// A finishing program's header counts its passes along the surface (two
+    /// loops of pass 2 are one pass), not the z-levels its sloped moves would
+    /// make.
+    #[test]
+    fn a_finishing_header_counts_passes() {
+        let p = Vec3::new;
+        let pass = |k: usize, z0: f64, z1: f64| Section {
+            label: format!("{} {k} s 0.9{k}000", crate::toolpath::FINISH_PASS),
+            z: z1,
+            moves: vec![
+                Move::Linear {
+                    to: p(k as f64, 0.0, z0),
+                    feed: 500.0,
+                },
+                Move::Linear {
+                    to: p(k as f64, 5.0, z1),
+                    feed: 500.0,
+                },
+            ],
+        };
+        let tp = Toolpath {
+            start: p(0.0, 0.0, 5.0),
+            sections: vec![
+                pass(1, -3.0, -2.5),
+                pass(2, -2.5, -2.0),
+                pass(2, -2.4, -1.5),
+            ],
+        };
+        let g = write_gcode(&tp, &job()).unwrap();
+        assert!(
+            g.contains(
+                "\n(passes: 2 along the surface from the floor up, lowest z -2.5 to -1.5)\n"
+            ),
+            "{g}"
+        );
+        assert!(!g.contains("(levels:"), "{g}");
+        // Any other section among them: z-levels as before.
+        let mut mixed = tp.clone();
+        mixed.sections.push(Section {
+            label: "level z -1".into(),
+            ..pass(3, -1.0, -1.0)
+        });
+        assert!(write_gcode(&mixed, &job()).unwrap().contains("\n(levels: "));
     }
 
     #[test]

@@ -14,6 +14,11 @@ pub mod stock;
 pub mod trace;
 pub mod zlevel;
 
+/// How a finishing program's sections are labelled (`finish pass k s X`):
+/// the writer's header counts them as passes along the surface, not as
+/// z-levels.
+pub const FINISH_PASS: &str = "finish pass";
+
 /// A point in machine coordinates, millimetres.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Vec3 {
