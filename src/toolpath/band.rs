@@ -1,14 +1,18 @@
-//! The band a cavity level added for the scallop bound cuts: offset rings.
+//! Offset rings inside a cavity: the band a level added for the scallop
+//! bound cuts, and (with the band as deep as the pocket) a whole level.
 //!
-//! Such a level is cut after the level below it ([`crate::levels::cutting_order`]),
-//! which cleared everything inside its own contour, so only a band next to the
-//! wall is left, `band` wide. Rolling-disk rings at r + j·stepover from the
-//! wall, j from ⌈band/stepover⌉ − 1 down to 1, then the wall loops at r, cover
-//! it: ring j's disk reaches j·stepover + 2r from the wall, and each engages at
-//! most a stepover of new material. The inverse problem's rings, which clear a
-//! whole pocket, stop only once they are deeper than the band and then leave
-//! spots in its lobes (q-mould's band levels cut 7.5 m and 4.3 m where their
-//! bands needed well under one).
+//! A band level is cut after the level below it
+//! ([`crate::levels::cutting_order`]), which cleared everything inside its
+//! own contour, so only a band next to the wall is left, `band` wide.
+//! Rolling-disk rings at r + j·stepover from the wall, j from
+//! ⌈band/stepover⌉ − 1 down to 1, then the wall loops at r, cover it: ring
+//! j's disk reaches j·stepover + 2r from the wall, and each engages at most a
+//! stepover of new material. The inverse problem's rings, which clear a whole
+//! pocket, stop only once they are deeper than the band and then leave spots
+//! in its lobes (q-mould's band levels cut 7.5 m and 4.3 m where their bands
+//! needed well under one). A whole level is the band as deep as the pocket's
+//! deepest point; what its rings leave about the medial axis is measured and
+//! cleared by the caller (`zlevel::cover_left`).
 
 use super::trace::{trace, NearestWall, TraceParams};
 use super::zlevel::{CutPath, LevelParams};

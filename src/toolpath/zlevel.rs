@@ -712,7 +712,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // a stepover apart everywhere, so they cut about area ÷ stepover; the
     // inverse problem's equipotentials, a stepover apart only where they are
     // farthest apart, cut 24.9 m on mfs-mould's first level where these cut
-    // 11.9 m (docs/method.md §13).
+    // 11.9 m (docs/method.md §9, *Cavity*).
     let deepest = pockets
         .iter()
         .map(|pk| deepest_in_pocket(pk).1)
