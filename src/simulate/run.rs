@@ -489,9 +489,16 @@ fn mv_length(mv: &Move) -> f64 {
     }
 }
 
+/// The coordinates' rounding in the programs pfcam writes, mm: a move's
+/// descent is known to this much.
+pub const Z_ROUNDING: f64 = 0.001;
+
 /// How steeply a move descends, degrees from horizontal: atan(−Δz / XY length)
 /// (an arc's XY length is r·sweep); 0 for a move that does not descend, 90 for
-/// a vertical one.
+/// a vertical one. A sloped move's descent is taken less [`Z_ROUNDING`]: a
+/// ramp's 9 µm step, rounded to 1 µm in Z, would otherwise read as 6°
+/// (mfs-mould.rough.nc) whatever the ramp's angle; a real plunge, vertical
+/// or steep over more than a few µm, reads as before.
 pub fn entry_angle_deg(mv: &Move) -> f64 {
     let dz = mv.from[2] - mv.to[2];
     if dz <= 0.0 {
@@ -501,7 +508,10 @@ pub fn entry_angle_deg(mv: &Move) -> f64 {
         Some((arc, [a0, a1])) if 3 - a0 - a1 == 2 => arc.r * arc.sweep,
         _ => (mv.to[0] - mv.from[0]).hypot(mv.to[1] - mv.from[1]),
     };
-    dz.atan2(xy).to_degrees()
+    if xy <= 0.0 {
+        return 90.0;
+    }
+    (dz - Z_ROUNDING).max(0.0).atan2(xy).to_degrees()
 }
 
 /// Distance (mm) from (x, y) to the piece's XY segment.
