@@ -13,6 +13,8 @@
 
 pub mod codes;
 pub mod command;
+#[cfg(test)]
+mod fake;
 pub mod link;
 pub mod protocol;
 pub mod streamer;
