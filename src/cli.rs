@@ -15,6 +15,7 @@ use pfcam::preview::{field_png, preview_svg, PreviewOptions};
 use pfcam::report::RunReport;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 
 /// A line on standard error that never panics: `eprintln!` does when stderr
 /// is closed (`pfcam run job.toml 2>&1 | head -1` exited 101 at the next
@@ -28,6 +29,8 @@ macro_rules! note {
 
 mod batch;
 mod simulate;
+mod stream;
+mod stream_args;
 
 /// Exit status: success.
 pub const EXIT_OK: u8 = 0;
@@ -171,7 +174,7 @@ pub enum Command {
     /// Stream a G-code file to a GRBL 1.1 controller over a serial port
     /// (character counting, status, feed hold on Ctrl-C, resume with --from-line).
     /// Exit codes: docs/grbl.md.
-    Stream(pfcam::grbl::StreamArgs),
+    Stream(stream_args::StreamArgs),
     /// Check a G-code file against GRBL 1.1's rules (line numbers and GRBL's
     /// error numbers), then print its bounds, lengths and estimated time.
     /// Exit 0: no errors (warnings allowed); 1: errors; 2: usage or unreadable file.
@@ -197,9 +200,11 @@ pub enum Command {
     Simulate(simulate::SimulateArgs),
 }
 
-/// Run a parsed command line.
-pub fn run(args: Args) -> Result<()> {
-    match args.command {
+/// Run a parsed command line. `Ok` is the exit status: `EXIT_OK`, or, for
+/// `stream`, whatever its outcome maps to (it prints its own messages; see
+/// `stream::ExitStatus`).
+pub fn run(args: Args) -> Result<ExitCode> {
+    let done = match args.command {
         Command::Run {
             job,
             out,
@@ -244,9 +249,9 @@ pub fn run(args: Args) -> Result<()> {
             quiet,
         } => cmd_check(&file, machine.as_deref(), json, quiet),
         Command::Simulate(a) => simulate::cmd_simulate(&a),
-        // Dispatched in main.rs: the streamer has its own exit codes.
-        Command::Stream(_) => Ok(()),
-    }
+        Command::Stream(a) => return Ok(stream::stream_command(&a.into())),
+    };
+    done.map(|()| ExitCode::from(EXIT_OK))
 }
 
 /// Whether the error is only that our reader went away (`pfcam glyphs | head -1`),

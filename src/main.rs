@@ -1,5 +1,6 @@
 //! The `pfcam` binary: parse the command line, call the library, map errors to
-//! exit codes (0 ok, 1 failed, 2 usage, 3 output file; see `cli.rs`).
+//! exit codes (0 ok, 1 failed, 2 usage, 3 output file; see `cli.rs`; `stream`
+//! has its own, `cli/stream/exit.rs`).
 
 mod cli;
 
@@ -19,11 +20,8 @@ fn main() -> ExitCode {
             };
         }
     };
-    if let cli::Command::Stream(stream) = &args.command {
-        return pfcam::grbl::stream_command(stream);
-    }
     match cli::run(args) {
-        Ok(()) => ExitCode::from(cli::EXIT_OK),
+        Ok(code) => code,
         Err(e) if cli::is_broken_pipe(&e) => ExitCode::from(cli::EXIT_OK),
         Err(e) => {
             // Not eprintln!, which panics when stderr is closed.

@@ -6,6 +6,9 @@
 mod doc_figures;
 #[path = "grbl/emulator.rs"]
 mod emulator;
+/// `pfcam stream`'s terminal side (exit codes, messages), from the binary.
+#[path = "../src/cli/stream/mod.rs"]
+mod stream;
 
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{self, Receiver, Sender};
@@ -13,12 +16,13 @@ use std::time::Duration;
 
 use emulator::{Config, Emulator, Personality};
 use pfcam::gcode::parse::{Motion, Program};
-use pfcam::grbl::command::{job_blocks, run_stream};
 use pfcam::grbl::protocol::{Position, StatusReport, WorkOffset, FEED_HOLD, SOFT_RESET};
+use pfcam::grbl::{job_blocks, run_stream};
 use pfcam::grbl::{
-    Event, ExitStatus, GrblError, Link, Observer, OperatorCommand, Settings, StreamArgs,
+    Event, GrblError, Link, Observer, OperatorCommand, Settings, StreamOptions as StreamArgs,
     StreamReport, Streamer,
 };
+use stream::ExitStatus;
 
 /// Writes `text` to a file unique to this test process.
 fn job_file(name: &str, text: &str) -> PathBuf {
@@ -334,7 +338,7 @@ fn rejected_line_is_named_with_a_resume_line_that_skips_no_move() {
         flushed_before.iter().copied().min().or(Some(50)),
         "flushed before the fault: {flushed_before:?}"
     );
-    let advice = pfcam::grbl::command::stop_advice(&err, &a, Some(&program)).join("\n");
+    let advice = stream::stop_advice(&err, &a, Some(&program)).join("\n");
     assert!(
         advice.contains("rejected: line 50: `G41 X10 (cutter comp: GRBL has none)`"),
         "{advice}"
@@ -501,7 +505,7 @@ fn feed_hold_and_resume() {
 
 #[test]
 fn typed_overrides_reach_grbl_as_realtime_bytes() {
-    use pfcam::grbl::command::typed_command;
+    use stream::keys::typed_command;
     let emu = Emulator::start(Config {
         speedup: 50.0,
         ..Config::default()
@@ -1078,7 +1082,7 @@ fn controller_reset_mid_job_stops_the_stream() {
 fn stream_command_exit_codes() {
     let emu = Emulator::start(Config::default());
     let file = job_file("cmd-ok", &zigzag(100));
-    let code = pfcam::grbl::stream_command(&args(&emu, &file));
+    let code = stream::stream_command(&args(&emu, &file));
     assert_eq!(
         format!("{code:?}"),
         format!("{:?}", std::process::ExitCode::from(0))
@@ -1089,7 +1093,7 @@ fn stream_command_exit_codes() {
     let file = job_file("cmd-err", &with_errors());
     let mut a = args(&emu, &file);
     a.continue_on_error = true;
-    let code = pfcam::grbl::stream_command(&a);
+    let code = stream::stream_command(&a);
     assert_eq!(
         format!("{code:?}"),
         format!("{:?}", std::process::ExitCode::from(4))
@@ -1100,7 +1104,7 @@ fn stream_command_exit_codes() {
         alarm_after: Some((40, 2)),
         ..Config::default()
     });
-    let code = pfcam::grbl::stream_command(&args(&emu, &file));
+    let code = stream::stream_command(&args(&emu, &file));
     assert_eq!(
         format!("{code:?}"),
         format!("{:?}", std::process::ExitCode::from(5))
@@ -1108,7 +1112,7 @@ fn stream_command_exit_codes() {
     drop(emu);
 
     let emu = Emulator::start(Config::default());
-    let code = pfcam::grbl::stream_command(&args(&emu, &file));
+    let code = stream::stream_command(&args(&emu, &file));
     assert_eq!(
         format!("{code:?}"),
         format!("{:?}", std::process::ExitCode::from(4))

@@ -1,7 +1,8 @@
-//! The serial link: a port, a reader thread that splits GRBL's output into lines,
-//! and an optional traffic log.
+//! The link to GRBL: any byte stream (a serial port, or an in-memory fake in the
+//! tests), a reader thread that splits GRBL's output into lines, and an optional
+//! traffic log.
 //!
-//! Reads never block the streamer: the reader thread polls the port with a short
+//! Reads never block the streamer: the reader thread polls its handle with a short
 //! timeout and hands whole lines over a channel, so every wait in the streamer is a
 //! bounded `recv_timeout`. A port that fails or hangs up (USB unplugged, pty master
 //! closed) ends the reader with [`Incoming::Closed`].
@@ -38,9 +39,13 @@ pub(crate) enum Incoming {
 pub type LogSink = Box<dyn Write + Send>;
 
 /// An open link to a (possible) GRBL controller.
+///
+/// It writes through one handle of the byte stream and reads through another on
+/// its own thread: [`Link::open`] / [`Link::from_port`] for a serial port (two
+/// handles of one port), [`Link::from_io`] for anything that is `Read` + `Write`.
 pub struct Link {
     name: String,
-    port: Box<dyn SerialPort>,
+    port: Box<dyn Write + Send>,
     rx: Receiver<Incoming>,
     stop: Arc<AtomicBool>,
     reader: Option<JoinHandle<()>>,
@@ -70,7 +75,8 @@ impl Link {
         Link::from_port(path, port)
     }
 
-    /// Wraps an already open port.
+    /// Wraps an already open serial port: writes wait at most 2 s, and a clone of
+    /// the port read with a short timeout feeds the reader thread.
     pub fn from_port(name: &str, mut port: Box<dyn SerialPort>) -> Result<Link, GrblError> {
         let open_err = |e: serialport::Error| GrblError::Open {
             port: name.to_string(),
@@ -79,19 +85,35 @@ impl Link {
         port.set_timeout(WRITE_TIMEOUT).map_err(open_err)?;
         let mut reader_port = port.try_clone().map_err(open_err)?;
         reader_port.set_timeout(READ_POLL).map_err(open_err)?;
+        Link::from_io(name, reader_port, port)
+    }
+
+    /// A link over any byte stream: `writer` takes what pfcam sends, `reader`
+    /// (moved to the reader thread) yields what GRBL answers.
+    ///
+    /// `reader` must not block for long: a read returns data, or an
+    /// `ErrorKind::TimedOut` / `WouldBlock` error within a few tens of
+    /// milliseconds (a serial port with a read timeout does), so the thread can
+    /// notice when the link is dropped. `Ok(0)` or any other error means the
+    /// link is gone.
+    pub fn from_io(
+        name: &str,
+        reader: impl Read + Send + 'static,
+        writer: impl Write + Send + 'static,
+    ) -> Result<Link, GrblError> {
         let (tx, rx) = mpsc::channel();
         let stop = Arc::new(AtomicBool::new(false));
         let stop_reader = stop.clone();
         let reader = std::thread::Builder::new()
             .name("grbl-reader".into())
-            .spawn(move || read_lines(reader_port, tx, stop_reader))
+            .spawn(move || read_lines(reader, tx, stop_reader))
             .map_err(|e| GrblError::Open {
                 port: name.to_string(),
                 reason: format!("cannot start the reader thread: {e}"),
             })?;
         Ok(Link {
             name: name.to_string(),
-            port,
+            port: Box::new(writer),
             rx,
             stop,
             reader: Some(reader),
@@ -193,7 +215,7 @@ fn fresh_start(port: &mut dyn SerialPort) {
     let _ = port.clear(serialport::ClearBuffer::Input);
 }
 
-fn read_lines(mut port: Box<dyn SerialPort>, tx: mpsc::Sender<Incoming>, stop: Arc<AtomicBool>) {
+fn read_lines(mut port: impl Read, tx: mpsc::Sender<Incoming>, stop: Arc<AtomicBool>) {
     let mut buf = [0u8; 512];
     let mut line: Vec<u8> = Vec::new();
     while !stop.load(Ordering::Relaxed) {

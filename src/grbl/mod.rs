@@ -1,24 +1,34 @@
 //! Streaming G-code to a GRBL 1.1 controller over a serial link (`pfcam stream`).
 //!
 //! - [`protocol`]: GRBL's lines and real-time bytes.
-//! - [`link`]: the serial port, a reader thread, the traffic log.
+//! - [`link`]: any byte stream (a serial port, an in-memory fake), a reader
+//!   thread, the traffic log.
 //! - [`streamer`]: connect (banner, soft reset, alarm check), character-counting
 //!   streaming, status polling, feed hold / resume / abort, check mode, resume from a
 //!   line.
-//! - [`command`]: the `pfcam stream` front end ([`StreamArgs`], [`stream_command`]):
-//!   progress display, Ctrl-C prompt, exit codes. It is the only part that prints.
+//! - [`options`] and [`session`]: what one `pfcam stream` asks for
+//!   ([`StreamOptions`]) and the whole flow ([`run_stream`]).
+//!
+//! Nothing here prints or exits: progress and GRBL's messages go to an
+//! [`Observer`] as [`Event`]s, the outcome is a [`StreamReport`] or a
+//! [`GrblError`]. The terminal side of `pfcam stream` (flags, progress bar,
+//! Ctrl-C prompt, signals, exit codes) is the binary's, in `src/cli/stream/`.
 //!
 //! The protocol as implemented and the safety behaviour are described in
 //! `docs/grbl.md`.
 
 pub mod codes;
-pub mod command;
+#[cfg(test)]
+mod fake;
 pub mod link;
+pub mod options;
 pub mod protocol;
+pub mod session;
 pub mod streamer;
 
-pub use command::{stream_command, ExitStatus, StreamArgs};
 pub use link::Link;
+pub use options::StreamOptions;
+pub use session::{job_blocks, run_stream};
 pub use streamer::{
     Block, Event, Fault, Observer, OperatorCommand, Settings, StreamReport, Streamer,
 };

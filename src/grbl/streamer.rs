@@ -517,84 +517,13 @@ impl Streamer {
         let mut final_poll: Option<u64> = None;
         loop {
             // Operator requests.
-            loop {
-                match operator.try_recv() {
-                    Ok(OperatorCommand::Hold) if mode == Mode::Check => {
-                        // Check mode moves nothing: a hold there means "stop checking".
-                        obs.event(Event::Stopping("check aborted by the operator"));
-                        self.stop_machine(&mut r, obs)?;
-                        return Err(GrblError::Aborted {
-                            by: "check aborted by the operator",
-                            last_acked: r.last_acked,
-                            resume_from: None,
-                        });
-                    }
-                    Ok(OperatorCommand::Hold) => {
-                        if !r.held {
-                            self.link
-                                .send_realtime(FEED_HOLD)
-                                .map_err(|e| lost(e, &r))?;
-                            r.held = true;
-                            r.hold_announced = false;
-                            r.awaiting_run = false;
-                            obs.event(Event::HoldRequested);
-                        }
-                    }
-                    Ok(OperatorCommand::Resume) => {
-                        if r.held || self.in_hold() {
-                            r.resume_pending = true;
-                        }
-                    }
-                    Ok(OperatorCommand::Override(o)) => {
-                        self.link.send_realtime(o.byte()).map_err(|e| lost(e, &r))?;
-                    }
-                    Ok(cmd @ (OperatorCommand::Abort | OperatorCommand::Stop(_))) => {
-                        let by = match cmd {
-                            OperatorCommand::Stop(why) => why,
-                            _ => "aborted by the operator",
-                        };
-                        obs.event(Event::Stopping(by));
-                        self.stop_machine(&mut r, obs)?;
-                        return Err(GrblError::Aborted {
-                            by,
-                            last_acked: r.last_acked,
-                            resume_from: self.resume_point(&r, false),
-                        });
-                    }
-                    Err(TryRecvError::Empty) | Err(TryRecvError::Disconnected) => break,
-                }
-            }
+            self.obey(&mut r, mode, operator, obs)?;
             // Resume once the hold is complete (GRBL ignores `~` before `Hold:0`).
             if r.resume_pending && self.hold_complete() {
-                self.link
-                    .send_realtime(CYCLE_START)
-                    .map_err(|e| lost(e, &r))?;
-                r.resume_pending = false;
-                r.held = false;
-                r.hold_announced = false;
-                r.awaiting_run = true;
-                // Until a fresh report says otherwise, the machine is running again.
-                if let Some(s) = self.status.as_mut() {
-                    s.state = MachineState::Run;
-                }
-                obs.event(Event::Resumed);
+                self.resume(&mut r, obs)?;
             }
-            // Fill GRBL's receive buffer.
             if !r.held {
-                while r.next < blocks.len() {
-                    let len = blocks[r.next].text.len() + 1;
-                    if r.in_flight + len > self.settings.rx_buffer {
-                        break;
-                    }
-                    self.link
-                        .send_line(&blocks[r.next].text)
-                        .map_err(|e| lost(e, &r))?;
-                    r.account();
-                    r.pending.push_back((r.next, len));
-                    r.in_flight += len;
-                    r.max_in_flight = r.max_in_flight.max(r.in_flight);
-                    r.next += 1;
-                }
+                self.fill_rx_buffer(&mut r)?;
             }
             let now = Instant::now();
             // Done?
@@ -644,62 +573,7 @@ impl Streamer {
                 Err(e) => return Err(e.with_stop(r.last_acked, self.resume_point(&r, true))),
             };
             last_rx = Instant::now();
-            match parse_response(&line) {
-                Response::Ok => {
-                    self.ack(&mut r, None, obs);
-                }
-                Response::Error(code) => {
-                    if let Some(fault) = self.ack(&mut r, Some(code), obs) {
-                        if mode == Mode::Run && self.settings.stop_on_error {
-                            obs.event(Event::Stopping("GRBL rejected a line"));
-                            self.stop_machine(&mut r, obs)?;
-                            let resume_from = self.rejected_resume(&r, fault.line);
-                            return Err(GrblError::Rejected {
-                                fault,
-                                last_acked: r.last_acked,
-                                resume_from,
-                            });
-                        }
-                        obs.event(Event::Rejected(&fault));
-                        r.faults.push(fault);
-                    }
-                }
-                Response::Alarm(code) => {
-                    return Err(GrblError::Alarm {
-                        code,
-                        last_acked: r.last_acked,
-                        resume_from: self.resume_point(&r, true),
-                    })
-                }
-                Response::Status(report) => {
-                    self.note_status(&report);
-                    reports += 1;
-                    if self.looks_stalled(&r, &report) {
-                        let since = *r.stall_since.get_or_insert_with(Instant::now);
-                        if since.elapsed() > self.settings.response_timeout + pending_dwell(&r) {
-                            return Err(self.stalled(&mut r, since, obs));
-                        }
-                    } else {
-                        r.stall_since = None;
-                    }
-                    if !matches!(report.state, MachineState::Hold(_)) {
-                        r.awaiting_run = false;
-                    }
-                    if self.hold_complete() && !r.hold_announced && !r.awaiting_run {
-                        r.hold_announced = true;
-                        r.held = true;
-                        obs.event(Event::HoldComplete);
-                    }
-                    obs.event(Event::Status(&report));
-                }
-                Response::Banner { .. } => {
-                    return Err(GrblError::UnexpectedReset {
-                        last_acked: r.last_acked,
-                        resume_from: self.resume_point(&r, true),
-                    })
-                }
-                _ => obs.event(Event::Message(&line)),
-            }
+            self.on_line(&mut r, mode, &line, &mut reports, obs)?;
         }
         Ok(StreamReport {
             acked: r.acked,
@@ -712,6 +586,171 @@ impl Streamer {
             },
             max_in_flight: r.max_in_flight,
         })
+    }
+
+    /// Cycle start `~` after a completed hold.
+    fn resume(&mut self, r: &mut Run<'_>, obs: &mut dyn Observer) -> Result<(), GrblError> {
+        self.link
+            .send_realtime(CYCLE_START)
+            .map_err(|e| lost(e, r))?;
+        r.resume_pending = false;
+        r.held = false;
+        r.hold_announced = false;
+        r.awaiting_run = true;
+        // Until a fresh report says otherwise, the machine is running again.
+        if let Some(s) = self.status.as_mut() {
+            s.state = MachineState::Run;
+        }
+        obs.event(Event::Resumed);
+        Ok(())
+    }
+
+    /// Character counting: sends the next lines while their bytes (newlines
+    /// included) and those still unacknowledged fit GRBL's receive buffer.
+    fn fill_rx_buffer(&mut self, r: &mut Run<'_>) -> Result<(), GrblError> {
+        let blocks = r.blocks;
+        while r.next < blocks.len() {
+            let len = blocks[r.next].text.len() + 1;
+            if r.in_flight + len > self.settings.rx_buffer {
+                break;
+            }
+            self.link
+                .send_line(&blocks[r.next].text)
+                .map_err(|e| lost(e, r))?;
+            r.account();
+            r.pending.push_back((r.next, len));
+            r.in_flight += len;
+            r.max_in_flight = r.max_in_flight.max(r.in_flight);
+            r.next += 1;
+        }
+        Ok(())
+    }
+
+    /// Applies what the operator asked for since the last look: a feed hold, a
+    /// resume (noted; `run` sends `~` once the hold is complete), an override
+    /// byte, or a stop (hold, reset, and the error that ends the stream).
+    fn obey(
+        &mut self,
+        r: &mut Run<'_>,
+        mode: Mode,
+        operator: &Receiver<OperatorCommand>,
+        obs: &mut dyn Observer,
+    ) -> Result<(), GrblError> {
+        loop {
+            match operator.try_recv() {
+                Ok(OperatorCommand::Hold) if mode == Mode::Check => {
+                    // Check mode moves nothing: a hold there means "stop checking".
+                    obs.event(Event::Stopping("check aborted by the operator"));
+                    self.stop_machine(r, obs)?;
+                    return Err(GrblError::Aborted {
+                        by: "check aborted by the operator",
+                        last_acked: r.last_acked,
+                        resume_from: None,
+                    });
+                }
+                Ok(OperatorCommand::Hold) => {
+                    if !r.held {
+                        self.link.send_realtime(FEED_HOLD).map_err(|e| lost(e, r))?;
+                        r.held = true;
+                        r.hold_announced = false;
+                        r.awaiting_run = false;
+                        obs.event(Event::HoldRequested);
+                    }
+                }
+                Ok(OperatorCommand::Resume) => {
+                    if r.held || self.in_hold() {
+                        r.resume_pending = true;
+                    }
+                }
+                Ok(OperatorCommand::Override(o)) => {
+                    self.link.send_realtime(o.byte()).map_err(|e| lost(e, r))?;
+                }
+                Ok(cmd @ (OperatorCommand::Abort | OperatorCommand::Stop(_))) => {
+                    let by = match cmd {
+                        OperatorCommand::Stop(why) => why,
+                        _ => "aborted by the operator",
+                    };
+                    obs.event(Event::Stopping(by));
+                    self.stop_machine(r, obs)?;
+                    return Err(GrblError::Aborted {
+                        by,
+                        last_acked: r.last_acked,
+                        resume_from: self.resume_point(r, false),
+                    });
+                }
+                Err(TryRecvError::Empty) | Err(TryRecvError::Disconnected) => return Ok(()),
+            }
+        }
+    }
+
+    /// Handles one line from GRBL during a stream: `ok` / `error:N` (which may
+    /// stop the stream), an alarm, a status report (hold, stall), a banner (GRBL
+    /// reset itself), anything else for the observer. `Err` ends the stream.
+    fn on_line(
+        &mut self,
+        r: &mut Run<'_>,
+        mode: Mode,
+        line: &str,
+        reports: &mut u64,
+        obs: &mut dyn Observer,
+    ) -> Result<(), GrblError> {
+        match parse_response(line) {
+            Response::Ok => {
+                self.ack(r, None, obs);
+            }
+            Response::Error(code) => {
+                if let Some(fault) = self.ack(r, Some(code), obs) {
+                    if mode == Mode::Run && self.settings.stop_on_error {
+                        obs.event(Event::Stopping("GRBL rejected a line"));
+                        self.stop_machine(r, obs)?;
+                        let resume_from = self.rejected_resume(r, fault.line);
+                        return Err(GrblError::Rejected {
+                            fault,
+                            last_acked: r.last_acked,
+                            resume_from,
+                        });
+                    }
+                    obs.event(Event::Rejected(&fault));
+                    r.faults.push(fault);
+                }
+            }
+            Response::Alarm(code) => {
+                return Err(GrblError::Alarm {
+                    code,
+                    last_acked: r.last_acked,
+                    resume_from: self.resume_point(r, true),
+                })
+            }
+            Response::Status(report) => {
+                self.note_status(&report);
+                *reports += 1;
+                if self.looks_stalled(r, &report) {
+                    let since = *r.stall_since.get_or_insert_with(Instant::now);
+                    if since.elapsed() > self.settings.response_timeout + pending_dwell(r) {
+                        return Err(self.stalled(r, since, obs));
+                    }
+                } else {
+                    r.stall_since = None;
+                }
+                if !matches!(report.state, MachineState::Hold(_)) {
+                    r.awaiting_run = false;
+                }
+                if self.hold_complete() && !r.hold_announced && !r.awaiting_run {
+                    r.hold_announced = true;
+                    r.held = true;
+                    obs.event(Event::HoldComplete);
+                }
+                obs.event(Event::Status(&report));
+            }
+            Response::Banner { .. } => {
+                return Err(GrblError::UnexpectedReset {
+                    last_acked: r.last_acked,
+                    resume_from: self.resume_point(r, true),
+                })
+            }
+            _ => obs.event(Event::Message(line)),
+        }
+        Ok(())
     }
 
     /// Resume point from the planner fill in the last status report (`Bf:`), or
