@@ -136,9 +136,43 @@ pub enum PipelineError {
     /// A job value that only the built shape shows to be wrong (its size).
     #[error("{0}")]
     Job(#[from] crate::job::JobError),
+    /// A level could not be planned (its field, its paths, or in words).
+    #[error("{0}")]
+    Plan(crate::levels::plan::PlanError),
+    /// A part of a composed shape (`[[shape.part]]`) could not be built:
+    /// `part` is its 1-based index in the job file when the name is one of
+    /// them.
+    #[error("{}", compose_message(*.part, .name, .message, .source))]
+    Compose {
+        /// `shape.part[i]`'s i, from 1, when the failing name is a part's.
+        part: Option<usize>,
+        /// The name the composition gave.
+        name: String,
+        /// What went wrong there.
+        message: String,
+        /// The composition's own error.
+        source: Box<crate::compose::ComposeError>,
+    },
+    /// A broken invariant of pfcam itself.
+    #[error("internal error: {0} (please report this pfcam bug)")]
+    Internal(String),
     /// Anything else.
     #[error("{0}")]
     Other(String),
+}
+
+/// [`PipelineError::Compose`]'s words: the part as the job file numbers it,
+/// else the composition's own message.
+fn compose_message(
+    part: Option<usize>,
+    name: &str,
+    message: &str,
+    source: &crate::compose::ComposeError,
+) -> String {
+    match part {
+        Some(i) => format!("shape.part[{i}] \"{name}\": {message}"),
+        None => format!("shape: {source}"),
+    }
 }
 
 /// A cavity level leaving more than this share of its reachable area uncut
@@ -357,9 +391,15 @@ pub fn job_shape(
             }
         };
         let base = name.split(':').next().unwrap_or(&name).trim();
-        match comp.parts.iter().position(|p| p.name == base) {
-            Some(i) => PipelineError::Other(format!("shape.part[{}] \"{name}\": {msg}", i + 1)),
-            None => PipelineError::Other(format!("shape: {e}")),
+        PipelineError::Compose {
+            part: comp
+                .parts
+                .iter()
+                .position(|p| p.name == base)
+                .map(|i| i + 1),
+            name,
+            message: msg,
+            source: Box::new(e),
         }
     })?;
     let reports = built
@@ -683,15 +723,10 @@ fn plan_with_progress(
     let planned = result
         .into_inner()
         .unwrap_or_else(|e| e.into_inner())
-        .ok_or_else(|| {
-            PipelineError::Other(
-                "internal error: the level planner did not finish (please report this pfcam bug)"
-                    .into(),
-            )
-        })?;
+        .ok_or_else(|| PipelineError::Internal("the level planner did not finish".into()))?;
     planned.map_err(|e| match e {
         crate::levels::plan::PlanError::Guard(g) => PipelineError::Guard(g),
-        e => PipelineError::Other(e.to_string()),
+        e => PipelineError::Plan(e),
     })
 }
 
