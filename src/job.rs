@@ -997,6 +997,20 @@ fn resolve_retract(retract_z: Option<f64>, top: f64, safe_z: f64) -> Result<f64,
     Ok(z)
 }
 
+/// Of `keys`, each with whether the job gives it, at most one: the error
+/// names the first two given (keyed on the first) and says `rule`; else the
+/// one given, if any.
+fn at_most_one<'a>(keys: &[(&'a str, bool)], rule: &str) -> Result<Option<&'a str>, JobError> {
+    let mut given = keys.iter().filter(|k| k.1).map(|k| k.0);
+    match (given.next(), given.next()) {
+        (Some(first), Some(second)) => Err(invalid(
+            first,
+            format!("and {second} are both given; {rule}"),
+        )),
+        (first, _) => Ok(first),
+    }
+}
+
 fn show(x: f64) -> String {
     if x.fract() == 0.0 && x.abs() < 1e15 {
         format!("{x}")
@@ -1588,20 +1602,14 @@ fn resolve_shape(
             "only applies to a composition: it names one of the [[shape.part]] tables",
         ));
     }
-    let given: Vec<&str> = [
-        ("shape.text", s.text.is_some()),
-        ("shape.svg_path", s.svg_path.is_some()),
-        ("shape.svg_file", s.svg_file.is_some()),
-    ]
-    .into_iter()
-    .filter_map(|(k, g)| g.then_some(k))
-    .collect();
-    if let [first, second, ..] = given[..] {
-        return Err(invalid(
-            first,
-            format!("and {second} are both given; give exactly one"),
-        ));
-    }
+    at_most_one(
+        &[
+            ("shape.text", s.text.is_some()),
+            ("shape.svg_path", s.svg_path.is_some()),
+            ("shape.svg_file", s.svg_file.is_some()),
+        ],
+        "give exactly one",
+    )?;
     if s.svg_file.is_none() {
         for (key, given) in [
             ("shape.id", s.id.is_some()),
@@ -1629,16 +1637,13 @@ fn resolve_shape(
             base_dir,
         );
     }
+    // Both given was refused above (`at_most_one`).
     match (s.text, s.svg_path) {
-        (Some(_), Some(_)) => Err(invalid(
-            "shape.text",
-            "and shape.svg_path are both given; give exactly one",
-        )),
         (None, None) => Err(invalid(
             "shape.text",
             "or shape.svg_path or shape.svg_file or [[shape.part]] is required (exactly one of them)",
         )),
-        (Some(text), None) => {
+        (Some(text), _) => {
             check_text("shape.text", &text)?;
             let font = resolve_font(
                 "shape.font",
@@ -1904,31 +1909,22 @@ fn resolve_part_source(
     base_dir: &Path,
 ) -> Result<PartSource, JobError> {
     let key = |field: &str| format!("{k}.{field}");
-    let primitives: Vec<&str> = [
-        ("polygon", p.polygon.is_some()),
-        ("svg", p.svg.is_some()),
-        ("text", p.text.is_some()),
-    ]
-    .into_iter()
-    .filter_map(|(name, given)| given.then_some(name))
-    .collect();
-    if primitives.len() > 1 {
-        return Err(invalid(
-            &key(primitives[0]),
-            format!(
-                "and {} are both given; a primitive part is exactly one of polygon, svg, text",
-                key(primitives[1])
-            ),
-        ));
-    }
-    if let Some(prim) = primitives.first() {
+    let names = [key("polygon"), key("svg"), key("text")];
+    let primitive = at_most_one(
+        &[
+            (&names[0], p.polygon.is_some()),
+            (&names[1], p.svg.is_some()),
+            (&names[2], p.text.is_some()),
+        ],
+        "a primitive part is exactly one of polygon, svg, text",
+    )?;
+    if let Some(prim) = primitive {
         for (field, given) in [("of", p.of.is_some()), ("op", p.op.is_some())] {
             if given {
                 return Err(invalid(
                     &key(field),
                     format!(
-                        "cannot be combined with {}: a part is either a primitive (polygon, svg or text) or derived from earlier parts (of, with op)",
-                        key(prim)
+                        "cannot be combined with {prim}: a part is either a primitive (polygon, svg or text) or derived from earlier parts (of, with op)"
                     ),
                 ));
             }

@@ -22,7 +22,7 @@
 
 use super::FinishParams;
 use crate::field::Field;
-use crate::geometry::{DistanceIndex, Vec2};
+use crate::geometry::{densify, DistanceIndex, Vec2};
 use crate::toolpath::dropcutter::MeshIndex;
 use crate::toolpath::{Move, Section, Toolpath, Vec3};
 
@@ -45,20 +45,6 @@ pub struct Loop {
     pub contact: Vec<Vec2>,
     /// The tip positions, one per contact point.
     pub tip: Vec<Vec3>,
-}
-
-/// The curve resampled at most `step` apart (closed; the first point not repeated).
-fn resample(poly: &[Vec2], step: f64) -> Vec<Vec2> {
-    let n = poly.len();
-    let mut out = Vec::with_capacity(n);
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        let k = (a.dist(b) / step).ceil().max(1.0) as usize;
-        for j in 0..k {
-            out.push(a.lerp(b, j as f64 / k as f64));
-        }
-    }
-    out
 }
 
 /// The side the material lies on: +1 when it is on the right of the loop's
@@ -84,7 +70,7 @@ pub fn tip_loop(
     p: &FinishParams,
     mesh: &MeshIndex,
 ) -> Result<Loop, String> {
-    let mut contact = resample(poly, SAMPLE);
+    let mut contact = densify(poly, SAMPLE, true);
     let sign = if p.cavity { 1.0 } else { -1.0 };
     let dphi = super::passes::dphi_ds(p.profile, s).abs();
     // ∇u once per contact point: its direction is `away`, its length the slope.
@@ -466,7 +452,7 @@ mod tests {
             Vec2::new(1.0, 1.0),
             Vec2::new(0.0, 1.0),
         ];
-        let r = resample(&sq, 0.3);
+        let r = densify(&sq, 0.3, true);
         assert_eq!(r.len(), 16);
         for c in &sq {
             assert!(r.contains(c));

@@ -4,6 +4,7 @@
 mod arrangement;
 mod bvh;
 mod contour;
+mod densify;
 mod distance;
 pub mod fill;
 pub mod font;
@@ -16,6 +17,7 @@ pub mod text;
 mod vec2;
 
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};
+pub use densify::densify;
 pub use distance::{deepest_point, deepest_point_in, seg_seg_dist, DistanceIndex};
 pub use nesting::regions_from_contours;
 pub use segment::Segment;

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use super::{defaults, extent, invalid, limits, JobError};
+use super::{at_most_one, defaults, extent, invalid, limits, JobError};
 use crate::geometry::svgfile::{SvgFileSource, SvgSize};
 use crate::geometry::{ShapeSource, Vec2};
 
@@ -79,22 +79,14 @@ pub fn resolve(
 
 /// At most one of `scale`, `width`, `height`.
 fn size(raw: &RawSvgFile) -> Result<SvgSize, JobError> {
-    let given: Vec<&str> = [
-        ("shape.scale", raw.scale.is_some()),
-        ("shape.width", raw.width.is_some()),
-        ("shape.height", raw.height.is_some()),
-    ]
-    .into_iter()
-    .filter_map(|(k, g)| g.then_some(k))
-    .collect();
-    if let [first, second, ..] = given[..] {
-        return Err(invalid(
-            first,
-            format!(
-                "and {second} are both given; give at most one (the drawing keeps its proportions)"
-            ),
-        ));
-    }
+    at_most_one(
+        &[
+            ("shape.scale", raw.scale.is_some()),
+            ("shape.width", raw.width.is_some()),
+            ("shape.height", raw.height.is_some()),
+        ],
+        "give at most one (the drawing keeps its proportions)",
+    )?;
     Ok(match (raw.scale, raw.width, raw.height) {
         (Some(s), _, _) => SvgSize::Scale(limits::SVG_SCALE.check("shape.scale", s)?),
         (_, Some(w), _) => SvgSize::Width(limits::SHAPE_WIDTH.check("shape.width", w)?),

@@ -77,6 +77,8 @@ fn loops_at(
         part_on_left: !p.climb,
     };
     let mut loops = Vec::new();
+    // The kept loops' indices, for telling a loop traced again.
+    let mut kept: Vec<DistanceIndex> = Vec::new();
     while let Some(&q) = seeds.first() {
         if loops.len() == MAX_LOOPS {
             return None;
@@ -94,12 +96,11 @@ fn loops_at(
             // too if it is one already kept.
             seeds.remove(0);
             let start = t.points[0];
-            if loops.iter().any(|l: &Vec<Vec2>| {
-                DistanceIndex::new(&[l[..l.len() - 1].to_vec()]).distance(start) <= 2.0 * p.tol
-            }) {
+            if kept.iter().any(|k| k.distance(start) <= 2.0 * p.tol) {
                 continue;
             }
         }
+        kept.push(ring);
         loops.push(without_crumbs(t.points, 0.5 * p.tol));
     }
     Some(loops)

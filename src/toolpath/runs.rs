@@ -13,7 +13,7 @@
 //! near where the level before it ended.
 
 use super::air::Keepout;
-use crate::geometry::Vec2;
+use crate::geometry::{densify, Vec2};
 use std::collections::HashMap;
 
 /// One piece to order.
@@ -25,18 +25,6 @@ pub struct Piece<'a> {
     pub points: &'a [Vec2],
     /// A closed ring, entered anywhere, or an open run, entered at its start.
     pub closed: bool,
-}
-
-/// Points along `pts` no farther apart than `step` (the vertices, and more
-/// on long chords).
-fn samples(pts: &[Vec2], step: f64) -> Vec<Vec2> {
-    let mut out = Vec::with_capacity(pts.len());
-    for w in pts.windows(2) {
-        let n = (w[0].dist(w[1]) / step).ceil().max(1.0) as usize;
-        out.extend((0..n).map(|k| w[0] + (w[1] - w[0]) * (k as f64 / n as f64)));
-    }
-    out.extend(pts.last());
-    out
 }
 
 /// A hash of points in square cells of side `d`: which of them lie within
@@ -98,7 +86,7 @@ pub fn order(pieces: &[Piece], reach: f64, keep: &Keepout, from: Vec2) -> Vec<us
     let n = pieces.len();
     let pts: Vec<Vec<Vec2>> = pieces
         .iter()
-        .map(|p| samples(p.points, 0.5 * reach))
+        .map(|p| densify(p.points, 0.5 * reach, false))
         .collect();
     let cells: Vec<Cells> = pts.iter().map(|p| Cells::new(p, reach)).collect();
     // waits[i]: how many uncut pieces of the next ring out lie beside piece i.
@@ -143,6 +131,18 @@ pub fn order(pieces: &[Piece], reach: f64, keep: &Keepout, from: Vec2) -> Vec<us
 mod tests {
     use super::*;
 
+    /// Pieces of the given rings and points, all open or all closed.
+    fn pieces(rings: &[(usize, Vec<Vec2>)], closed: bool) -> Vec<Piece<'_>> {
+        rings
+            .iter()
+            .map(|(j, p)| Piece {
+                ring: *j,
+                points: p,
+                closed,
+            })
+            .collect()
+    }
+
     fn seg(a: Vec2, b: Vec2) -> Vec<Vec2> {
         (0..=10).map(|k| a + (b - a) * (k as f64 / 10.0)).collect()
     }
@@ -156,14 +156,7 @@ mod tests {
         let ll = |c: f64| seg(Vec2::new(-2.0, c + 2.0), Vec2::new(c + 2.0, -2.0));
         let ur = |c: f64| seg(Vec2::new(102.0, 48.0 - c), Vec2::new(98.0 - c, 52.0));
         let runs = [(3, ll(6.0)), (2, ur(7.7)), (2, ll(7.7)), (3, ur(6.0))];
-        let pieces: Vec<Piece> = runs
-            .iter()
-            .map(|(j, p)| Piece {
-                ring: *j,
-                points: p,
-                closed: false,
-            })
-            .collect();
+        let pieces = pieces(&runs, false);
         let o = order(&pieces, 2.0, &keep, Vec2::new(-5.0, -5.0));
         assert_eq!(o, vec![0, 2, 3, 1]);
     }
@@ -188,14 +181,7 @@ mod tests {
             (2, circle(a, 11.2)),
             (1, circle(b, 10.0)),
         ];
-        let pieces: Vec<Piece> = rings
-            .iter()
-            .map(|(j, p)| Piece {
-                ring: *j,
-                points: p,
-                closed: true,
-            })
-            .collect();
+        let pieces = pieces(&rings, true);
         // From beside b: b's rings first, outer then inner, then a's.
         let o = order(&pieces, 2.0, &keep, Vec2::new(120.0, 0.0));
         assert_eq!(o, vec![1, 3, 2, 0]);

@@ -98,16 +98,13 @@ pub struct LevelCut {
     pub paths: Vec<CutPath>,
 }
 
-fn inside_rect(p: Vec2, lo: Vec2, hi: Vec2) -> bool {
-    p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y
-}
-
-/// Split a closed ring into the runs that lie inside the rectangle, each run
-/// extended by one point at both ends so that it starts and ends outside (where
-/// the tool is clear of the stock). A ring wholly inside stays closed.
-fn clip_ring(ring: &[Vec2], lo: Vec2, hi: Vec2) -> Vec<(Vec<Vec2>, bool)> {
+/// Split a closed ring into the runs over the stock (the points `keep` does
+/// not clear), each run extended by one point at both ends so that it starts
+/// and ends where the tool is clear of the stock. A ring wholly over it stays
+/// closed.
+fn clip_ring(ring: &[Vec2], keep: &Keepout) -> Vec<(Vec<Vec2>, bool)> {
     let n = ring.len() - 1; // last = first
-    let inside: Vec<bool> = ring[..n].iter().map(|&p| inside_rect(p, lo, hi)).collect();
+    let inside: Vec<bool> = ring[..n].iter().map(|&p| !keep.clear(p)).collect();
     if inside.iter().all(|&b| b) {
         return vec![(ring.to_vec(), true)];
     }
@@ -200,8 +197,7 @@ pub fn boss_paths<N: Navigator + Sync>(
     let index = DistanceIndex::new(part);
     // Rings are offsets of the wall radius; the tool covers its true radius.
     let r = p.wall();
-    let grow = Vec2::new(p.radius, p.radius);
-    let (lo, hi) = (p.stock_lo - grow, p.stock_hi + grow);
+    let keep = Keepout::around_stock(p.stock_lo, p.stock_hi, p.radius);
     let dmax = farthest_stock_point(part, &index, p.stock_lo, p.stock_hi, p.stepover);
     let full = ((dmax - r - p.radius) / p.stepover).ceil().max(0.0) as usize;
     // A level added for the scallop bound only clears the band, `reach` wide, out
@@ -259,7 +255,7 @@ pub fn boss_paths<N: Navigator + Sync>(
     let (mut open, mut closed) = (Vec::new(), Vec::new());
     for res in traced {
         for (j, ring) in res? {
-            for (run, whole) in clip_ring(&ring, lo, hi) {
+            for (run, whole) in clip_ring(&ring, &keep) {
                 if whole {
                     closed.push((j, run));
                 } else {
@@ -655,10 +651,11 @@ pub fn cavity_paths<N: Navigator + Sync>(
             deep
         }
     };
+    // Each pocket's deepest point and its room (a grid search), once.
+    let deepest: Vec<(Vec2, f64)> = pockets.iter().map(|pk| deepest_in_pocket(pk)).collect();
     // 1. Finishing loops.
     let mut finish: Vec<Vec<Vec2>> = Vec::new();
-    for (i, pk) in pockets.iter().enumerate() {
-        let (deep, room) = deepest_in_pocket(pk);
+    for (i, (pk, &(deep, room))) in pockets.iter().zip(&deepest).enumerate() {
         if room < rw + p.tol {
             warnings.push(format!(
                 "{label}: pocket {} is too narrow for the tool (room {room:.3} mm): not cut",
@@ -713,11 +710,8 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // inverse problem's equipotentials, a stepover apart only where they are
     // farthest apart, cut 24.9 m on mfs-mould's first level where these cut
     // 11.9 m (docs/method.md §9, *Cavity*).
-    let deepest = pockets
-        .iter()
-        .map(|pk| deepest_in_pocket(pk).1)
-        .fold(0.0, f64::max);
-    let reach = band.map_or(deepest, |b| b.min(deepest));
+    let room = deepest.iter().map(|d| d.1).fold(0.0, f64::max);
+    let reach = band.map_or(room, |b| b.min(room));
     set_stage(Stage::Rings);
     if let Some(mut paths) = super::band::band_rings(part, &index, p, label, reach) {
         let v = orient_v(&finish, n_pocket_walls);
@@ -736,8 +730,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     };
     let mut second: Vec<Vec<Vec2>> = Vec::new();
     let mut n_pockets2 = 0;
-    for pk in &pockets {
-        let (deep, room) = deepest_in_pocket(pk);
+    for (pk, &(deep, room)) in pockets.iter().zip(&deepest) {
         if room > r2 + p.stepover {
             if let Ok(t) = trace(nav, &index, pocket_start(pk, deep, r2), tp2) {
                 second.push(t.points);
@@ -763,20 +756,10 @@ pub fn cavity_paths<N: Navigator + Sync>(
     // (outside V on their left), island loops counter-clockwise.
     let oriented = orient_v(&finish, pockets_in_finish);
     let vindex = DistanceIndex::new(&oriented);
-    let (mut lo, mut hi) = (oriented[0][0], oriented[0][0]);
-    for q in oriented.iter().flatten() {
-        lo = Vec2::new(lo.x.min(q.x), lo.y.min(q.y));
-        hi = Vec2::new(hi.x.max(q.x), hi.y.max(q.y));
-    }
-    let pad = Vec2::new(2.0 * r, 2.0 * r);
-    let rect = vec![
-        lo - pad,
-        Vec2::new(hi.x + pad.x, lo.y - pad.y),
-        hi + pad,
-        Vec2::new(lo.x - pad.x, hi.y + pad.y),
-    ];
-    let mut mask = vec![rect];
-    mask.extend(oriented.iter().cloned());
+    let Some((lo, hi)) = polygons_bbox(&oriented) else {
+        return Ok((wall_paths(finish_all, label), 0.0));
+    };
+    let mask = region_mask(&oriented, lo, hi, 4.0 * r);
     let h = (p.stepover / 4.0).max(0.05);
     use crate::field::count::{set_stage, Stage};
     set_stage(Stage::LevelSolve);
@@ -1032,6 +1015,16 @@ fn orient_v(loops: &[Vec<Vec2>], n_pockets: usize) -> Vec<Vec<Vec2>> {
         .collect()
 }
 
+/// A mask for `Grid::sample` that marks everything but the region V as
+/// material: a rectangle `pad` beyond V's box `lo`..`hi`, and V's loops
+/// (pocket loops clockwise, island loops counter-clockwise) cut from it.
+fn region_mask(v: &[Vec<Vec2>], lo: Vec2, hi: Vec2, pad: f64) -> Vec<Vec<Vec2>> {
+    let (a, b) = (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad));
+    let mut mask = vec![vec![a, Vec2::new(b.x, a.y), b, Vec2::new(a.x, b.y)]];
+    mask.extend(v.iter().cloned());
+    mask
+}
+
 /// Coverage of a cavity level by its paths, and loops at the spots they
 /// leave. `v` is the region the tool centre may go (pocket loops clockwise,
 /// island loops counter-clockwise). Returns the paths, the spots' loops first,
@@ -1053,18 +1046,11 @@ fn cover_left(
         return Ok((paths, 0.0));
     };
     let pad = Vec2::new(2.0 * r, 2.0 * r);
-    // The mask's outer rectangle reaches past the grid (whose last row and
+    // The mask's rectangle reaches past the grid below (whose last row and
     // column may overshoot `hi + pad` by a spacing): outside it the mask
     // reads "not material", which would put a sliver of the part's thin
     // serifs beyond V's box into V.
-    let (mlo, mhi) = (lo - pad * 2.0, hi + pad * 2.0);
-    let mut mask = vec![vec![
-        mlo,
-        Vec2::new(mhi.x, mlo.y),
-        mhi,
-        Vec2::new(mlo.x, mhi.y),
-    ]];
-    mask.extend(v.iter().cloned());
+    let mask = region_mask(v, lo, hi, 4.0 * r);
     // 4. Coverage: reachable points (in V, or within r of V) not within r of a path,
     // on a grid of r/10. Where points are left (between rings that part around a
     // lobe), small loops of radius r/2 are added at them, centred where the tool
