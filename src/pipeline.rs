@@ -661,9 +661,19 @@ fn finish_program(
         .filter(|c| crate::surface::up_area(c) > 1e-12)
         .collect();
     let walls = crate::finish::wall_area(&up);
-    let index = crate::toolpath::dropcutter::MeshIndex::new(up, 4.0 * FINISH_MESH);
     let h = crate::levels::plan::GRID_SPACING;
     let grid = field::isolines::Grid::sample(field, stock.0, stock.1, h, glyphs);
+    let mut up = up;
+    up.extend(crate::finish::crease_edges(
+        &grid,
+        field,
+        glyphs,
+        profile,
+        sj.cavity,
+        job.stock.top,
+        job.operation.tolerance,
+    ));
+    let index = crate::toolpath::dropcutter::MeshIndex::new(up, 4.0 * FINISH_MESH);
     let done = crate::finish::finish(job, f, field, glyphs, grid, h, &index, walls)
         .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
     progress(Progress::Step);

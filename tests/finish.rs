@@ -71,6 +71,33 @@ fn a_boss_finished_with_a_ball_is_within_the_scallop_and_never_gouged() {
     );
 }
 
+/// A near-vertical wall (the README sign's power profile, n = 500) round the
+/// letter I's square serif corners: the finisher's tips spread round each
+/// corner and its drops change fast along a pass. Neither may gouge the part
+/// or dive into the wall the roughing left.
+#[test]
+fn a_near_vertical_wall_is_finished_without_plunges() {
+    let text = "[job]\nname = \"t\"\n[shape]\ntext = \"I\"\nheight = 20.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n[stock]\nmargin = 4.0\n[operation]\nkind = \"boss\"\ndepth = 2.0\nmax_scallop = 1.0\n[profile]\nkind = \"power\"\ns1 = 0.999\ns2 = 0.99\nexponent = 500.0\n[field]\nsingularities = \"auto\"\npseudo_boundary = \"auto\"\n[finish]\ndiameter = 3.175\nfeed = 1200.0\n";
+    let j = parse_job(text, "t", Path::new(".")).expect("job");
+    let (seq, _, _) = rough_then_finish(&j);
+    for p in &seq.programs {
+        assert_eq!(p.report.rapids_into_material, 0, "{}", p.name);
+        assert_eq!(p.report.straight_plunges, 0, "{}", p.name);
+    }
+    // Not yet within the tolerance: S2's mesh (0.2 mm isobands) cuts the
+    // serif corners' near-vertical walls short, and the drop-cutter lowers
+    // the ball into what it leaves out (0.022 mm measured; 0.031 mm before
+    // the top edge's exact segments were added). Bounded here so it cannot
+    // grow unseen; docs/method.md §13.
+    let part = seq.part.as_ref().expect("compared with the part");
+    assert!(
+        part.max_gouge.value <= 0.025,
+        "gouge {} at line {}",
+        part.max_gouge.value,
+        part.max_gouge.line
+    );
+}
+
 #[test]
 fn the_rough_alone_leaves_the_stock_the_finisher_removes() {
     let j = job("boss", "");

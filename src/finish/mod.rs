@@ -82,6 +82,43 @@ pub fn wall_area(tris: &[[[f64; 3]; 3]]) -> f64 {
         .sum()
 }
 
+/// The top edge of the wall (where S2's wall meets its flat top at the stock
+/// top `top`: Γ(s_top) of a boss, the rim Γ(s_bottom) of a mould) as
+/// segments for the drop-cutter, each a zero-area triangle (dropped on as the
+/// segment it is). The mesh's own crease runs along marching-squares chords
+/// of grid cells, which cut off a letter's sharp corners by up to a tenth of
+/// a millimetre; on a near-vertical wall that is a millimetre of z, and a ball
+/// lowered against those chords cuts into the corner. These segments follow
+/// Γ(s_top) within [`CREASE_TOL`] (chords refined onto the level by Newton),
+/// so the ball stays out of the letter's top.
+pub fn crease_edges(
+    grid: &Grid,
+    field: &Field,
+    glyphs: &[Vec<Vec2>],
+    profile: &DepthProfile,
+    cavity: bool,
+    top: f64,
+    tol: f64,
+) -> Vec<[[f64; 3]; 3]> {
+    let (lo, hi) = profile.s_range();
+    let s = if cavity { lo } else { hi };
+    let h = crate::levels::plan::GRID_SPACING;
+    let mut out = Vec::new();
+    for poly in crate::levels::plan::curves(grid, field, glyphs, s, h, tol) {
+        let fine = crate::levels::plan::refine(&poly, field, s, CREASE_TOL);
+        let n = fine.len();
+        for i in 0..n {
+            let (a, b) = (fine[i], fine[(i + 1) % n]);
+            let (a, b) = ([a.x, a.y, top], [b.x, b.y, top]);
+            out.push([a, b, b]);
+        }
+    }
+    out
+}
+
+/// How closely the crease segments follow Γ(s_top), mm.
+pub const CREASE_TOL: f64 = 1e-4;
+
 /// The job's finishing cutter.
 pub fn cutter_of(f: &Finish) -> Cutter {
     Cutter {

@@ -23,7 +23,7 @@
 use super::FinishParams;
 use crate::field::Field;
 use crate::geometry::{densify, DistanceIndex, Vec2};
-use crate::toolpath::dropcutter::MeshIndex;
+use crate::toolpath::dropcutter::{Cutter, MeshIndex};
 use crate::toolpath::{Move, Section, Toolpath, Vec3};
 
 /// Spacing of the contact points along a pass, mm (the chords between
@@ -32,6 +32,14 @@ pub const SAMPLE: f64 = 0.1;
 /// Longest feed link between a loop and its first child, in pass widths; a
 /// farther child is reached by a retract.
 pub const LINK_WIDTHS: f64 = 6.0;
+/// Most contact points added between two neighbours so their axes lie at
+/// most [`SAMPLE`] apart.
+const MAX_SPLIT: usize = 64;
+/// Most halvings of one chord between tips to keep it above the drop height.
+const CHORD_DEPTH: usize = 6;
+/// Steepest descent of the tip along a pass (Δz over XY length): tan 40°,
+/// under the 45° from which `pfcam simulate` counts a straight plunge.
+const DESCENT_SLOPE: f64 = 0.839_099_631_177_280_1;
 
 /// One loop of one pass, as the cutter's tip follows it.
 #[derive(Clone, Debug)]
@@ -83,36 +91,138 @@ pub fn tip_loop(
         away.reverse();
         grads.reverse();
     }
-    let cutter = p.cutter;
-    let flat = cutter.radius - cutter.corner;
-    let axes: Vec<Vec2> = contact
-        .iter()
-        .zip(&away)
-        .zip(&grads)
-        .map(|((&q, &d), g)| {
-            let t = dphi * g.norm();
-            let sin = t / (1.0 + t * t).sqrt();
-            q + d * (flat + cutter.corner * sin)
-        })
-        .collect();
-    let pts: Vec<(f64, f64)> = axes.iter().map(|a| (a.x, a.y)).collect();
-    let zs = cutter.drop_many(mesh, &pts);
-    let mut tip = Vec::with_capacity(axes.len());
-    for (a, z) in axes.iter().zip(zs) {
-        let z = z.ok_or_else(|| {
-            format!(
-                "no part of the surface lies under the finishing tool at X{:.3} Y{:.3} (pass s = {s:.5})",
-                a.x, a.y
-            )
-        })?;
-        tip.push(Vec3::new(a.x, a.y, z));
-    }
+    let (contact, axes) = spread_axes(contact, &away, &grads, dphi, p.cutter, field, sign);
+    let tips = drop_tips(&axes, p, mesh, s)?;
+    let tip = limit_descent(chord_safe(tips, p, mesh), DESCENT_SLOPE);
     Ok(Loop {
         pass,
         s,
         contact,
         tip,
     })
+}
+
+/// The cutter's axis for a contact point `q` where ∇u = `g` and the surface
+/// falls away along `d` (see the module docs).
+fn axis_at(q: Vec2, d: Vec2, g: Vec2, dphi: f64, cutter: Cutter) -> Vec2 {
+    let t = dphi * g.norm();
+    let sin = t / (1.0 + t * t).sqrt();
+    q + d * (cutter.radius - cutter.corner + cutter.corner * sin)
+}
+
+/// The axes of the contact points, with contact points added (between
+/// neighbours, on their chord) wherever two neighbouring axes lie more than
+/// [`SAMPLE`] apart: round a sharp convex corner of Γ(s) the axes fan out on
+/// a circle of radius r about it, and a chord between axes a radian apart
+/// would cut into the wall. Returns the contact points and their axes.
+fn spread_axes(
+    contact: Vec<Vec2>,
+    away: &[Vec2],
+    grads: &[Vec2],
+    dphi: f64,
+    cutter: Cutter,
+    field: &Field,
+    sign: f64,
+) -> (Vec<Vec2>, Vec<Vec2>) {
+    let n = contact.len();
+    let axes: Vec<Vec2> = (0..n)
+        .map(|i| axis_at(contact[i], away[i], grads[i], dphi, cutter))
+        .collect();
+    let (mut cs, mut ax) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for i in 0..n {
+        let j = (i + 1) % n;
+        cs.push(contact[i]);
+        ax.push(axes[i]);
+        let k = ((axes[i].dist(axes[j]) / SAMPLE).ceil() as usize).clamp(1, MAX_SPLIT);
+        for m in 1..k {
+            let q = contact[i].lerp(contact[j], m as f64 / k as f64);
+            let g = field.grad(q);
+            cs.push(q);
+            ax.push(axis_at(q, g.normalized() * sign, g, dphi, cutter));
+        }
+    }
+    (cs, ax)
+}
+
+/// The drop-cutter's tip at each axis; `Err` names a point no triangle lies
+/// under.
+fn drop_tips(
+    axes: &[Vec2],
+    p: &FinishParams,
+    mesh: &MeshIndex,
+    s: f64,
+) -> Result<Vec<Vec3>, String> {
+    let pts: Vec<(f64, f64)> = axes.iter().map(|a| (a.x, a.y)).collect();
+    let zs = p.cutter.drop_many(mesh, &pts);
+    axes.iter()
+        .zip(zs)
+        .map(|(a, z)| {
+            z.map(|z| Vec3::new(a.x, a.y, z)).ok_or_else(|| {
+                format!(
+                    "no part of the surface lies under the finishing tool at X{:.3} Y{:.3} (pass s = {s:.5})",
+                    a.x, a.y
+                )
+            })
+        })
+        .collect()
+}
+
+/// The closed tip loop with points added where the straight move between two
+/// tips would pass below the drop-cutter's height at its middle by more than
+/// a quarter of the tolerance (the drop height is not linear between
+/// samples, above all where the cutter turns round a corner); each chord is
+/// halved at most [`CHORD_DEPTH`] times.
+fn chord_safe(tips: Vec<Vec3>, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec3> {
+    let n = tips.len();
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        out.push(tips[i]);
+        let mut stack = vec![(tips[i], tips[(i + 1) % n], 0)];
+        let mut mids = Vec::new();
+        while let Some((a, b, depth)) = stack.pop() {
+            let m = Vec3::new(0.5 * (a.x + b.x), 0.5 * (a.y + b.y), 0.5 * (a.z + b.z));
+            let Some(z) = p.cutter.drop(mesh, m.x, m.y) else {
+                continue;
+            };
+            if z > m.z + 0.25 * p.tol && depth < CHORD_DEPTH {
+                let mid = Vec3::new(m.x, m.y, z);
+                // Depth first, the first half first: `mids` stays in order.
+                stack.push((mid, b, depth + 1));
+                stack.push((a, mid, depth + 1));
+                mids.push((depth, mid));
+            }
+        }
+        out.extend(order_between(tips[i], mids));
+    }
+    out
+}
+
+/// Points that lie on the segment from `a` (in XY), in order of their
+/// distance from `a`.
+fn order_between(a: Vec3, mut pts: Vec<(usize, Vec3)>) -> Vec<Vec3> {
+    let d = |q: &Vec3| (q.x - a.x).powi(2) + (q.y - a.y).powi(2);
+    pts.sort_by(|x, y| d(&x.1).total_cmp(&d(&y.1)));
+    pts.into_iter().map(|(_, q)| q).collect()
+}
+
+/// The closed tip loop raised where it would descend steeper than `slope`
+/// (Δz over XY length) in the cutting direction: a ball entering the wall the
+/// roughing left that steeply is a plunge. Raising only lifts the cutter off
+/// the surface (it never enters the part); the cycle is walked twice so the
+/// result does not depend on where the loop starts.
+fn limit_descent(mut tips: Vec<Vec3>, slope: f64) -> Vec<Vec3> {
+    let n = tips.len();
+    if n < 2 {
+        return tips;
+    }
+    for k in 1..=2 * n {
+        let (a, b) = (tips[(k - 1) % n], tips[k % n]);
+        let floor = a.z - slope * ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt();
+        if b.z < floor {
+            tips[k % n].z = floor;
+        }
+    }
+    tips
 }
 
 /// The parent of each loop: the nearest loop of the highest pass below it
@@ -234,6 +344,15 @@ fn surface_link(a: Vec3, b: Vec3, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec
     out
 }
 
+/// Whether the polyline from `at` through `pts` descends anywhere steeper
+/// than `slope` (Δz over XY length) by more than a micrometre.
+fn dives(at: Vec3, pts: &[Vec3], slope: f64) -> bool {
+    std::iter::once(&at).chain(pts).zip(pts).any(|(a, b)| {
+        let run = ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt();
+        a.z - b.z > slope * run + 1e-3
+    })
+}
+
 /// The moves of the whole program from the loops in order (see the module docs).
 pub fn moves(
     loops: &[Loop],
@@ -251,8 +370,13 @@ pub fn moves(
         let at_start = at;
         let mut mv = Vec::with_capacity(tips.len() + 8);
         let first = tips[0];
-        if linked {
-            for q in surface_link(at, first, p, mesh) {
+        // A link that would dive into the wall steeper than a pass may is
+        // replaced by a retract and a ramp.
+        let link = linked
+            .then(|| surface_link(at, first, p, mesh))
+            .filter(|l| !dives(at, l, DESCENT_SLOPE));
+        if let Some(link) = link {
+            for q in link {
                 mv.push(Move::Linear {
                     to: q,
                     feed: p.feed,
@@ -442,6 +566,53 @@ mod tests {
             assert!(d <= 0.002 + 1e-12, "{d}");
         }
         assert!(kept.len() < arc.len() / 2);
+    }
+
+    #[test]
+    fn the_descent_limit_only_raises_holds_the_slope_and_ignores_the_start() {
+        // A loop round a square whose tips dip into a pit on one side.
+        let tips: Vec<Vec3> = (0..40)
+            .map(|k| {
+                let t = k as f64 / 40.0 * std::f64::consts::TAU;
+                let z = if (10..14).contains(&k) {
+                    -2.0
+                } else {
+                    -0.1 * t.sin()
+                };
+                Vec3::new(5.0 * t.cos(), 5.0 * t.sin(), z)
+            })
+            .collect();
+        let slope = DESCENT_SLOPE;
+        let out = limit_descent(tips.clone(), slope);
+        for (a, b) in tips.iter().zip(&out) {
+            assert!(b.z >= a.z && (a.x, a.y) == (b.x, b.y));
+        }
+        for k in 0..out.len() {
+            let (a, b) = (out[k], out[(k + 1) % out.len()]);
+            let run = ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt();
+            assert!(a.z - b.z <= slope * run + 1e-12, "{k}: {a:?} -> {b:?}");
+        }
+        // The pit's far side is not raised: only descents are limited.
+        assert_eq!(out[13].z, -2.0);
+        assert!(out[10].z > -2.0);
+        // Starting the loop elsewhere gives the same heights.
+        let mut cycled = tips.clone();
+        cycled.rotate_left(17);
+        let mut again = limit_descent(cycled, slope);
+        again.rotate_right(17);
+        assert_eq!(again, out);
+    }
+
+    #[test]
+    fn a_link_dives_only_where_it_falls_steeper_than_the_slope() {
+        let at = Vec3::new(0.0, 0.0, 0.0);
+        let gentle = [Vec3::new(1.0, 0.0, -0.5), Vec3::new(2.0, 0.0, -1.0)];
+        assert!(!dives(at, &gentle, DESCENT_SLOPE));
+        let steep = [Vec3::new(1.0, 0.0, -0.5), Vec3::new(1.1, 0.0, -1.0)];
+        assert!(dives(at, &steep, DESCENT_SLOPE));
+        // Climbing steeply is not diving.
+        let up = [Vec3::new(0.1, 0.0, 2.0)];
+        assert!(!dives(at, &up, DESCENT_SLOPE));
     }
 
     #[test]
