@@ -4,6 +4,7 @@ pub mod adaptive;
 pub mod contour;
 pub mod count;
 pub mod fast;
+pub mod inverse;
 pub mod isolines;
 pub mod mfs;
 pub mod setup;

@@ -179,23 +179,7 @@ mod tests {
     }
 
     fn params() -> LevelParams {
-        LevelParams {
-            radius: 1.5875,
-            tol: 0.01,
-            stepover: 1.27,
-            ramp_angle: 3.0,
-            climb: true,
-            feed: 800.0,
-            plunge_feed: 200.0,
-            rapid_rate: 1000.0,
-            safe_z: 5.0,
-            retract_z: 5.0,
-            top: 0.0,
-            stepdown: 1.0,
-            leave: 0.0,
-            stock_lo: Vec2::new(-30.0, -30.0),
-            stock_hi: Vec2::new(30.0, 30.0),
-        }
+        crate::toolpath::zlevel::test_params()
     }
 
     /// A 40 mm square pocket (clockwise: the mould's material on the left)

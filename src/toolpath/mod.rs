@@ -8,6 +8,7 @@ pub mod bays;
 pub mod dropcutter;
 pub mod entry;
 pub mod gouge;
+pub mod inverse;
 pub mod profile;
 pub mod runs;
 pub mod stock;

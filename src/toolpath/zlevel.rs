@@ -134,7 +134,7 @@ fn clip_ring(ring: &[Vec2], keep: &Keepout) -> Vec<(Vec<Vec2>, bool)> {
     runs
 }
 
-fn lowest(poly: &[Vec2]) -> Vec2 {
+pub(super) fn lowest(poly: &[Vec2]) -> Vec2 {
     poly.iter().copied().fold(poly[0], |a, b| {
         if b.y < a.y || (b.y == a.y && b.x < a.x) {
             b
@@ -530,18 +530,18 @@ fn last_point(c: &CutPath) -> Vec2 {
 /// equipotentials: near a convex corner of V, 1 − u ~ r², so every ring cuts the
 /// corner by about √(1 − c) while it follows straight walls at a distance ∝ 1 − c;
 /// what that leaves uncut is measured by the coverage check instead.)
-fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
+pub(super) fn ring_gap(a: &[Vec<Vec2>], b: &[Vec<Vec2>]) -> f64 {
     ring_gap_from(ring_index(a).as_ref(), b)
 }
 
 /// The index `ring_gap` measures to, None for no rings (built once per ring
 /// for the bisection's eight tries, issue 13).
-fn ring_index(a: &[Vec<Vec2>]) -> Option<DistanceIndex> {
+pub(super) fn ring_index(a: &[Vec<Vec2>]) -> Option<DistanceIndex> {
     (!a.is_empty()).then(|| DistanceIndex::new(a))
 }
 
 /// [`ring_gap`] with the index of `a` already built (`ring_index`).
-fn ring_gap_from(ia: Option<&DistanceIndex>, b: &[Vec<Vec2>]) -> f64 {
+pub(super) fn ring_gap_from(ia: Option<&DistanceIndex>, b: &[Vec<Vec2>]) -> f64 {
     let Some(ia) = ia else {
         return f64::INFINITY;
     };
@@ -563,7 +563,7 @@ fn next_up(x: f64) -> f64 {
 }
 
 /// A cavity level's wall loops as its paths.
-fn wall_paths(loops: Vec<Vec<Vec2>>, label: &str) -> Vec<CutPath> {
+pub(super) fn wall_paths(loops: Vec<Vec<Vec2>>, label: &str) -> Vec<CutPath> {
     loops
         .into_iter()
         .map(|pts| CutPath {
@@ -573,6 +573,90 @@ fn wall_paths(loops: Vec<Vec<Vec2>>, label: &str) -> Vec<CutPath> {
             ring: None,
         })
         .collect()
+}
+
+/// Level settings for unit tests: a 3.175 mm tool, 1.27 mm stepover, climb,
+/// over a 60 mm square stock.
+#[cfg(test)]
+pub(crate) fn test_params() -> LevelParams {
+    LevelParams {
+        radius: 1.5875,
+        tol: 0.01,
+        stepover: 1.27,
+        ramp_angle: 3.0,
+        climb: true,
+        feed: 800.0,
+        plunge_feed: 200.0,
+        rapid_rate: 1000.0,
+        safe_z: 5.0,
+        retract_z: 5.0,
+        top: 0.0,
+        stepdown: 1.0,
+        leave: 0.0,
+        stock_lo: Vec2::new(-30.0, -30.0),
+        stock_hi: Vec2::new(30.0, 30.0),
+    }
+}
+
+/// A cavity level's pockets (the part's clockwise loops) and islands, each
+/// pocket's deepest point and room (its distance from every wall), and the
+/// part's distance index.
+pub(super) struct Pockets<'a> {
+    pub pockets: &'a [&'a Vec<Vec2>],
+    pub islands: &'a [&'a Vec<Vec2>],
+    pub deepest: &'a [(Vec2, f64)],
+    pub index: &'a DistanceIndex,
+}
+
+impl Pockets<'_> {
+    /// Whether `q` lies in pocket `k` and in none of the islands.
+    fn inside(&self, k: usize, q: Vec2) -> bool {
+        inside_pocket(self.pockets[k], self.islands, q)
+    }
+
+    /// Where the wall of pocket `k` is traced from by a disk of `radius`:
+    /// just below its highest point, so the disk meets that wall and not an
+    /// island's, which may be nearer to the deepest point (the Q's counter).
+    /// Without islands, or where that point has no room, the deepest point.
+    pub fn start(&self, k: usize, radius: f64, tol: f64) -> Vec2 {
+        let (pk, deep) = (self.pockets[k], self.deepest[k].0);
+        if self.islands.is_empty() {
+            return deep;
+        }
+        let top = pk.iter().copied().fold(pk[0], |a, b| {
+            if b.y > a.y || (b.y == a.y && b.x < a.x) {
+                b
+            } else {
+                a
+            }
+        });
+        let q = top - Vec2::new(0.0, radius + tol);
+        if self.inside(k, q) && self.index.distance(q) >= radius {
+            q
+        } else {
+            deep
+        }
+    }
+}
+
+/// Whether `q` lies in `pocket` and in none of `islands`.
+fn inside_pocket(pocket: &[Vec2], islands: &[&Vec<Vec2>], q: Vec2) -> bool {
+    polygon_winding_number(pocket, q) != 0
+        && islands.iter().all(|is| polygon_winding_number(is, q) == 0)
+}
+
+/// The point of a pocket farthest from every wall, islands excluded (a
+/// pocket's own polygon contains its islands: the counter of a Q's mould is
+/// wider than the ring around it, and the tool started inside it), and that
+/// distance.
+pub(super) fn deepest_in_pocket(
+    pk: &[Vec2],
+    islands: &[&Vec<Vec2>],
+    index: &DistanceIndex,
+) -> (Vec2, f64) {
+    let (lo, hi) = polygons_bbox(&[pk.to_vec()]).unwrap_or((pk[0], pk[0]));
+    let inside = |q: Vec2| inside_pocket(pk, islands, q);
+    crate::geometry::deepest_point_in(lo, hi, &inside, index)
 }
 
 /// The paths of one cavity level. `part` holds the level's Γ(s) loops with the
@@ -602,8 +686,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     warnings: &mut Vec<String>,
     band: Option<f64>,
 ) -> Result<(Vec<CutPath>, f64), ProfileError> {
-    use crate::field::isolines::{isolines_linear, polygon_area, Grid};
-    use crate::field::{self, Boundary, Layout, Prepared, Sink};
+    use crate::field::count::{set_stage, Stage};
     let index = DistanceIndex::new(part);
     // The wall loops keep `rw` (radius + stock to leave) from the part; the
     // coverage below is measured with the tool's true radius `r`.
@@ -616,46 +699,20 @@ pub fn cavity_paths<N: Navigator + Sync>(
     };
     let pockets: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
     let islands: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
-    // The point of a pocket farthest from every wall, islands excluded: a
-    // pocket's own polygon contains its islands (the counter of a Q's mould is
-    // wider than the ring around it, and the tool started inside it).
-    let deepest_in_pocket = |pk: &Vec<Vec2>| {
-        let (lo, hi) = polygons_bbox(std::slice::from_ref(pk)).unwrap_or((pk[0], pk[0]));
-        let inside = |q: Vec2| {
-            polygon_winding_number(pk, q) != 0
-                && islands.iter().all(|is| polygon_winding_number(is, q) == 0)
-        };
-        crate::geometry::deepest_point_in(lo, hi, &inside, &index)
-    };
-    // Where the wall of a pocket with islands is traced from: just below its
-    // highest point, so the disk meets that wall and not an island's, which may
-    // be nearer to the deepest point (the Q's counter). Without islands, the
-    // deepest point, as before.
-    let pocket_start = |pk: &Vec<Vec2>, deep: Vec2, radius: f64| {
-        if islands.is_empty() {
-            return deep;
-        }
-        let top = pk.iter().copied().fold(pk[0], |a, b| {
-            if b.y > a.y || (b.y == a.y && b.x < a.x) {
-                b
-            } else {
-                a
-            }
-        });
-        let q = top - Vec2::new(0.0, radius + p.tol);
-        let inside = polygon_winding_number(pk, q) != 0
-            && islands.iter().all(|is| polygon_winding_number(is, q) == 0);
-        if inside && index.distance(q) >= radius {
-            q
-        } else {
-            deep
-        }
-    };
     // Each pocket's deepest point and its room (a grid search), once.
-    let deepest: Vec<(Vec2, f64)> = pockets.iter().map(|pk| deepest_in_pocket(pk)).collect();
+    let deepest: Vec<(Vec2, f64)> = pockets
+        .iter()
+        .map(|pk| deepest_in_pocket(pk, &islands, &index))
+        .collect();
+    let pk = Pockets {
+        pockets: &pockets,
+        islands: &islands,
+        deepest: &deepest,
+        index: &index,
+    };
     // 1. Finishing loops.
     let mut finish: Vec<Vec<Vec2>> = Vec::new();
-    for (i, (pk, &(deep, room))) in pockets.iter().zip(&deepest).enumerate() {
+    for (i, &(_, room)) in deepest.iter().enumerate() {
         if room < rw + p.tol {
             warnings.push(format!(
                 "{label}: pocket {} is too narrow for the tool (room {room:.3} mm): not cut",
@@ -663,7 +720,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
             ));
             continue;
         }
-        let t = trace(nav, &index, pocket_start(pk, deep, rw), tp).map_err(|source| {
+        let t = trace(nav, &index, pk.start(i, rw, p.tol), tp).map_err(|source| {
             ProfileError::Trace {
                 label: format!("{label}: wall of pocket {}", i + 1),
                 source,
@@ -718,281 +775,12 @@ pub fn cavity_paths<N: Navigator + Sync>(
         paths.extend(wall_paths(finish, label));
         return cover_left(part, &index, &v, paths, p, band, label);
     }
-    // A second loop one stepover in from the wall, again by the rolling disk: it
-    // keeps the wall's sharp corners, which the equipotential rings would cut by
-    // more than the tool can bridge (the measured uncut area sat in those corners).
-    // The inverse problem is then solved inside these loops.
-    let r2 = rw + 0.9 * p.stepover;
-    let tp2 = TraceParams {
-        radius: r2,
-        tol: p.tol,
-        part_on_left: !p.climb,
-    };
-    let mut second: Vec<Vec<Vec2>> = Vec::new();
-    let mut n_pockets2 = 0;
-    for (pk, &(deep, room)) in pockets.iter().zip(&deepest) {
-        if room > r2 + p.stepover {
-            if let Ok(t) = trace(nav, &index, pocket_start(pk, deep, r2), tp2) {
-                second.push(t.points);
-                n_pockets2 += 1;
-            }
-        }
+    // Offset rings could not be built: the inverse problem's equipotentials
+    // (`super::inverse`).
+    match super::inverse::inverse_paths(nav, &pk, p, label, band, finish)? {
+        (paths, Some(oriented)) => cover_left(part, &index, &oriented, paths, p, band, label),
+        (paths, None) => Ok((paths, 0.0)),
     }
-    for is in &islands {
-        let start = lowest(is) - Vec2::new(0.0, r2 + p.tol);
-        if let Ok(t) = trace(nav, &index, start, tp2) {
-            second.push(t.points);
-        }
-    }
-    let inner_paths: Vec<Vec<Vec2>> = second.clone();
-    let finish_all = finish.clone();
-    let finish = if n_pockets2 > 0 { second } else { finish };
-    let pockets_in_finish = if n_pockets2 > 0 {
-        n_pockets2
-    } else {
-        pockets.len()
-    };
-    // V's boundary, oriented for the inverse problem: pocket loops clockwise
-    // (outside V on their left), island loops counter-clockwise.
-    let oriented = orient_v(&finish, pockets_in_finish);
-    let vindex = DistanceIndex::new(&oriented);
-    let Some((lo, hi)) = polygons_bbox(&oriented) else {
-        return Ok((wall_paths(finish_all, label), 0.0));
-    };
-    let mask = region_mask(&oriented, lo, hi, 4.0 * r);
-    let h = (p.stepover / 4.0).max(0.05);
-    use crate::field::count::{set_stage, Stage};
-    set_stage(Stage::LevelSolve);
-    // 2. Sinks: farthest points from ∂V inside V, spaced by 2.5× their depth.
-    let probe = Grid::sample(&crate::field::Field::new(vec![], vec![]), lo, hi, h, &mask);
-    let mut cand: Vec<(f64, Vec2)> = Vec::new();
-    for j in 0..probe.ny {
-        for i in 0..probe.nx {
-            if !probe.inside[j * probe.nx + i] {
-                let q = Vec2::new(probe.origin.x + h * i as f64, probe.origin.y + h * j as f64);
-                cand.push((vindex.distance(q), q));
-            }
-        }
-    }
-    cand.sort_by(|a, b| {
-        b.0.total_cmp(&a.0)
-            .then(a.1.x.total_cmp(&b.1.x))
-            .then(a.1.y.total_cmp(&b.1.y))
-    });
-    // Only deep points: a sink near ∂V would force u from 1 to 0 over a short
-    // distance there and crowd the rings against the wall.
-    let dmax = cand.first().map_or(0.0, |c| c.0);
-    let mut sinks: Vec<Sink> = Vec::new();
-    for &(d, q) in &cand {
-        if d < 0.5 * dmax || d < 0.5 * h {
-            break;
-        }
-        if sinks
-            .iter()
-            .all(|s| s.centre.dist(q) >= 2.5 * d.max(4.0 * s.radius))
-        {
-            sinks.push(Sink {
-                centre: q,
-                radius: 0.25 * d,
-            });
-            if sinks.len() >= 80 {
-                break;
-            }
-        }
-    }
-    // No grid point of V lies deeper than h/2 ≤ r from its boundary: the
-    // finishing loops' tool covers all of V, so the walls are the whole cut
-    // (nothing for the user to act on, so no warning).
-    if sinks.is_empty() {
-        return Ok((wall_paths(finish_all, label), 0.0));
-    }
-    let contours: Vec<crate::geometry::Contour> = oriented
-        .iter()
-        .filter_map(|l| {
-            let n = l.len();
-            crate::geometry::Contour::new(
-                (0..n)
-                    .map(|i| crate::geometry::Segment::Line {
-                        a: l[i],
-                        b: l[(i + 1) % n],
-                    })
-                    .collect(),
-            )
-            .ok()
-        })
-        .collect();
-    let is_counter = vec![false; contours.len()];
-    let centre = field::centroid(&contours, p.tol);
-    let b = Boundary {
-        contours,
-        is_counter,
-        centre,
-        radius: 20.0 * (hi - lo).norm().max(1.0),
-        flat_tol: p.tol,
-    };
-    let prep = Prepared::with_sinks(b, sinks.clone())?;
-    let n_total = field::setup::OUTER_CHARGES
-        + sinks.len() * field::setup::SINK_CHARGES
-        + (prep.perimeter() / (0.5 * p.stepover)).ceil().max(60.0) as usize;
-    let solved = field::solve_quick(
-        &prep,
-        Layout {
-            n_total,
-            distance: 1.0,
-            corner_clusters: false,
-            corner_fraction: 0.0,
-            pairs: false,
-        },
-    )?;
-    // Local expansions over the grid's box (docs/method.md §12).
-    let inv = &solved.solution.field.accelerated_around(lo, hi);
-    set_stage(Stage::InverseGrid);
-    let mut grid = Grid::sample(inv, lo, hi, h, &mask);
-    // Inside the sinks the sum is singular at the charges: pin the values to 0.
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
-            let q = Vec2::new(grid.origin.x + h * i as f64, grid.origin.y + h * j as f64);
-            if sinks.iter().any(|s| s.centre.dist(q) < 0.75 * s.radius) {
-                grid.values[j * grid.nx + i] = 0.0;
-            }
-        }
-    }
-    // 3. Rings, outermost first, by bisection on the value.
-    let target = 0.9 * p.stepover;
-    let mut rings: Vec<Vec<Vec<Vec2>>> = Vec::new();
-    let mut prev: Vec<Vec<Vec2>> = oriented.clone();
-    let mut c_prev = 1.0;
-    for _ in 0..400 {
-        let small = |set: &[Vec<Vec2>]| {
-            set.iter().all(|l| {
-                let n = l.len() as f64;
-                let cx = l.iter().fold(Vec2::ZERO, |a, &b| a + b) / n;
-                l.iter().all(|&q| q.dist(cx) <= 0.7 * r)
-            })
-        };
-        if small(&prev) && !rings.is_empty() {
-            break;
-        }
-        // A ring is usable when it keeps rw − tol/4 from the part everywhere (the
-        // field's error could carry a ring with c near 1 across ∂V).
-        let safe = |set: &[Vec<Vec2>]| {
-            set.iter().all(|l| {
-                let n = l.len();
-                (0..n).all(|i| {
-                    index.segment_distance(l[i], l[(i + 1) % n], 2.0 * r) >= rw - 0.25 * p.tol
-                })
-            })
-        };
-        let (mut a, mut bnd) = (0.0_f64, c_prev);
-        let prev_index = ring_index(&prev);
-        let mut best: Option<f64> = None;
-        // The safe ring with the smallest gap, for when none meets the target.
-        let mut fallback: Option<(f64, f64)> = None;
-        // Eight halvings place the value to 1/256 of the remaining range: the ring
-        // lands between 0.9 and about 1 stepover from the last, fine for clearing.
-        for _ in 0..8 {
-            let c = 0.5 * (a + bnd);
-            let set = isolines_linear(&grid, c);
-            if !safe(&set) {
-                bnd = c;
-                continue;
-            }
-            // The first ring is bounded one way (see `ring_gap`); between two inner
-            // rings both ways, so that no lobe of an outer ring is left behind.
-            let g = if rings.is_empty() {
-                ring_gap_from(prev_index.as_ref(), &set)
-            } else {
-                crate::num::max_or_nan(
-                    ring_gap_from(prev_index.as_ref(), &set),
-                    ring_gap(&set, &prev),
-                )
-            };
-            if g.is_nan() {
-                return Err(ProfileError::NotFinite(format!(
-                    "{label}: the distance between two clearing rings"
-                )));
-            }
-            if fallback.is_none_or(|f| g < f.1) {
-                fallback = Some((c, g));
-            }
-            if g <= target {
-                best = Some(c);
-                bnd = c;
-            } else {
-                a = c;
-            }
-            if bnd - a < 1e-6 {
-                break;
-            }
-        }
-        let mut c = match (best, fallback) {
-            (Some(c), _) => c,
-            // At most 1.25 stepovers ≤ 1.25 tool radii: a wider cut than
-            // asked, never a slot; nothing the user must act on.
-            (None, Some((c, g))) if g <= 1.25 * p.stepover => c,
-            // The rings stop here; what they leave is cleared by the
-            // spots below and measured by the coverage check, which warns
-            // (or fails the run) if the floor is not cleared.
-            (None, _) => break,
-        };
-        // The exact ring (vertices on the level by regula falsi) must be safe too;
-        // if not, step the value down until it is.
-        let mut exact: Vec<Vec<Vec2>> = Vec::new();
-        for _ in 0..20 {
-            exact = crate::field::isolines::isolines(&grid, c, inv, &mask[1..])
-                .into_iter()
-                .filter(|l| polygon_area(l).abs() > h * h)
-                .collect();
-            if safe(&exact) {
-                break;
-            }
-            exact.clear();
-            c *= 0.98;
-        }
-        if exact.is_empty() {
-            break;
-        }
-        let depth_in = exact
-            .iter()
-            .flatten()
-            .map(|&q| vindex.distance(q))
-            .fold(f64::INFINITY, f64::min);
-        prev = exact.clone();
-        c_prev = c;
-        rings.push(exact);
-        if band.is_some_and(|d| depth_in > d) {
-            break;
-        }
-        if c < 1e-4 {
-            break;
-        }
-    }
-    // Cutting order: innermost rings first, then outward, then the walls.
-    let mut paths = Vec::new();
-    for (k, set) in rings.iter().enumerate().rev() {
-        for l in set {
-            let mut pts = l.clone();
-            pts.push(pts[0]);
-            paths.push(CutPath {
-                label: format!("{label}: ring {}", k + 1),
-                points: pts,
-                closed: true,
-                ring: None,
-            });
-        }
-    }
-    if n_pockets2 > 0 {
-        for pts in inner_paths {
-            paths.push(CutPath {
-                label: format!("{label}: one stepover from the wall"),
-                points: pts,
-                closed: true,
-                ring: None,
-            });
-        }
-    }
-    paths.extend(wall_paths(finish_all, label));
-    cover_left(part, &index, &oriented, paths, p, band, label)
 }
 
 /// The region a cavity level's tool centre may go, from its closed wall
@@ -1000,7 +788,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
 /// oriented for the inverse problem and the coverage masks: pocket loops
 /// clockwise (outside the region on their left), island loops
 /// counter-clockwise; the closing point dropped.
-fn orient_v(loops: &[Vec<Vec2>], n_pockets: usize) -> Vec<Vec<Vec2>> {
+pub(super) fn orient_v(loops: &[Vec<Vec2>], n_pockets: usize) -> Vec<Vec<Vec2>> {
     loops
         .iter()
         .enumerate()
@@ -1018,7 +806,7 @@ fn orient_v(loops: &[Vec<Vec2>], n_pockets: usize) -> Vec<Vec<Vec2>> {
 /// A mask for `Grid::sample` that marks everything but the region V as
 /// material: a rectangle `pad` beyond V's box `lo`..`hi`, and V's loops
 /// (pocket loops clockwise, island loops counter-clockwise) cut from it.
-fn region_mask(v: &[Vec<Vec2>], lo: Vec2, hi: Vec2, pad: f64) -> Vec<Vec<Vec2>> {
+pub(super) fn region_mask(v: &[Vec<Vec2>], lo: Vec2, hi: Vec2, pad: f64) -> Vec<Vec<Vec2>> {
     let (a, b) = (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad));
     let mut mask = vec![vec![a, Vec2::new(b.x, a.y), b, Vec2::new(a.x, b.y)]];
     mask.extend(v.iter().cloned());
@@ -1029,7 +817,7 @@ fn region_mask(v: &[Vec<Vec2>], lo: Vec2, hi: Vec2, pad: f64) -> Vec<Vec<Vec2>> 
 /// leave. `v` is the region the tool centre may go (pocket loops clockwise,
 /// island loops counter-clockwise). Returns the paths, the spots' loops first,
 /// and the share of the reachable area still uncut.
-fn cover_left(
+pub(super) fn cover_left(
     part: &[Vec<Vec2>],
     index: &DistanceIndex,
     v: &[Vec<Vec2>],
