@@ -340,20 +340,8 @@ fn cmd_run(
     field_image: bool,
 ) -> Result<Done> {
     let job = load(path)?;
-    let files = pfcam::report::program_files(&job);
-    let target = out_dir.join(&files[0]);
-    let finish_target = files.get(1).map(|f| out_dir.join(f));
-    let svg_target = out_dir.join(format!("{}.svg", job.name));
-    let json_target = out_dir.join(format!("{}.json", job.name));
-    // Refuse before the (long) run, and again when writing.
-    for t in [&target, &svg_target, &json_target]
-        .into_iter()
-        .chain(finish_target.as_ref())
-    {
-        check_target(t, force)?;
-    }
-    check_writable(&target)?;
-
+    let targets = RunTargets::of(&job, out_dir);
+    targets.check(force)?;
     let mut progress = Reporter::new(quiet);
     let result = pipeline::run(&job, &mut |p| progress.event(p));
     let output = match result {
@@ -364,20 +352,106 @@ fn cmd_run(
         }
     };
     let report = RunReport::new(&job, &output);
+    let (svg, gcode) = draw_and_verify(path, &job, &output, &report, field_image, &mut progress)?;
+    let finish_gcode = match (&output.finish, job.finishing(), &targets.finish) {
+        (Some(f), Some(fj), Some(_)) => Some(finish_program(
+            path,
+            &job,
+            &fj,
+            f,
+            output.stock,
+            &report,
+            &gcode,
+        )?),
+        _ => None,
+    };
+    write_atomic(&targets.gcode, gcode.as_bytes(), force)?;
+    if let (Some(g), Some(t)) = (&finish_gcode, &targets.finish) {
+        write_atomic(t, g.as_bytes(), force)?;
+    }
+    write_atomic(&targets.svg, svg.as_bytes(), force)?;
+    write_atomic(&targets.json, report.to_json().as_bytes(), force)?;
+    if !quiet {
+        for w in &output.warnings {
+            note!("warning: {w}");
+        }
+        let mut s = summary(&job, &output, &report, out_dir);
+        s += &format!(
+            "\nwrote {} and {}\n{}",
+            targets.svg.display(),
+            targets.json.display(),
+            report.table()
+        );
+        stdout_line(&s)?;
+    }
+    Ok(Done {
+        name: job.name.clone(),
+        // As the G-code header counts them: the distinct depths cut (a
+        // profile's passes, a boss's or cavity's z-levels).
+        levels: pfcam::gcode::writer::levels(&output.toolpath).len(),
+        machining_s: report.programs.iter().map(|p| p.time_s).sum(),
+        warnings: output.warnings.len(),
+    })
+}
+
+/// The files `pfcam run` writes for a job in `DIR`: the G-code (the roughing
+/// program's with a finish), the finishing program's, the SVG and the JSON.
+struct RunTargets {
+    gcode: PathBuf,
+    finish: Option<PathBuf>,
+    svg: PathBuf,
+    json: PathBuf,
+}
+
+impl RunTargets {
+    /// The files of `job` in `out_dir`.
+    fn of(job: &Job, out_dir: &Path) -> RunTargets {
+        let files = pfcam::report::program_files(job);
+        RunTargets {
+            gcode: out_dir.join(&files[0]),
+            finish: files.get(1).map(|f| out_dir.join(f)),
+            svg: out_dir.join(format!("{}.svg", job.name)),
+            json: out_dir.join(format!("{}.json", job.name)),
+        }
+    }
+
+    /// Refuses a file pfcam did not write (without `force`) and an unwritable
+    /// directory, before the (long) run; writing checks again.
+    fn check(&self, force: bool) -> Result<()> {
+        for t in [&self.gcode, &self.svg, &self.json]
+            .into_iter()
+            .chain(self.finish.as_ref())
+        {
+            check_target(t, force)?;
+        }
+        check_writable(&self.gcode)?;
+        Ok(())
+    }
+}
+
+/// The preview and the G-code of a finished run, all in memory: the G-code
+/// within the machine's limits and simulated (`simulate::verify_program`)
+/// before any file is written; an error (nothing written) if it collides.
+fn draw_and_verify(
+    path: &Path,
+    job: &Job,
+    output: &RunOutput,
+    report: &RunReport,
+    field_image: bool,
+    progress: &mut Reporter,
+) -> Result<(String, String)> {
     progress.event(Progress::Stage {
         name: "drawing the preview".into(),
         total: 1,
     });
     let opts = PreviewOptions {
-        levels: pfcam::preview::levels_for(&job),
+        levels: pfcam::preview::levels_for(job),
         field_image,
         ..PreviewOptions::default()
     };
-    let svg = preview_svg(&job, &output, &report, &opts);
+    let svg = preview_svg(job, output, report, &opts);
     progress.event(Progress::Step);
-    // Everything is in memory: the G-code first, then its companions. Nothing
-    // is written when the program's own simulation finds a collision.
-    let gcode = write_gcode_on(&output.toolpath, &job, output.stock);
+    let gcode = write_gcode_on(&output.toolpath, job, output.stock);
     // The limits, before the program's own simulation and before any file.
     if let Ok(g) = &gcode {
         let time_s = report.programs.first().map_or(0.0, |p| p.time_s);
@@ -403,53 +477,32 @@ fn cmd_run(
             .map_err(|e| anyhow!(e))
             .with_context(|| format!("{}: nothing written", path.display()))?;
     }
-    // The finishing program, simulated with its own tool on the stock the
-    // roughing program leaves (as `pfcam simulate ROUGH FINISH` would).
-    let finish_gcode = match (&output.finish, job.finishing(), &finish_target) {
-        (Some(f), Some(fj), Some(_)) => {
-            let g = write_gcode_on(&f.toolpath, &fj, output.stock)?;
-            let time_s = report.programs.get(1).map_or(0.0, |p| p.time_s);
-            pfcam::estimate::check_program(time_s, g.len(), &job.machine)
-                .map_err(|e| anyhow!(e))
-                .with_context(|| format!("{}: nothing written", path.display()))?;
-            pfcam::simulate::verify_finish(&gcode, &g)
-                .context("simulating the finishing program")?
-                .map_err(|e| anyhow!(e))
-                .with_context(|| {
-                    format!("{}: the finishing program: nothing written", path.display())
-                })?;
-            Some(g)
-        }
-        _ => None,
-    };
-    write_atomic(&target, gcode.as_bytes(), force)?;
-    if let (Some(g), Some(t)) = (&finish_gcode, &finish_target) {
-        write_atomic(t, g.as_bytes(), force)?;
-    }
-    write_atomic(&svg_target, svg.as_bytes(), force)?;
-    write_atomic(&json_target, report.to_json().as_bytes(), force)?;
+    Ok((svg, gcode))
+}
 
-    if !quiet {
-        for w in &output.warnings {
-            note!("warning: {w}");
-        }
-        let mut s = summary(&job, &output, &report, out_dir);
-        s += &format!(
-            "\nwrote {} and {}\n{}",
-            svg_target.display(),
-            json_target.display(),
-            report.table()
-        );
-        stdout_line(&s)?;
-    }
-    Ok(Done {
-        name: job.name.clone(),
-        // As the G-code header counts them: the distinct depths cut (a
-        // profile's passes, a boss's or cavity's z-levels).
-        levels: pfcam::gcode::writer::levels(&output.toolpath).len(),
-        machining_s: report.programs.iter().map(|p| p.time_s).sum(),
-        warnings: output.warnings.len(),
-    })
+/// The finishing program `finish` of `job` (its tool's job `fj`) on the
+/// run's `stock`, within the machine's limits and simulated with its own tool
+/// on the stock the roughing program `rough` leaves (as `pfcam simulate
+/// ROUGH FINISH` would).
+fn finish_program(
+    path: &Path,
+    job: &Job,
+    fj: &Job,
+    finish: &pfcam::finish::Finished,
+    stock: Option<(pfcam::geometry::Vec2, pfcam::geometry::Vec2)>,
+    report: &RunReport,
+    rough: &str,
+) -> Result<String> {
+    let g = write_gcode_on(&finish.toolpath, fj, stock)?;
+    let time_s = report.programs.get(1).map_or(0.0, |p| p.time_s);
+    pfcam::estimate::check_program(time_s, g.len(), &job.machine)
+        .map_err(|e| anyhow!(e))
+        .with_context(|| format!("{}: nothing written", path.display()))?;
+    pfcam::simulate::verify_finish(rough, &g)
+        .context("simulating the finishing program")?
+        .map_err(|e| anyhow!(e))
+        .with_context(|| format!("{}: the finishing program: nothing written", path.display()))?;
+    Ok(g)
 }
 
 /// Run a job for a command that writes one file derived from the run.

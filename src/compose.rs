@@ -433,6 +433,22 @@ pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, 
     ))
 }
 
+/// A part's boundary loops (material on their left) as contours, each with
+/// whether it bounds a hole (clockwise: negative area).
+fn loop_contours(
+    name: &str,
+    loops: &[Vec<Vec2>],
+) -> Result<(Vec<Contour>, Vec<bool>), ComposeError> {
+    let mut cs = Vec::new();
+    let mut flags = Vec::new();
+    for l in loops {
+        let c = Contour::polygon(l).map_err(|_| part_err(name, "a curve could not be closed"))?;
+        flags.push(polygon_area(l) < 0.0);
+        cs.push(c);
+    }
+    Ok((cs, flags))
+}
+
 /// A new primitive from closed polygons with the material on their left: the
 /// loops around material (counter-clockwise) are outlines, the others counters.
 fn from_loops(
@@ -443,13 +459,7 @@ fn from_loops(
     n: Option<usize>,
     label: String,
 ) -> Result<(Model, PartReport), ComposeError> {
-    let mut cs = Vec::new();
-    let mut flags = Vec::new();
-    for l in &loops {
-        let c = Contour::polygon(l).map_err(|_| part_err(name, "a curve could not be closed"))?;
-        flags.push(polygon_area(l) < 0.0);
-        cs.push(c);
-    }
+    let (cs, flags) = loop_contours(name, &loops)?;
     let csg = Csg::Leaf {
         polys: loops,
         complement: !bounded,
@@ -466,95 +476,11 @@ pub fn combine(
     frame: &Frame,
 ) -> Result<(Model, PartReport), ComposeError> {
     let t0 = Instant::now();
-    let (csg, outer) = match op {
-        BoolOp::Union => (
-            Csg::Or(Box::new(a.csg.clone()), Box::new(b.csg.clone())),
-            if a.bounded() && b.bounded() {
-                a.set.outer.clone()
-            } else {
-                None
-            },
-        ),
-        BoolOp::Intersect => (
-            Csg::And(Box::new(a.csg.clone()), Box::new(b.csg.clone())),
-            a.set.outer.clone().or_else(|| b.set.outer.clone()),
-        ),
-        _ => return Err(part_err(name, "combine takes union or intersect")),
-    };
-    // Points of each operand on the result's boundary: a union's outside the
-    // other operand, an intersection's inside it.
-    let on_boundary = |other: &Model, p: Vec2| match op {
-        BoolOp::Intersect => other.csg.contains(p),
-        _ => !other.csg.contains(p),
-    };
-    let mut material = Problem::default();
+    let (csg, outer) = combined_csg(name, a, b, op)?;
+    let (mut material, edges) = boundary_points(a, b, op);
     let mut interior = Vec::new();
-    let mut edges: Vec<Vec<Vec2>> = Vec::new();
-    for (me, other) in [(a, b), (b, a)] {
-        let m = &me.set.material;
-        let kept: Vec<_> = m
-            .colloc
-            .iter()
-            .copied()
-            .filter(|c| on_boundary(other, c.p))
-            .collect();
-        edges.push(kept.iter().map(|c| c.p).collect());
-        material.colloc.extend(kept);
-        material
-            .checks
-            .extend(m.checks.iter().copied().filter(|c| on_boundary(other, c.p)));
-    }
-    let nearest =
-        |q: Vec2, pts: &[Vec2]| pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min);
     for (k, (me, other)) in [(a, b), (b, a)].into_iter().enumerate() {
-        let edge = &edges[1 - k];
-        let own: Vec<Vec2> = me.set.material.colloc.iter().map(|c| c.p).collect();
-        // Singularities: a union keeps all (each lies in its operand's
-        // material), an intersection those inside the other operand; but one
-        // nearer to the other operand's piece of the result's boundary than
-        // half its distance to its own boundary would sit almost on the new
-        // boundary, and is dropped.
-        material
-            .charges
-            .extend(me.set.material.charges.iter().copied().filter(|&q| {
-                let keep = match op {
-                    BoolOp::Intersect => other.csg.contains(q),
-                    _ => true,
-                };
-                keep && nearest(q, edge) >= 0.5 * nearest(q, &own)
-            }));
-        // Points inside the material: the paper's union keeps the points of
-        // each operand inside the other (u = 1 there); they and those carried
-        // from earlier unions stay while inside the result.
-        if op == BoolOp::Union {
-            interior.extend(
-                me.set
-                    .material
-                    .colloc
-                    .iter()
-                    .map(|c| c.p)
-                    .filter(|&p| other.csg.contains(p)),
-            );
-        }
-        // An interior point of u = 1 next to a piece of boundary that this
-        // intersection or subtraction creates would contradict the field
-        // rising above 1 into the material there (the Q's tail m5 inside the
-        // ring, next to the counter m3: a max error of 7.8e-3 with them). Those
-        // nearer to the other operand's piece of the result's boundary than
-        // twice the operand's typical singularity distance are dropped. (Near
-        // the old boundary, at a union's notch, they stay: there u − 1 ~ r² is
-        // flat and they agree with it.)
-        let typical = {
-            let mut ds: Vec<f64> = own
-                .iter()
-                .map(|&p| nearest(p, &me.set.material.charges))
-                .collect();
-            ds.sort_by(f64::total_cmp);
-            ds.get(ds.len() / 2).copied().unwrap_or(0.0)
-        };
-        interior.extend(me.set.interior.iter().copied().filter(|&p| {
-            op == BoolOp::Union || (other.csg.contains(p) && nearest(p, edge) >= 2.0 * typical)
-        }));
+        carry_operand(me, other, &edges[1 - k], op, &mut material, &mut interior);
     }
     if material.colloc.is_empty() || material.charges.is_empty() {
         return Err(part_err(
@@ -566,37 +492,7 @@ pub fn combine(
         ));
     }
     add_crossing_clusters(&mut material, a, b, &csg, frame);
-    // A sink stays only in a hole of the result: in its void, and shut in by
-    // its material. A sink of B where B sticks out of A (A − B opens onto the
-    // outside there) would put u = 0 in the void that belongs to the outer
-    // circle (measured on two rectangles: max error 6.1e-3 with it, 5.8e-4
-    // without).
-    let pts: Vec<Vec2> = material.colloc.iter().map(|c| c.p).collect();
-    let (lo, hi) = polygons_bbox(&[pts]).unwrap_or((Vec2::ZERO, Vec2::ZERO));
-    let reach = (hi - lo).norm();
-    let enclosed = |c: Vec2| {
-        let step = 1e-3 * frame.size;
-        (0..32).all(|k| {
-            let t = std::f64::consts::TAU * k as f64 / 32.0;
-            let d = Vec2::new(t.cos(), t.sin());
-            let mut r = 0.0;
-            while r < reach {
-                r += step;
-                if csg.contains(c + d * r) {
-                    return true;
-                }
-            }
-            false
-        })
-    };
-    let sinks: Vec<(Sink, Problem)> = a
-        .set
-        .sinks
-        .iter()
-        .chain(&b.set.sinks)
-        .filter(|(s, _)| !csg.contains(s.centre) && enclosed(s.centre))
-        .cloned()
-        .collect();
+    let sinks = enclosed_sinks(a, b, &material, &csg, frame);
     let set = PointSet {
         material,
         interior,
@@ -615,12 +511,7 @@ pub fn combine(
         csg,
     };
     let loops = boundary_curve(&model, frame)?;
-    for l in &loops {
-        model
-            .contours
-            .push(Contour::polygon(l).map_err(|_| part_err(name, "a curve could not be closed"))?);
-        model.is_counter.push(polygon_area(l) < 0.0);
-    }
+    (model.contours, model.is_counter) = loop_contours(name, &loops)?;
     let label = match op {
         BoolOp::Union => format!("{name} = {} ∪ {}", a.name, b.name),
         _ => format!("{name} = {} ∩ {}", a.name, b.name),
@@ -634,6 +525,164 @@ pub fn combine(
         seconds: t0.elapsed().as_secs_f64(),
     };
     Ok((model, report))
+}
+
+/// The exact membership of `a` op `b` and the result's outer circle: a
+/// union's only if both operands are bounded, an intersection's if either is.
+fn combined_csg(
+    name: &str,
+    a: &Model,
+    b: &Model,
+    op: BoolOp,
+) -> Result<(Csg, Option<Problem>), ComposeError> {
+    Ok(match op {
+        BoolOp::Union => (
+            Csg::Or(Box::new(a.csg.clone()), Box::new(b.csg.clone())),
+            if a.bounded() && b.bounded() {
+                a.set.outer.clone()
+            } else {
+                None
+            },
+        ),
+        BoolOp::Intersect => (
+            Csg::And(Box::new(a.csg.clone()), Box::new(b.csg.clone())),
+            a.set.outer.clone().or_else(|| b.set.outer.clone()),
+        ),
+        _ => return Err(part_err(name, "combine takes union or intersect")),
+    })
+}
+
+/// The collocation and check points of each operand that lie on the result's
+/// boundary (a union's outside the other operand, an intersection's inside
+/// it), as a problem without charges; and each operand's piece of the
+/// boundary (`a`'s first).
+fn boundary_points(a: &Model, b: &Model, op: BoolOp) -> (Problem, Vec<Vec<Vec2>>) {
+    let on_boundary = |other: &Model, p: Vec2| match op {
+        BoolOp::Intersect => other.csg.contains(p),
+        _ => !other.csg.contains(p),
+    };
+    let mut material = Problem::default();
+    let mut edges: Vec<Vec<Vec2>> = Vec::new();
+    for (me, other) in [(a, b), (b, a)] {
+        let m = &me.set.material;
+        let kept: Vec<_> = m
+            .colloc
+            .iter()
+            .copied()
+            .filter(|c| on_boundary(other, c.p))
+            .collect();
+        edges.push(kept.iter().map(|c| c.p).collect());
+        material.colloc.extend(kept);
+        material
+            .checks
+            .extend(m.checks.iter().copied().filter(|c| on_boundary(other, c.p)));
+    }
+    (material, edges)
+}
+
+/// Distance from `q` to the nearest of `pts` (∞ for none).
+fn nearest(q: Vec2, pts: &[Vec2]) -> f64 {
+    pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min)
+}
+
+/// Adds to the result the singularities of operand `me` (combined with
+/// `other` by `op`) that it keeps, and its points inside the material;
+/// `edge` is `other`'s piece of the result's boundary.
+fn carry_operand(
+    me: &Model,
+    other: &Model,
+    edge: &[Vec2],
+    op: BoolOp,
+    material: &mut Problem,
+    interior: &mut Vec<Vec2>,
+) {
+    let own: Vec<Vec2> = me.set.material.colloc.iter().map(|c| c.p).collect();
+    // Singularities: a union keeps all (each lies in its operand's
+    // material), an intersection those inside the other operand; but one
+    // nearer to the other operand's piece of the result's boundary than
+    // half its distance to its own boundary would sit almost on the new
+    // boundary, and is dropped.
+    material
+        .charges
+        .extend(me.set.material.charges.iter().copied().filter(|&q| {
+            let keep = match op {
+                BoolOp::Intersect => other.csg.contains(q),
+                _ => true,
+            };
+            keep && nearest(q, edge) >= 0.5 * nearest(q, &own)
+        }));
+    // Points inside the material: the paper's union keeps the points of
+    // each operand inside the other (u = 1 there); they and those carried
+    // from earlier unions stay while inside the result.
+    if op == BoolOp::Union {
+        interior.extend(
+            me.set
+                .material
+                .colloc
+                .iter()
+                .map(|c| c.p)
+                .filter(|&p| other.csg.contains(p)),
+        );
+    }
+    // An interior point of u = 1 next to a piece of boundary that this
+    // intersection or subtraction creates would contradict the field
+    // rising above 1 into the material there (the Q's tail m5 inside the
+    // ring, next to the counter m3: a max error of 7.8e-3 with them). Those
+    // nearer to the other operand's piece of the result's boundary than
+    // twice the operand's typical singularity distance are dropped. (Near
+    // the old boundary, at a union's notch, they stay: there u − 1 ~ r² is
+    // flat and they agree with it.)
+    let typical = {
+        let mut ds: Vec<f64> = own
+            .iter()
+            .map(|&p| nearest(p, &me.set.material.charges))
+            .collect();
+        ds.sort_by(f64::total_cmp);
+        ds.get(ds.len() / 2).copied().unwrap_or(0.0)
+    };
+    interior.extend(me.set.interior.iter().copied().filter(|&p| {
+        op == BoolOp::Union || (other.csg.contains(p) && nearest(p, edge) >= 2.0 * typical)
+    }));
+}
+
+/// The operands' sinks that stay: only those in a hole of the result, in its
+/// void and shut in by its material (`csg`) in each of 32 directions within
+/// the reach of the result's boundary points. A sink of B where B sticks out
+/// of A (A − B opens onto the outside there) would put u = 0 in the void that
+/// belongs to the outer circle (measured on two rectangles: max error 6.1e-3
+/// with it, 5.8e-4 without).
+fn enclosed_sinks(
+    a: &Model,
+    b: &Model,
+    material: &Problem,
+    csg: &Csg,
+    frame: &Frame,
+) -> Vec<(Sink, Problem)> {
+    let pts: Vec<Vec2> = material.colloc.iter().map(|c| c.p).collect();
+    let (lo, hi) = polygons_bbox(&[pts]).unwrap_or((Vec2::ZERO, Vec2::ZERO));
+    let reach = (hi - lo).norm();
+    let enclosed = |c: Vec2| {
+        let step = 1e-3 * frame.size;
+        (0..32).all(|k| {
+            let t = std::f64::consts::TAU * k as f64 / 32.0;
+            let d = Vec2::new(t.cos(), t.sin());
+            let mut r = 0.0;
+            while r < reach {
+                r += step;
+                if csg.contains(c + d * r) {
+                    return true;
+                }
+            }
+            false
+        })
+    };
+    a.set
+        .sinks
+        .iter()
+        .chain(&b.set.sinks)
+        .filter(|(s, _)| !csg.contains(s.centre) && enclosed(s.centre))
+        .cloned()
+        .collect()
 }
 
 /// Singularities clustered at each crossing of the operands' boundaries that is a
@@ -918,7 +967,39 @@ pub fn build(
     comp: &Composition,
     on_part: &mut dyn FnMut(usize, usize),
 ) -> Result<Built, ComposeError> {
-    // The frame from every primitive's box.
+    let (mut prims, frame) = primitives_and_frame(comp)?;
+    let mut models: HashMap<String, Model> = HashMap::new();
+    let mut reports = Vec::new();
+    let total = comp.parts.len();
+    for (k, part) in comp.parts.iter().enumerate() {
+        let prim = prims.remove(part.name.as_str());
+        let base = part_base(part, prim, &models, &frame, &mut reports)?;
+        let model = at_level(part, base, &frame, &mut reports)?;
+        models.insert(part.name.clone(), model);
+        on_part(k + 1, total);
+    }
+    let model = model_of(&models, &comp.result, &comp.result)?;
+    if !model.bounded() {
+        return Err(part_err(
+            &comp.result,
+            "the result is unbounded (the void of a part); use it inside subtract or intersect",
+        ));
+    }
+    let (shape, scale) = place(comp, &model, &frame)?;
+    Ok(Built {
+        shape,
+        model,
+        reports,
+        frame,
+        scale,
+    })
+}
+
+/// Every primitive part's contours by name, and the frame from their
+/// bounding box.
+fn primitives_and_frame(
+    comp: &Composition,
+) -> Result<(HashMap<&str, Vec<Contour>>, Frame), ComposeError> {
     let mut prims: HashMap<&str, Vec<Contour>> = HashMap::new();
     let mut all: Vec<Vec<Vec2>> = Vec::new();
     for p in &comp.parts {
@@ -936,111 +1017,132 @@ pub fn build(
             "the composition has no primitive (polygon, svg or text)",
         )
     })?;
-    let frame = Frame::around(lo, hi);
-    let mut models: HashMap<String, Model> = HashMap::new();
-    let mut reports = Vec::new();
-    let get =
-        |models: &HashMap<String, Model>, of: &str, who: &str| -> Result<Model, ComposeError> {
-            models.get(of).cloned().ok_or_else(|| {
-                part_err(
-                    who,
-                    format!("refers to \"{of}\", which is not defined before it"),
-                )
-            })
-        };
-    let total = comp.parts.len();
-    for (k, part) in comp.parts.iter().enumerate() {
-        let name = part.name.as_str();
-        let mut base: Option<Model> = None;
-        if let Some(cs) = prims.remove(name) {
-            let (m, r) = primitive(name, cs, &frame, part.singularities)?;
-            reports.push(r);
-            base = Some(m);
+    Ok((prims, Frame::around(lo, hi)))
+}
+
+/// The model of the part named `of`, which part `who` refers to: an error
+/// if it is not defined yet.
+fn model_of(models: &HashMap<String, Model>, of: &str, who: &str) -> Result<Model, ComposeError> {
+    models.get(of).cloned().ok_or_else(|| {
+        part_err(
+            who,
+            format!("refers to \"{of}\", which is not defined before it"),
+        )
+    })
+}
+
+/// A part's model before its `level`: its primitive (`prim`, solved here),
+/// the part it refers to, or its operation on earlier parts. Each solve's
+/// report goes to `reports`.
+fn part_base(
+    part: &Part,
+    prim: Option<Vec<Contour>>,
+    models: &HashMap<String, Model>,
+    frame: &Frame,
+    reports: &mut Vec<PartReport>,
+) -> Result<Model, ComposeError> {
+    let name = part.name.as_str();
+    if let Some(cs) = prim {
+        let (m, r) = primitive(name, cs, frame, part.singularities)?;
+        reports.push(r);
+        return Ok(m);
+    }
+    match &part.source {
+        PartSource::Ref(of) => {
+            let mut m = model_of(models, of, name)?;
+            m.name = name.to_string();
+            Ok(m)
         }
-        let base = match (&part.source, base) {
-            (_, Some(m)) => m,
-            (PartSource::Ref(of), None) => {
-                let mut m = get(&models, of, name)?;
-                m.name = name.to_string();
-                m
-            }
-            (PartSource::Op { op, of }, None) => {
-                let first = of
-                    .first()
-                    .ok_or_else(|| part_err(name, "an operation needs operands"))?;
-                let mut acc = get(&models, first, name)?;
-                match op {
-                    BoolOp::Invert => {
-                        if of.len() != 1 {
-                            return Err(part_err(name, "invert takes exactly one part"));
-                        }
-                        let (m, r) = invert(name, &acc, &frame, part.singularities)?;
-                        reports.push(r);
-                        acc = m;
-                    }
-                    BoolOp::Union | BoolOp::Intersect | BoolOp::Subtract => {
-                        if of.len() < 2 {
-                            return Err(part_err(name, "this operation needs at least two parts"));
-                        }
-                        for other in &of[1..] {
-                            let b = get(&models, other, name)?;
-                            let (b, kind) = if *op == BoolOp::Subtract {
-                                let iname = format!("{name}: void of {other}");
-                                let (inv, r) = invert(&iname, &b, &frame, None)?;
-                                reports.push(r);
-                                (inv, BoolOp::Intersect)
-                            } else {
-                                (b, *op)
-                            };
-                            let (m, mut r) = combine(name, &acc, &b, kind, &frame)?;
-                            if *op == BoolOp::Subtract {
-                                r.label = format!("{name} = {} − {other}", acc.name);
-                            }
-                            reports.push(r);
-                            acc = m;
-                        }
-                    }
-                }
-                acc.name = name.to_string();
-                acc
-            }
-            _ => {
-                return Err(part_err(
-                    name,
-                    "is neither a primitive nor made of other parts",
-                ))
-            }
-        };
-        let model = match part.level {
-            Some(s) => {
-                let loops = level_curves(&base, s, &frame)?;
-                let (m, r) = from_loops(
-                    name,
-                    loops,
-                    base.bounded(),
-                    &frame,
-                    part.singularities,
-                    match &part.source {
-                        PartSource::Ref(of) => format!("{name} = Γ({s:?}) of {of}"),
-                        _ => format!("{name} = Γ({s:?}) of its field"),
-                    },
-                )?;
-                reports.push(r);
-                m
-            }
-            None => base,
-        };
-        models.insert(name.to_string(), model);
-        on_part(k + 1, total);
+        PartSource::Op { op, of } => {
+            let mut acc = operate(part, *op, of, models, frame, reports)?;
+            acc.name = name.to_string();
+            Ok(acc)
+        }
+        _ => Err(part_err(
+            name,
+            "is neither a primitive nor made of other parts",
+        )),
     }
-    let model = get(&models, &comp.result, &comp.result)?;
-    if !model.bounded() {
-        return Err(part_err(
-            &comp.result,
-            "the result is unbounded (the void of a part); use it inside subtract or intersect",
-        ));
+}
+
+/// Operation `op` of `part` on the earlier parts `of`, left to right: invert
+/// one part; or union, intersect or subtract each further part (subtraction
+/// being intersection with the inverse problem of the part taken away).
+fn operate(
+    part: &Part,
+    op: BoolOp,
+    of: &[String],
+    models: &HashMap<String, Model>,
+    frame: &Frame,
+    reports: &mut Vec<PartReport>,
+) -> Result<Model, ComposeError> {
+    let name = part.name.as_str();
+    let first = of
+        .first()
+        .ok_or_else(|| part_err(name, "an operation needs operands"))?;
+    let mut acc = model_of(models, first, name)?;
+    if op == BoolOp::Invert {
+        if of.len() != 1 {
+            return Err(part_err(name, "invert takes exactly one part"));
+        }
+        let (m, r) = invert(name, &acc, frame, part.singularities)?;
+        reports.push(r);
+        return Ok(m);
     }
-    // Place: the box's lower-left at `origin`, scaled to `height`.
+    if of.len() < 2 {
+        return Err(part_err(name, "this operation needs at least two parts"));
+    }
+    for other in &of[1..] {
+        let b = model_of(models, other, name)?;
+        let (b, kind) = if op == BoolOp::Subtract {
+            let iname = format!("{name}: void of {other}");
+            let (inv, r) = invert(&iname, &b, frame, None)?;
+            reports.push(r);
+            (inv, BoolOp::Intersect)
+        } else {
+            (b, op)
+        };
+        let (m, mut r) = combine(name, &acc, &b, kind, frame)?;
+        if op == BoolOp::Subtract {
+            r.label = format!("{name} = {} − {other}", acc.name);
+        }
+        reports.push(r);
+        acc = m;
+    }
+    Ok(acc)
+}
+
+/// A part with a `level` s is the equipotential Γ(s) of its base, solved
+/// afresh as a new boundary; without one, the base itself.
+fn at_level(
+    part: &Part,
+    base: Model,
+    frame: &Frame,
+    reports: &mut Vec<PartReport>,
+) -> Result<Model, ComposeError> {
+    let Some(s) = part.level else {
+        return Ok(base);
+    };
+    let name = part.name.as_str();
+    let loops = level_curves(&base, s, frame)?;
+    let (m, r) = from_loops(
+        name,
+        loops,
+        base.bounded(),
+        frame,
+        part.singularities,
+        match &part.source {
+            PartSource::Ref(of) => format!("{name} = Γ({s:?}) of {of}"),
+            _ => format!("{name} = Γ({s:?}) of its field"),
+        },
+    )?;
+    reports.push(r);
+    Ok(m)
+}
+
+/// The result placed in mm: its box's lower-left at `comp.origin`, scaled to
+/// `comp.height` (else 1:1); and the scale.
+fn place(comp: &Composition, model: &Model, frame: &Frame) -> Result<(Shape, f64), ComposeError> {
     let polys = model.polygons(frame.flat_tol());
     let (lo, hi) = polygons_bbox(&polys).ok_or_else(|| part_err(&comp.result, "empty"))?;
     let scale = match comp.height {
@@ -1057,11 +1159,5 @@ pub fn build(
     if regions.is_empty() {
         return Err(part_err(&comp.result, "the result encloses no area"));
     }
-    Ok(Built {
-        shape: Shape { regions },
-        model,
-        reports,
-        frame,
-        scale,
-    })
+    Ok((Shape { regions }, scale))
 }

@@ -342,96 +342,14 @@ fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }
 
-impl RunReport {
-    /// The report of a finished run.
-    pub fn new(job: &Job, out: &RunOutput) -> RunReport {
-        let radius = job.tool.diameter / 2.0;
-        let top = job.stock.top;
-        let polys: Vec<Vec<_>> = out
-            .shape
-            .contours()
-            .map(|c| c.flatten(job.operation.tolerance * FLATTEN_FRACTION))
-            .collect();
-        let part = DistanceIndex::new(&polys);
-        // A boss or cavity: one section per level, with its own field, and the
-        // gouge check already run against that level's Γ(s_k) by the pipeline.
-        let level_reports: Vec<LevelReport> = out
-            .toolpath
-            .sections
-            .iter()
-            .zip(&out.levels)
-            .map(|(sec, li)| {
-                let one = Toolpath {
-                    start: out.toolpath.start,
-                    sections: vec![sec.clone()],
-                };
-                let st = one.stats(job.machine.rapid_rate);
-                let feed_time = {
-                    let mut t = 0.0;
-                    let mut at = one.start;
-                    for m in &sec.moves {
-                        t += feed_length_time(at, m).1;
-                        at = m.to();
-                    }
-                    t
-                };
-                LevelReport {
-                    z: li.z,
-                    s: li.s,
-                    n: li.n,
-                    max_boundary_error: li.max_error,
-                    path_length_mm: st.cut_length,
-                    min_clearance_mm: finite(li.min_clearance),
-                    time_s: feed_time,
-                    uncut_share: li.uncut,
-                }
-            })
-            .collect();
-        let levels = if !out.levels.is_empty() {
-            level_reports
-        } else {
-            split_levels(&out.toolpath)
-                .into_iter()
-                .map(|lv| {
-                    let (mut len, mut time) = (0.0, 0.0);
-                    let mut moves = Vec::with_capacity(2 * lv.moves.len());
-                    for (from, m) in &lv.moves {
-                        let (l, t) = feed_length_time(*from, m);
-                        len += l;
-                        time += t;
-                        // A rapid to the start point makes each move checkable alone
-                        // (the gouge check skips rapids).
-                        moves.push(Move::Rapid { to: *from });
-                        moves.push(*m);
-                    }
-                    let sub = Toolpath {
-                        start: lv.moves.first().map(|(f, _)| *f).unwrap_or_default(),
-                        sections: vec![Section {
-                            label: String::new(),
-                            z: lv.z,
-                            moves,
-                        }],
-                    };
-                    let g = gouge::check(&sub, &part, radius, top);
-                    let (s, n, max_err) = level_field(out, lv.z);
-                    LevelReport {
-                        z: lv.z,
-                        s,
-                        n,
-                        max_boundary_error: max_err,
-                        path_length_mm: len,
-                        min_clearance_mm: (g.moves_checked > 0)
-                            .then_some(g.min_clearance)
-                            .and_then(finite),
-                        time_s: time,
-                        uncut_share: None,
-                    }
-                })
-                .collect::<Vec<_>>()
-        };
+impl Totals {
+    /// The run's totals over its `levels` levels: lengths and time of the
+    /// whole tool path, its least clearance, the worst boundary error of any
+    /// solve (NaN if any is NaN or there is none) and the fallbacks.
+    fn new(job: &Job, out: &RunOutput, levels: usize) -> Totals {
         let st = out.toolpath.stats(job.machine.rapid_rate);
-        let totals = Totals {
-            levels: levels.len(),
+        Totals {
+            levels,
             cut_length_mm: st.cut_length,
             rapid_length_mm: st.rapid_length,
             time_s: st.time_s,
@@ -443,7 +361,107 @@ impl RunReport {
                 .reduce(crate::num::max_or_nan)
                 .unwrap_or(f64::NAN),
             fallbacks: out.fallbacks,
+        }
+    }
+}
+
+/// A boss's or cavity's levels: one section per level, with its own field,
+/// and the gouge check already run against that level's Γ(s_k) by the
+/// pipeline. Time is the feed moves' only.
+fn planned_levels(job: &Job, out: &RunOutput) -> Vec<LevelReport> {
+    out.toolpath
+        .sections
+        .iter()
+        .zip(&out.levels)
+        .map(|(sec, li)| {
+            let one = Toolpath {
+                start: out.toolpath.start,
+                sections: vec![sec.clone()],
+            };
+            let st = one.stats(job.machine.rapid_rate);
+            let feed_time = {
+                let mut t = 0.0;
+                let mut at = one.start;
+                for m in &sec.moves {
+                    t += feed_length_time(at, m).1;
+                    at = m.to();
+                }
+                t
+            };
+            LevelReport {
+                z: li.z,
+                s: li.s,
+                n: li.n,
+                max_boundary_error: li.max_error,
+                path_length_mm: st.cut_length,
+                min_clearance_mm: finite(li.min_clearance),
+                time_s: feed_time,
+                uncut_share: li.uncut,
+            }
+        })
+        .collect()
+}
+
+/// A profile's levels ([`split_levels`]), each gouge-checked here against
+/// the part (flattened as the pipeline flattens it), with the shape's field.
+fn profile_levels(job: &Job, out: &RunOutput) -> Vec<LevelReport> {
+    let radius = job.tool.diameter / 2.0;
+    let top = job.stock.top;
+    let polys: Vec<Vec<_>> = out
+        .shape
+        .contours()
+        .map(|c| c.flatten(job.operation.tolerance * FLATTEN_FRACTION))
+        .collect();
+    let part = DistanceIndex::new(&polys);
+    split_levels(&out.toolpath)
+        .into_iter()
+        .map(|lv| {
+            let (mut len, mut time) = (0.0, 0.0);
+            let mut moves = Vec::with_capacity(2 * lv.moves.len());
+            for (from, m) in &lv.moves {
+                let (l, t) = feed_length_time(*from, m);
+                len += l;
+                time += t;
+                // A rapid to the start point makes each move checkable alone
+                // (the gouge check skips rapids).
+                moves.push(Move::Rapid { to: *from });
+                moves.push(*m);
+            }
+            let sub = Toolpath {
+                start: lv.moves.first().map(|(f, _)| *f).unwrap_or_default(),
+                sections: vec![Section {
+                    label: String::new(),
+                    z: lv.z,
+                    moves,
+                }],
+            };
+            let g = gouge::check(&sub, &part, radius, top);
+            let (s, n, max_err) = level_field(out, lv.z);
+            LevelReport {
+                z: lv.z,
+                s,
+                n,
+                max_boundary_error: max_err,
+                path_length_mm: len,
+                min_clearance_mm: (g.moves_checked > 0)
+                    .then_some(g.min_clearance)
+                    .and_then(finite),
+                time_s: time,
+                uncut_share: None,
+            }
+        })
+        .collect()
+}
+
+impl RunReport {
+    /// The report of a finished run.
+    pub fn new(job: &Job, out: &RunOutput) -> RunReport {
+        let levels = if !out.levels.is_empty() {
+            planned_levels(job, out)
+        } else {
+            profile_levels(job, out)
         };
+        let totals = Totals::new(job, out, levels.len());
         RunReport {
             generator: generator(),
             job: job.name.clone(),

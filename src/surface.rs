@@ -573,94 +573,96 @@ fn band(levels: &[f64], v: f64) -> usize {
     levels.partition_point(|&s| s <= v)
 }
 
-/// Build the closed mesh of the part: stock rectangle, grid, level crossings,
-/// isobands, walls and bottom. Steps are reported through `progress`.
-pub fn build(
-    sj: &SurfaceJob,
-    opts: &SurfaceOptions,
-    progress: &mut dyn FnMut(Progress),
-) -> Result<Surface, SurfaceError> {
-    let res = opts.resolution;
-    if !(res > 0.0 && res.is_finite()) {
-        return Err(SurfaceError::Invalid(format!(
-            "the resolution must be a positive number of mm, got {res}"
-        )));
-    }
-    progress(Progress::Stage {
-        name: "finding the stock".into(),
-        total: 1,
-    });
-    let (slo, shi) = stock_rectangle(sj)?;
-    progress(Progress::Step);
-    let levels = level_values(sj.profile);
-    let level_z: Vec<f64> = levels.iter().map(|&s| sj.z_of(s)).collect();
+/// The grid over the stock rectangle, and u sampled on it.
+struct StockGrid {
+    /// x of the grid columns, mm: the stock's left edge to its right edge.
+    xs: Vec<f64>,
+    /// y of the grid rows, mm: the stock's front edge to its back edge.
+    ys: Vec<f64>,
+    /// Grid points in x.
+    nx: usize,
+    /// Grid points in y.
+    ny: usize,
+    /// Whether each point (index j·nx + i) lies in the material.
+    inside: Vec<bool>,
+    /// u at each point, the material pinned to 1, the rest at most `ONE_BELOW`.
+    values: Vec<f64>,
+}
 
-    // The grid: the stock rectangle exactly, spacing at most `res`.
-    let (w, h) = (shi.x - slo.x, shi.y - slo.y);
-    let cx = (w / res).ceil().max(1.0);
-    let cy = (h / res).ceil().max(1.0);
-    if (cx + 1.0) * (cy + 1.0) > MAX_GRID_POINTS as f64 {
-        return Err(SurfaceError::Invalid(format!(
-            "a {res} mm grid over the {w:.1} × {h:.1} mm stock has more than {MAX_GRID_POINTS} points; choose a coarser --resolution"
-        )));
+impl StockGrid {
+    /// The grid over exactly the rectangle `slo`–`shi`, spacing at most `res`
+    /// mm in each direction (so x and y spacings may differ), not yet sampled.
+    fn over(slo: Vec2, shi: Vec2, res: f64) -> Result<StockGrid, SurfaceError> {
+        let (w, h) = (shi.x - slo.x, shi.y - slo.y);
+        let cx = (w / res).ceil().max(1.0);
+        let cy = (h / res).ceil().max(1.0);
+        if (cx + 1.0) * (cy + 1.0) > MAX_GRID_POINTS as f64 {
+            return Err(SurfaceError::Invalid(format!(
+                "a {res} mm grid over the {w:.1} × {h:.1} mm stock has more than {MAX_GRID_POINTS} points; choose a coarser --resolution"
+            )));
+        }
+        let (nx, ny) = (cx as usize + 1, cy as usize + 1);
+        Ok(StockGrid {
+            xs: spaced(slo.x, shi.x, nx),
+            ys: spaced(slo.y, shi.y, ny),
+            nx,
+            ny,
+            inside: Vec::new(),
+            values: Vec::new(),
+        })
     }
-    let (nx, ny) = (cx as usize + 1, cy as usize + 1);
-    let xs: Vec<f64> = (0..nx)
-        .map(|i| {
-            if i + 1 == nx {
-                shi.x
-            } else {
-                slo.x + w * i as f64 / (nx - 1) as f64
-            }
-        })
-        .collect();
-    let ys: Vec<f64> = (0..ny)
-        .map(|j| {
-            if j + 1 == ny {
-                shi.y
-            } else {
-                slo.y + h * j as f64 / (ny - 1) as f64
-            }
-        })
-        .collect();
-    let boxes: Vec<(Vec2, Vec2)> = sj
-        .glyphs
-        .iter()
-        .map(|p| {
-            crate::geometry::polygons_bbox(std::slice::from_ref(p))
-                .unwrap_or((Vec2::ZERO, Vec2::ZERO))
-        })
-        .collect();
 
-    // u on the grid, the material pinned to 1, everything else just below 1.
-    let inside = inside_points(&xs, &ys, sj.glyphs);
-    const BLOCK: usize = 16;
-    let blocks = ny.div_ceil(BLOCK);
-    progress(Progress::Stage {
-        name: "sampling the field".into(),
-        total: blocks as u64,
-    });
-    let mut values = vec![0.0; nx * ny];
-    for (b, chunk) in values.chunks_mut(nx * BLOCK).enumerate() {
-        chunk.par_chunks_mut(nx).enumerate().for_each(|(r, row)| {
-            let j = b * BLOCK + r;
-            for (i, v) in row.iter_mut().enumerate() {
-                *v = if inside[j * nx + i] {
-                    1.0
-                } else {
-                    sj.field.value(Vec2::new(xs[i], ys[j])).min(ONE_BELOW)
-                };
-            }
+    /// Samples u at every point, in blocks of rows (one progress step each),
+    /// the rows of a block in parallel.
+    fn sample(&mut self, sj: &SurfaceJob, progress: &mut dyn FnMut(Progress)) {
+        const BLOCK: usize = 16;
+        let (nx, ny) = (self.nx, self.ny);
+        self.inside = inside_points(&self.xs, &self.ys, sj.glyphs);
+        progress(Progress::Stage {
+            name: "sampling the field".into(),
+            total: ny.div_ceil(BLOCK) as u64,
         });
-        progress(Progress::Step);
+        let (xs, ys, inside) = (&self.xs, &self.ys, &self.inside);
+        let mut values = vec![0.0; nx * ny];
+        for (b, chunk) in values.chunks_mut(nx * BLOCK).enumerate() {
+            chunk.par_chunks_mut(nx).enumerate().for_each(|(r, row)| {
+                let j = b * BLOCK + r;
+                for (i, v) in row.iter_mut().enumerate() {
+                    *v = if inside[j * nx + i] {
+                        1.0
+                    } else {
+                        sj.field.value(Vec2::new(xs[i], ys[j])).min(ONE_BELOW)
+                    };
+                }
+            });
+            progress(Progress::Step);
+        }
+        self.values = values;
     }
 
-    // Crossings of every grid edge: horizontal edges (i, j)–(i+1, j) first, then
-    // vertical (i, j)–(i, j+1). Each: the lowest level crossed and the
-    // parameters t (from the edge's lower-index end) of levels k0, k0+1, ...
-    let n_h = (nx - 1) * ny;
-    let n_edges = n_h + nx * (ny - 1);
-    let ends = |e: usize| -> (usize, usize) {
+    /// Horizontal edges (i, j)–(i+1, j) are numbered first.
+    fn n_horizontal(&self) -> usize {
+        (self.nx - 1) * self.ny
+    }
+
+    /// All edges: the horizontal ones, then the vertical (i, j)–(i, j+1).
+    fn n_edges(&self) -> usize {
+        self.n_horizontal() + self.nx * (self.ny - 1)
+    }
+
+    /// Edge (i, j)–(i+1, j).
+    fn h_edge(&self, i: usize, j: usize) -> usize {
+        j * (self.nx - 1) + i
+    }
+
+    /// Edge (i, j)–(i, j+1).
+    fn v_edge(&self, i: usize, j: usize) -> usize {
+        self.n_horizontal() + j * self.nx + i
+    }
+
+    /// The grid points at edge `e`'s lower-index end and its other end.
+    fn ends(&self, e: usize) -> (usize, usize) {
+        let (nx, n_h) = (self.nx, self.n_horizontal());
         if e < n_h {
             let (i, j) = (e % (nx - 1), e / (nx - 1));
             (j * nx + i, j * nx + i + 1)
@@ -669,18 +671,34 @@ pub fn build(
             let (i, j) = (e % nx, e / nx);
             (j * nx + i, (j + 1) * nx + i)
         }
-    };
-    let point = |g: usize| Vec2::new(xs[g % nx], ys[g / nx]);
-    let crossings_of = |e: usize| -> (usize, Vec<f64>) {
-        let (ga, gb) = ends(e);
-        let (va, vb) = (values[ga], values[gb]);
-        let (ba, bb) = (band(&levels, va), band(&levels, vb));
+    }
+
+    /// Grid point `g`, mm.
+    fn point(&self, g: usize) -> Vec2 {
+        Vec2::new(self.xs[g % self.nx], self.ys[g / self.nx])
+    }
+
+    /// The levels edge `e` crosses: the lowest one k0, and the parameters t
+    /// (from the edge's lower-index end) of levels k0, k0+1, ..., by regula
+    /// falsi on u along the edge (u = 1 in the glyphs, whose `boxes` bound
+    /// them), spaced at least [`T_MIN`] apart.
+    fn edge_crossings(
+        &self,
+        e: usize,
+        sj: &SurfaceJob,
+        levels: &[f64],
+        boxes: &[(Vec2, Vec2)],
+    ) -> (usize, Vec<f64>) {
+        let (ga, gb) = self.ends(e);
+        let (va, vb) = (self.values[ga], self.values[gb]);
+        let (ba, bb) = (band(levels, va), band(levels, vb));
         if ba == bb {
             return (0, Vec::new());
         }
         let (k0, k1) = (ba.min(bb), ba.max(bb));
-        let (pa, pb) = (point(ga), point(gb));
-        let mask = (inside[ga] || inside[gb]).then(|| EdgeMask::new(pa, pb, sj.glyphs, &boxes));
+        let (pa, pb) = (self.point(ga), self.point(gb));
+        let mask =
+            (self.inside[ga] || self.inside[gb]).then(|| EdgeMask::new(pa, pb, sj.glyphs, boxes));
         let u = |t: f64| -> f64 {
             if mask.as_ref().is_some_and(|m| m.inside(t)) {
                 1.0
@@ -703,157 +721,268 @@ pub fn build(
             .collect();
         space_out(&mut ts, va < vb);
         (k0, ts)
-    };
-    const EDGE_BLOCK: usize = 1 << 14;
-    let edge_blocks = n_edges.div_ceil(EDGE_BLOCK);
-    progress(Progress::Stage {
-        name: "placing the level crossings".into(),
-        total: edge_blocks as u64,
-    });
-    let mut edge_x: Vec<(usize, Vec<f64>)> = Vec::with_capacity(n_edges);
-    for b in 0..edge_blocks {
-        let r = b * EDGE_BLOCK..((b + 1) * EDGE_BLOCK).min(n_edges);
-        edge_x.par_extend(r.into_par_iter().map(&crossings_of));
-        progress(Progress::Step);
     }
 
+    /// Every edge's crossings, edge by edge in parallel, in blocks of
+    /// 2¹⁴ edges (one progress step each), collected in edge order.
+    fn crossings(
+        &self,
+        sj: &SurfaceJob,
+        levels: &[f64],
+        progress: &mut dyn FnMut(Progress),
+    ) -> Vec<(usize, Vec<f64>)> {
+        const EDGE_BLOCK: usize = 1 << 14;
+        let boxes: Vec<(Vec2, Vec2)> = sj
+            .glyphs
+            .iter()
+            .map(|p| {
+                crate::geometry::polygons_bbox(std::slice::from_ref(p))
+                    .unwrap_or((Vec2::ZERO, Vec2::ZERO))
+            })
+            .collect();
+        let n_edges = self.n_edges();
+        let edge_blocks = n_edges.div_ceil(EDGE_BLOCK);
+        progress(Progress::Stage {
+            name: "placing the level crossings".into(),
+            total: edge_blocks as u64,
+        });
+        let mut edge_x: Vec<(usize, Vec<f64>)> = Vec::with_capacity(n_edges);
+        for b in 0..edge_blocks {
+            let r = b * EDGE_BLOCK..((b + 1) * EDGE_BLOCK).min(n_edges);
+            edge_x.par_extend(
+                r.into_par_iter()
+                    .map(|e| self.edge_crossings(e, sj, levels, &boxes)),
+            );
+            progress(Progress::Step);
+        }
+        edge_x
+    }
+}
+
+/// `n` ≥ 2 values from `a` to `b` (exactly) in equal steps.
+fn spaced(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| {
+            if i + 1 == n {
+                b
+            } else {
+                a + (b - a) * i as f64 / (n - 1) as f64
+            }
+        })
+        .collect()
+}
+
+/// The mesh's vertices placed so far and where each edge's crossings are.
+struct Vertices<'a> {
+    /// The grid.
+    grid: &'a StockGrid,
+    /// Each edge's lowest level and crossing parameters.
+    edge_x: Vec<(usize, Vec<f64>)>,
+    /// Each edge's first crossing vertex.
+    x_base: Vec<u32>,
+    /// The vertices: the grid points at z(u), then every crossing, edge by
+    /// edge, at its level's z.
+    vertices: Vec<[f64; 3]>,
+    /// Every crossing vertex with its level's index.
+    crossings: Vec<(u32, usize)>,
+}
+
+impl<'a> Vertices<'a> {
+    /// The grid points and the crossings `edge_x` as vertices; an error if
+    /// they are too many for 32-bit indices (with room for the walls).
+    fn place(
+        grid: &'a StockGrid,
+        edge_x: Vec<(usize, Vec<f64>)>,
+        sj: &SurfaceJob,
+        level_z: &[f64],
+    ) -> Result<Vertices<'a>, SurfaceError> {
+        let (nx, ny) = (grid.nx, grid.ny);
+        let mut vertices: Vec<[f64; 3]> = Vec::with_capacity(nx * ny * 2);
+        for g in 0..nx * ny {
+            vertices.push([grid.xs[g % nx], grid.ys[g / nx], sj.z_of(grid.values[g])]);
+        }
+        let mut x_base = vec![0u32; grid.n_edges()];
+        let mut crossings = Vec::new();
+        for (e, (k0, ts)) in edge_x.iter().enumerate() {
+            x_base[e] = vertices.len() as u32;
+            let (ga, gb) = grid.ends(e);
+            let (pa, pb) = (grid.point(ga), grid.point(gb));
+            for (m, &t) in ts.iter().enumerate() {
+                // Along the edge only one coordinate changes; the other stays exact.
+                let p = if e < grid.n_horizontal() {
+                    Vec2::new(pa.x + t * (pb.x - pa.x), pa.y)
+                } else {
+                    Vec2::new(pa.x, pa.y + t * (pb.y - pa.y))
+                };
+                crossings.push((vertices.len() as u32, k0 + m));
+                vertices.push([p.x, p.y, level_z[k0 + m]]);
+            }
+        }
+        if vertices.len() > u32::MAX as usize / 2 {
+            return Err(SurfaceError::Invalid(
+                "too many vertices for one mesh; choose a coarser --resolution".into(),
+            ));
+        }
+        Ok(Vertices {
+            grid,
+            edge_x,
+            x_base,
+            vertices,
+            crossings,
+        })
+    }
+
+    /// Appends the crossings of edge `e`, from its start (`forward`) or from
+    /// its end, each with its vertex, `sides` and level.
+    fn along(&self, e: usize, forward: bool, sides: Sides, out: &mut Vec<(u32, Sides, usize)>) {
+        let (k0, ts) = &self.edge_x[e];
+        let (ga, gb) = self.grid.ends(e);
+        // Levels grow along the edge from the lower value to the higher.
+        let up = self.grid.values[ga] < self.grid.values[gb];
+        let n = ts.len();
+        for m in 0..n {
+            let idx = if up == forward { m } else { n - 1 - m };
+            out.push((self.x_base[e] + idx as u32, sides, k0 + idx));
+        }
+    }
+
+    /// The top surface's isobands, cell by cell (rows in parallel, collected
+    /// in order).
+    fn top(&self, levels: &[f64]) -> Vec<[u32; 3]> {
+        let (g, nx, ny) = (self.grid, self.grid.nx, self.grid.ny);
+        let rows: Vec<Vec<[u32; 3]>> = (0..ny - 1)
+            .into_par_iter()
+            .map(|j| {
+                let mut tris = Vec::new();
+                let mut pts: Vec<(u32, Sides, usize)> = Vec::new();
+                for i in 0..nx - 1 {
+                    let corners = [
+                        j * nx + i,
+                        j * nx + i + 1,
+                        (j + 1) * nx + i + 1,
+                        (j + 1) * nx + i,
+                    ];
+                    let cv = corners.map(|c| g.values[c]);
+                    let edges = [
+                        (g.h_edge(i, j), true),
+                        (g.v_edge(i + 1, j), true),
+                        (g.h_edge(i, j + 1), false),
+                        (g.v_edge(i, j), false),
+                    ];
+                    pts.clear();
+                    for m in 0..4 {
+                        pts.push((corners[m] as u32, CORNER_SIDES[m], usize::MAX));
+                        self.along(edges[m].0, edges[m].1, 1 << m, &mut pts);
+                    }
+                    cell(&pts, &cv, levels, &mut tris);
+                }
+                tris
+            })
+            .collect();
+        rows.concat()
+    }
+
+    /// The top's boundary counter-clockwise (seen from above) from the
+    /// front-left corner: (vertex, stock sides, 0).
+    fn boundary(&self) -> Vec<(u32, Sides, usize)> {
+        const FRONT: Sides = 1;
+        const RIGHT: Sides = 2;
+        const BACK: Sides = 4;
+        const LEFT: Sides = 8;
+        let (g, nx, ny) = (self.grid, self.grid.nx, self.grid.ny);
+        let mut ring: Vec<(u32, Sides, usize)> = Vec::new();
+        for i in 0..nx - 1 {
+            ring.push((i as u32, if i == 0 { FRONT | LEFT } else { FRONT }, 0));
+            self.along(g.h_edge(i, 0), true, FRONT, &mut ring);
+        }
+        for j in 0..ny - 1 {
+            let s = if j == 0 { FRONT | RIGHT } else { RIGHT };
+            ring.push(((j * nx + nx - 1) as u32, s, 0));
+            self.along(g.v_edge(nx - 1, j), true, RIGHT, &mut ring);
+        }
+        for i in (1..nx).rev() {
+            let s = if i == nx - 1 { RIGHT | BACK } else { BACK };
+            ring.push((((ny - 1) * nx + i) as u32, s, 0));
+            self.along(g.h_edge(i - 1, ny - 1), false, BACK, &mut ring);
+        }
+        for j in (1..ny).rev() {
+            let s = if j == ny - 1 { BACK | LEFT } else { LEFT };
+            ring.push(((j * nx) as u32, s, 0));
+            self.along(g.v_edge(0, j - 1), false, LEFT, &mut ring);
+        }
+        ring
+    }
+
+    /// Closes the solid: each boundary point gets a vertex straight below it
+    /// at `z_bottom`, the walls join the two rings, and the bottom is the lower
+    /// ring reversed (clockwise from above: facing down).
+    fn close(&mut self, z_bottom: f64, triangles: &mut Vec<[u32; 3]>) {
+        let ring = self.boundary();
+        let vertices = &mut self.vertices;
+        let below: Vec<u32> = ring
+            .iter()
+            .map(|&(v, _, _)| {
+                let p = vertices[v as usize];
+                vertices.push([p[0], p[1], z_bottom]);
+                (vertices.len() - 1) as u32
+            })
+            .collect();
+        let r = ring.len();
+        for a in 0..r {
+            let b = (a + 1) % r;
+            let (pa, pb) = (ring[a].0, ring[b].0);
+            triangles.push([below[a], below[b], pb]);
+            triangles.push([below[a], pb, pa]);
+        }
+        let bottom: Vec<(u32, Sides)> = (0..r).rev().map(|a| (below[a], ring[a].1)).collect();
+        triangulate_convex(&bottom, triangles);
+    }
+}
+
+/// Build the closed mesh of the part: stock rectangle, grid, level crossings,
+/// isobands, walls and bottom. Steps are reported through `progress`.
+pub fn build(
+    sj: &SurfaceJob,
+    opts: &SurfaceOptions,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Surface, SurfaceError> {
+    let res = opts.resolution;
+    if !(res > 0.0 && res.is_finite()) {
+        return Err(SurfaceError::Invalid(format!(
+            "the resolution must be a positive number of mm, got {res}"
+        )));
+    }
+    progress(Progress::Stage {
+        name: "finding the stock".into(),
+        total: 1,
+    });
+    let (slo, shi) = stock_rectangle(sj)?;
+    progress(Progress::Step);
+    let levels = level_values(sj.profile);
+    let level_z: Vec<f64> = levels.iter().map(|&s| sj.z_of(s)).collect();
+    let mut grid = StockGrid::over(slo, shi, res)?;
+    grid.sample(sj, progress);
+    let edge_x = grid.crossings(sj, &levels, progress);
     progress(Progress::Stage {
         name: "triangulating".into(),
         total: 1,
     });
-    // Vertices: the grid points, then every crossing, edge by edge.
-    let mut vertices: Vec<[f64; 3]> = Vec::with_capacity(nx * ny * 2);
-    for g in 0..nx * ny {
-        vertices.push([xs[g % nx], ys[g / nx], sj.z_of(values[g])]);
-    }
-    let mut x_base = vec![0u32; n_edges];
-    let mut crossings = Vec::new();
-    for (e, (k0, ts)) in edge_x.iter().enumerate() {
-        x_base[e] = vertices.len() as u32;
-        let (ga, gb) = ends(e);
-        let (pa, pb) = (point(ga), point(gb));
-        for (m, &t) in ts.iter().enumerate() {
-            // Along the edge only one coordinate changes; the other stays exact.
-            let p = if e < n_h {
-                Vec2::new(pa.x + t * (pb.x - pa.x), pa.y)
-            } else {
-                Vec2::new(pa.x, pa.y + t * (pb.y - pa.y))
-            };
-            crossings.push((vertices.len() as u32, k0 + m));
-            vertices.push([p.x, p.y, level_z[k0 + m]]);
-        }
-    }
-    if vertices.len() > u32::MAX as usize / 2 {
-        return Err(SurfaceError::Invalid(
-            "too many vertices for one mesh; choose a coarser --resolution".into(),
-        ));
-    }
-    let h_edge = |i: usize, j: usize| j * (nx - 1) + i;
-    let v_edge = |i: usize, j: usize| n_h + j * nx + i;
-    // The points of edge e from its start (`forward`) or from its end, each with
-    // its vertex and level.
-    let along = |e: usize, forward: bool, sides: Sides, out: &mut Vec<(u32, Sides, usize)>| {
-        let (k0, ts) = &edge_x[e];
-        let (ga, gb) = ends(e);
-        // Levels grow along the edge from the lower value to the higher.
-        let up = values[ga] < values[gb];
-        let n = ts.len();
-        for m in 0..n {
-            let idx = if up == forward { m } else { n - 1 - m };
-            out.push((x_base[e] + idx as u32, sides, k0 + idx));
-        }
-    };
-
-    // The top surface, cell by cell (rows in parallel, collected in order).
-    let rows: Vec<Vec<[u32; 3]>> = (0..ny - 1)
-        .into_par_iter()
-        .map(|j| {
-            let mut tris = Vec::new();
-            let mut pts: Vec<(u32, Sides, usize)> = Vec::new();
-            for i in 0..nx - 1 {
-                let corners = [
-                    j * nx + i,
-                    j * nx + i + 1,
-                    (j + 1) * nx + i + 1,
-                    (j + 1) * nx + i,
-                ];
-                let cv = corners.map(|g| values[g]);
-                let edges = [
-                    (h_edge(i, j), true),
-                    (v_edge(i + 1, j), true),
-                    (h_edge(i, j + 1), false),
-                    (v_edge(i, j), false),
-                ];
-                pts.clear();
-                for m in 0..4 {
-                    pts.push((corners[m] as u32, CORNER_SIDES[m], usize::MAX));
-                    along(edges[m].0, edges[m].1, 1 << m, &mut pts);
-                }
-                cell(&pts, &cv, &levels, &mut tris);
-            }
-            tris
-        })
-        .collect();
-    let mut triangles: Vec<[u32; 3]> = rows.concat();
-
-    // The walls: the top's boundary counter-clockwise (seen from above), each
-    // point with a point straight below it on the bottom.
-    const FRONT: Sides = 1;
-    const RIGHT: Sides = 2;
-    const BACK: Sides = 4;
-    const LEFT: Sides = 8;
-    let mut ring: Vec<(u32, Sides, usize)> = Vec::new();
-    for i in 0..nx - 1 {
-        ring.push((i as u32, if i == 0 { FRONT | LEFT } else { FRONT }, 0));
-        along(h_edge(i, 0), true, FRONT, &mut ring);
-    }
-    for j in 0..ny - 1 {
-        let s = if j == 0 { FRONT | RIGHT } else { RIGHT };
-        ring.push(((j * nx + nx - 1) as u32, s, 0));
-        along(v_edge(nx - 1, j), true, RIGHT, &mut ring);
-    }
-    for i in (1..nx).rev() {
-        let s = if i == nx - 1 { RIGHT | BACK } else { BACK };
-        ring.push((((ny - 1) * nx + i) as u32, s, 0));
-        along(h_edge(i - 1, ny - 1), false, BACK, &mut ring);
-    }
-    for j in (1..ny).rev() {
-        let s = if j == ny - 1 { BACK | LEFT } else { LEFT };
-        ring.push(((j * nx) as u32, s, 0));
-        along(v_edge(0, j - 1), false, LEFT, &mut ring);
-    }
+    let mut v = Vertices::place(&grid, edge_x, sj, &level_z)?;
+    let mut triangles = v.top(&levels);
     let z_bottom = sj.z_bottom();
-    let below: Vec<u32> = ring
-        .iter()
-        .map(|&(v, _, _)| {
-            let p = vertices[v as usize];
-            vertices.push([p[0], p[1], z_bottom]);
-            (vertices.len() - 1) as u32
-        })
-        .collect();
-    let r = ring.len();
-    for a in 0..r {
-        let b = (a + 1) % r;
-        let (pa, pb) = (ring[a].0, ring[b].0);
-        triangles.push([below[a], below[b], pb]);
-        triangles.push([below[a], pb, pa]);
-    }
-    // The bottom: the same ring reversed (clockwise from above: facing down).
-    let bottom: Vec<(u32, Sides)> = (0..r).rev().map(|a| (below[a], ring[a].1)).collect();
-    triangulate_convex(&bottom, &mut triangles);
+    v.close(z_bottom, &mut triangles);
     progress(Progress::Step);
-
     Ok(Surface {
         mesh: Mesh {
-            vertices,
+            vertices: v.vertices,
             triangles,
         },
         stock_lo: slo,
         stock_hi: shi,
         z_bottom,
         levels,
-        crossings,
-        grid: (nx, ny),
+        crossings: v.crossings,
+        grid: (grid.nx, grid.ny),
     })
 }
 

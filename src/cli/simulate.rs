@@ -78,16 +78,53 @@ pub fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
     if let Some(p) = &a.png {
         check_output(p, "png", a.force)?;
     }
-    let mut texts = Vec::with_capacity(a.files.len());
-    for file in &a.files {
+    let texts = read_files(&a.files)?;
+    let names: Vec<&str> = texts.iter().map(|(n, _)| n.as_str()).collect();
+    let all = names.join(", ");
+    let opts = sim_options(a)?;
+    let programs: Vec<(&str, &str)> = texts
+        .iter()
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .collect();
+    let seq = simulate::simulate_programs(&programs, &opts).map_err(|e| match e {
+        SimError::Program { name, error } => anyhow!(*error).context(name),
+        e => anyhow!(e).context(all.clone()),
+    })?;
+    if let Some(p) = &a.png {
+        let png = sequence_png(&seq, &format!("pfcam simulate {}", names.join(" ")))?;
+        write_atomic(p, &png, a.force)?;
+    }
+    if a.json {
+        stdout_line(&json_text(&seq, &names)?)?;
+    } else {
+        let mut s = summary_text(&seq);
+        if let Some(p) = &a.png {
+            s += &format!("\nwrote {}", p.display());
+        }
+        stdout_line(&s)?;
+    }
+    if !seq.is_clean() {
+        bail!("{all}: {}", findings_count(&seq));
+    }
+    Ok(())
+}
+
+/// The G-code files, each as (name, text; not UTF-8 read lossily).
+fn read_files(files: &[PathBuf]) -> Result<Vec<(String, String)>> {
+    let mut texts = Vec::with_capacity(files.len());
+    for file in files {
         let bytes = read_gcode_file(file)?;
         texts.push((
             file.display().to_string(),
             String::from_utf8_lossy(&bytes).into_owned(),
         ));
     }
-    let names: Vec<&str> = texts.iter().map(|(n, _)| n.as_str()).collect();
-    let all = names.join(", ");
+    Ok(texts)
+}
+
+/// The simulation's options from the flags, with the job's facts read at
+/// the resolution clamped to 0.05 mm .. the surface's default.
+fn sim_options(a: &SimulateArgs) -> Result<SimOptions> {
     let mut opts = SimOptions {
         resolution: a.resolution,
         tool_diameter: a.tool_diameter,
@@ -116,92 +153,84 @@ pub fn cmd_simulate(a: &SimulateArgs) -> Result<()> {
         opts.job =
             Some(simulate::job_facts(&job, res).with_context(|| path.display().to_string())?);
     }
-    let programs: Vec<(&str, &str)> = texts
+    Ok(opts)
+}
+
+/// `--json`: every program's report, and the part; with one file also its
+/// report with the part in it under `file` and `report`, as before several
+/// files could be given.
+fn json_text(seq: &simulate::Sequence, names: &[&str]) -> Result<String> {
+    let programs: Vec<_> = seq
+        .programs
         .iter()
-        .map(|(n, t)| (n.as_str(), t.as_str()))
-        .collect();
-    let seq = simulate::simulate_programs(&programs, &opts).map_err(|e| match e {
-        SimError::Program { name, error } => anyhow!(*error).context(name),
-        e => anyhow!(e).context(all.clone()),
-    })?;
-    if let Some(p) = &a.png {
-        let png = sequence_png(&seq, &format!("pfcam simulate {}", names.join(" ")))?;
-        write_atomic(p, &png, a.force)?;
-    }
-    let single = seq.programs.len() == 1;
-    if a.json {
-        let programs: Vec<_> = seq
-            .programs
-            .iter()
-            .map(|p| {
-                serde_json::json!({
-                    "file": p.name,
-                    "clean": p.report.is_clean(),
-                    "report": p.report,
-                })
+        .map(|p| {
+            serde_json::json!({
+                "file": p.name,
+                "clean": p.report.is_clean(),
+                "report": p.report,
             })
-            .collect();
-        let mut v = serde_json::json!({
-            "files": names,
-            "clean": seq.is_clean(),
-            "programs": programs,
-            "part": seq.part,
-        });
-        if single {
-            // One file: its report with the part in it, as before several
-            // files could be given.
-            let mut report = seq.programs[0].report.clone();
-            report.part = seq.part.clone();
-            v["file"] = serde_json::json!(names[0]);
-            v["report"] = serde_json::to_value(&report)?;
-        }
-        stdout_line(&serde_json::to_string_pretty(&v)?)?;
-    } else {
-        let mut s = String::new();
-        for (k, p) in seq.programs.iter().enumerate() {
-            let r = &p.report;
-            if !single {
-                s += &format!("program {} of {}: {}\n", k + 1, seq.programs.len(), p.name);
-            }
-            for f in r.findings.iter().take(SHOWN_FINDINGS) {
-                s += &format!("{}:{}: error: {}\n", p.name, f.line, f.message);
-            }
-            if r.findings.len() > SHOWN_FINDINGS {
-                s += &format!(
-                    "... and {} more (all in --json)\n",
-                    r.findings.len() - SHOWN_FINDINGS
-                );
-            }
-            for n in &r.notes {
-                s += &format!("note: {n}\n");
-            }
-            s += &r.summary();
-            if !single || seq.part.is_some() {
-                s.push('\n');
-            }
-        }
-        if let Some(part) = &seq.part {
-            s += &part.summary();
-        }
-        let s = s.trim_end_matches('\n');
-        let mut s = s.to_string();
-        if let Some(p) = &a.png {
-            s += &format!("\nwrote {}", p.display());
-        }
-        stdout_line(&s)?;
+        })
+        .collect();
+    let mut v = serde_json::json!({
+        "files": names,
+        "clean": seq.is_clean(),
+        "programs": programs,
+        "part": seq.part,
+    });
+    if seq.programs.len() == 1 {
+        let mut report = seq.programs[0].report.clone();
+        report.part = seq.part.clone();
+        v["file"] = serde_json::json!(names[0]);
+        v["report"] = serde_json::to_value(&report)?;
     }
-    if !seq.is_clean() {
-        let count = |f: &dyn Fn(&simulate::Report) -> usize| -> usize {
-            seq.programs.iter().map(|p| f(&p.report)).sum()
-        };
-        bail!(
-            "{all}: {} finding(s): {} rapid(s) into material, {} straight plunge(s), {} slot(s) deeper than the stepdown, {} gouge(s)",
-            count(&|r| r.findings.len()),
-            count(&|r| r.rapids_into_material),
-            count(&|r| r.straight_plunges),
-            count(&|r| r.deep_slots),
-            seq.findings().filter(|(_, f)| f.kind == simulate::Kind::Gouge).count()
-        );
+    Ok(serde_json::to_string_pretty(&v)?)
+}
+
+/// The printed report: for each program (headed by its number when there are
+/// several) its first [`SHOWN_FINDINGS`] findings as `FILE:LINE: error: ...`,
+/// its notes and its summary; then the part's summary.
+fn summary_text(seq: &simulate::Sequence) -> String {
+    let single = seq.programs.len() == 1;
+    let mut s = String::new();
+    for (k, p) in seq.programs.iter().enumerate() {
+        let r = &p.report;
+        if !single {
+            s += &format!("program {} of {}: {}\n", k + 1, seq.programs.len(), p.name);
+        }
+        for f in r.findings.iter().take(SHOWN_FINDINGS) {
+            s += &format!("{}:{}: error: {}\n", p.name, f.line, f.message);
+        }
+        if r.findings.len() > SHOWN_FINDINGS {
+            s += &format!(
+                "... and {} more (all in --json)\n",
+                r.findings.len() - SHOWN_FINDINGS
+            );
+        }
+        for n in &r.notes {
+            s += &format!("note: {n}\n");
+        }
+        s += &r.summary();
+        if !single || seq.part.is_some() {
+            s.push('\n');
+        }
     }
-    Ok(())
+    if let Some(part) = &seq.part {
+        s += &part.summary();
+    }
+    s.trim_end_matches('\n').to_string()
+}
+
+/// The findings of an unclean sequence, counted by kind over all programs.
+fn findings_count(seq: &simulate::Sequence) -> String {
+    let count = |f: &dyn Fn(&simulate::Report) -> usize| -> usize {
+        seq.programs.iter().map(|p| f(&p.report)).sum()
+    };
+    format!(
+        "{} finding(s): {} rapid(s) into material, {} straight plunge(s), {} slot(s) deeper than the stepdown, {} gouge(s)",
+        count(&|r| r.findings.len()),
+        count(&|r| r.rapids_into_material),
+        count(&|r| r.straight_plunges),
+        count(&|r| r.deep_slots),
+        seq.findings().filter(|(_, f)| f.kind == simulate::Kind::Gouge).count()
+    )
 }

@@ -358,10 +358,53 @@ impl Checker {
     /// Totals, limits and warnings for a block GRBL accepts; `before` is the state
     /// before it, `self.state` after it.
     fn block(&mut self, n: usize, before: &ModalState, words: &[Word]) {
-        let value = |c: char| words.iter().find(|w| w.letter == c).map(|w| w.value);
-        let gcodes = motion::gcodes(words);
-        let has_axes = AXES.iter().any(|&c| value(c).is_some());
-        let axis_command = motion::is_axis_command(&gcodes);
+        self.warn_build_options(n, words);
+        self.non_motion(n, words);
+        let Some(motion) = motion::block_motion(words, before) else {
+            return;
+        };
+        if motion == Motion::None {
+            return;
+        }
+        let from = before.position;
+        let after = self.state.clone();
+        let (extremes, length) = self.extent(n, motion, from, &after, words);
+        let feed_move = motion != Motion::Rapid;
+        let t = &mut self.report.totals;
+        for p in &extremes {
+            t.bounds.add_point(p);
+            if feed_move {
+                t.cut_bounds.add_point(p);
+            }
+        }
+        if feed_move {
+            t.cut_bounds.add_point(&from);
+        }
+        let inverse_f = words.iter().find(|w| w.letter == 'F').map(|w| w.value);
+        match length {
+            None => t.unmeasured_moves += 1,
+            Some(l) if feed_move => {
+                t.cut_length += l;
+                t.time_s += match after.feed_mode {
+                    // G93: F is the inverse of the move's time in minutes.
+                    FeedMode::InverseTime => inverse_f.map_or(0.0, |f| 60.0 / f),
+                    FeedMode::UnitsPerMinute => {
+                        after
+                            .feed
+                            .map_or(0.0, |f| if f > 0.0 { l / f * 60.0 } else { 0.0 })
+                    }
+                };
+            }
+            Some(l) => {
+                t.rapid_length += l;
+                t.time_s += l / self.opts.rapid_rate * 60.0;
+            }
+        }
+        self.limits(n, &extremes);
+    }
+
+    /// Warns of M7 and M56, which a stock GRBL 1.1 build rejects.
+    fn warn_build_options(&mut self, n: usize, words: &[Word]) {
         for (m, build) in [
             (7.0, "ENABLE_M7"),
             (56.0, "ENABLE_PARKING_OVERRIDE_CONTROL"),
@@ -376,6 +419,15 @@ impl Checker {
                 );
             }
         }
+    }
+
+    /// What a block does besides its motion: a G4 dwell's time, a warning for
+    /// G0/G1 without axis words, and G28/G30/G53 moves counted as unmeasured.
+    fn non_motion(&mut self, n: usize, words: &[Word]) {
+        let value = |c: char| words.iter().find(|w| w.letter == c).map(|w| w.value);
+        let gcodes = motion::gcodes(words);
+        let has_axes = AXES.iter().any(|&c| value(c).is_some());
+        let axis_command = motion::is_axis_command(&gcodes);
         if gcodes.contains(&40) {
             let p = value('P').unwrap_or(0.0);
             self.report.totals.dwell_s += p;
@@ -396,87 +448,57 @@ impl Checker {
         if gcodes.iter().any(|g| matches!(g, 280 | 300)) || (gcodes.contains(&530) && has_axes) {
             self.report.totals.unmeasured_moves += 1;
         }
-        let Some(motion) = motion::block_motion(words, before) else {
-            return;
-        };
-        let from = before.position;
-        let to = self.state.position;
-        let after = self.state.clone();
+    }
 
+    /// The points a move from `from` to `after.position` reaches at its
+    /// extremes (the end, and an arc's extremes in its plane), and its length
+    /// where both ends are known. An arc from an unknown position is warned of.
+    fn extent(
+        &mut self,
+        n: usize,
+        motion: Motion,
+        from: [Option<f64>; 3],
+        after: &ModalState,
+        words: &[Word],
+    ) -> (Vec<[Option<f64>; 3]>, Option<f64>) {
+        let to = after.position;
         let mut extremes: Vec<[Option<f64>; 3]> = vec![to];
         let known = |p: &[Option<f64>; 3]| p.iter().all(Option::is_some);
         let mut length = None;
-        match motion {
-            Motion::None => return,
-            Motion::Rapid | Motion::Linear | Motion::Probe(_) => {
-                if known(&from) && known(&to) {
-                    let d: f64 = (0..3)
-                        .map(|k| (to[k].unwrap_or(0.0) - from[k].unwrap_or(0.0)).powi(2))
-                        .sum();
-                    length = Some(d.sqrt());
-                }
+        if !matches!(motion, Motion::ArcCw | Motion::ArcCcw) {
+            if known(&from) && known(&to) {
+                let d: f64 = (0..3)
+                    .map(|k| (to[k].unwrap_or(0.0) - from[k].unwrap_or(0.0)).powi(2))
+                    .sum();
+                length = Some(d.sqrt());
             }
-            Motion::ArcCw | Motion::ArcCcw => {
-                let ccw = motion == Motion::ArcCcw;
-                let [a0, a1] = after.plane.axes();
-                match (from[a0], from[a1], to[a0], to[a1]) {
-                    (Some(s0), Some(s1), Some(t0), Some(t1)) => {
-                        let (arc, _) = motion::block_arc(words, &after, [s0, s1], [t0, t1], ccw);
-                        for [u, v] in arc.extremes() {
-                            let mut p = to;
-                            p[a0] = Some(u);
-                            p[a1] = Some(v);
-                            // The linear axis is covered by `from` and `to`.
-                            let lin = 3 - a0 - a1;
-                            p[lin] = None;
-                            extremes.push(p);
-                        }
-                        if known(&from) && known(&to) {
-                            let lin = 3 - a0 - a1;
-                            let dz = to[lin].unwrap_or(0.0) - from[lin].unwrap_or(0.0);
-                            length = Some((arc.r * arc.sweep).hypot(dz));
-                        }
-                    }
-                    _ => self.warn(
-                        n,
-                        "arc from an unknown position: GRBL checks it against wherever the \
-                         machine stands, pfcam cannot",
-                    ),
-                }
-            }
+            return (extremes, length);
         }
-
-        let feed_move = motion != Motion::Rapid;
-        let t = &mut self.report.totals;
-        for p in &extremes {
-            t.bounds.add_point(p);
-            if feed_move {
-                t.cut_bounds.add_point(p);
-            }
+        let ccw = motion == Motion::ArcCcw;
+        let [a0, a1] = after.plane.axes();
+        let (Some(s0), Some(s1), Some(t0), Some(t1)) = (from[a0], from[a1], to[a0], to[a1]) else {
+            self.warn(
+                n,
+                "arc from an unknown position: GRBL checks it against wherever the \
+                 machine stands, pfcam cannot",
+            );
+            return (extremes, length);
+        };
+        let (arc, _) = motion::block_arc(words, after, [s0, s1], [t0, t1], ccw);
+        // The linear axis is covered by `from` and `to`.
+        let lin = 3 - a0 - a1;
+        for [u, v] in arc.extremes() {
+            let mut p = to;
+            p[a0] = Some(u);
+            p[a1] = Some(v);
+            p[lin] = None;
+            extremes.push(p);
         }
-        if feed_move {
-            t.cut_bounds.add_point(&from);
+        if known(&from) && known(&to) {
+            let dz = to[lin].unwrap_or(0.0) - from[lin].unwrap_or(0.0);
+            length = Some((arc.r * arc.sweep).hypot(dz));
         }
-        match length {
-            None => t.unmeasured_moves += 1,
-            Some(l) if feed_move => {
-                t.cut_length += l;
-                t.time_s += match after.feed_mode {
-                    // G93: F is the inverse of the move's time in minutes.
-                    FeedMode::InverseTime => value('F').map_or(0.0, |f| 60.0 / f),
-                    FeedMode::UnitsPerMinute => {
-                        after
-                            .feed
-                            .map_or(0.0, |f| if f > 0.0 { l / f * 60.0 } else { 0.0 })
-                    }
-                };
-            }
-            Some(l) => {
-                t.rapid_length += l;
-                t.time_s += l / self.opts.rapid_rate * 60.0;
-            }
-        }
-        self.limits(n, &extremes);
+        (extremes, length)
     }
 
     fn limits(&mut self, n: usize, points: &[[Option<f64>; 3]]) {

@@ -321,83 +321,46 @@ fn m_group(code: u32) -> Option<Group> {
     })
 }
 
-const MM_PER_INCH: f64 = 25.4;
-
-impl ModalState {
-    /// Runs one cleaned block (see [`clean_line`]) through the state, as GRBL's
-    /// parser would. On error the state is left unchanged, like GRBL does.
-    ///
-    /// An empty block is accepted and changes nothing. `$` system commands are not
-    /// G-code and are rejected with error 3 here; a sender handles them itself.
-    pub fn execute(&mut self, block: &str) -> Result<(), BlockError> {
-        if block.is_empty() {
-            return Ok(());
-        }
-        if block.starts_with('$') {
-            return Err(BlockError::new(3, "a `$` system command is not G-code"));
-        }
-        let words = tokenize(block)?;
-        let mut next = self.clone();
-        next.apply(&words)?;
-        *self = next;
-        Ok(())
+/// The motion mode of a motion-group G code ×10.
+fn motion_mode(code10: u32) -> Motion {
+    match code10 {
+        0 => Motion::Rapid,
+        10 => Motion::Linear,
+        20 => Motion::ArcCw,
+        30 => Motion::ArcCcw,
+        800 => Motion::None,
+        p => Motion::Probe(p as u16),
     }
+}
 
-    fn apply(&mut self, words: &[Word]) -> Result<(), BlockError> {
+/// A block's words sorted by kind, with GRBL's checks on the words alone
+/// (errors 20, 21, 23, 24, 25 and 4) done.
+struct BlockWords {
+    /// G codes ×10 (G38.2 → 382), in block order.
+    gcodes: Vec<u32>,
+    /// M codes, in block order.
+    mcodes: Vec<u32>,
+    /// The value of each other letter, indexed from `A`.
+    values: [Option<f64>; 26],
+}
+
+impl BlockWords {
+    /// Sorts and checks a tokenized block's words.
+    fn collect(words: &[Word]) -> Result<Self, BlockError> {
+        let mut b = BlockWords {
+            gcodes: Vec::new(),
+            mcodes: Vec::new(),
+            values: [None; 26],
+        };
         let mut groups: Vec<Group> = Vec::new();
-        let mut gcodes: Vec<u32> = Vec::new();
-        let mut mcodes: Vec<u32> = Vec::new();
-        let mut values: [Option<f64>; 26] = [None; 26];
         // G10/G28/G30/G92, G0–G3/G38.x and G43.1/G49 each claim the axis words; GRBL
         // allows one of them per block (error 24).
         let mut axis_command = false;
         for w in words {
             match w.letter {
                 'G' => {
-                    let code10 = (w.value * 10.0).round();
-                    if w.value < 0.0 || (w.value * 10.0 - code10).abs() > 1e-6 {
-                        return Err(BlockError::new(20, format!("G{} is not a G-code", w.value)));
-                    }
-                    let code10 = code10 as u32;
-                    // A decimal on a G-code that has none in GRBL is error 23; on one
-                    // that has (G28.x, G38.x, G43.x, G61.x, G90.x, G92.x) it is 20.
-                    if code10 % 10 != 0
-                        && matches!(
-                            code10 / 10,
-                            0..=4 | 10 | 17..=21 | 40 | 53..=58 | 80 | 93 | 94
-                        )
-                    {
-                        return Err(BlockError::new(
-                            23,
-                            format!(
-                                "G{}{}: GRBL has no such variant of G{}",
-                                code10 / 10,
-                                frac(code10),
-                                code10 / 10
-                            ),
-                        ));
-                    }
-                    let group = g_group(code10).ok_or_else(|| {
-                        let what = match code10 {
-                            410 | 420 | 411 | 421 => " (cutter compensation is not in GRBL)",
-                            430 => " (GRBL has only G43.1, the dynamic tool length offset)",
-                            810..=890 => " (canned cycles are not in GRBL)",
-                            591..=599 => " (G59.x is not in GRBL)",
-                            _ => "",
-                        };
-                        BlockError::new(
-                            if (591..=599).contains(&code10) {
-                                29
-                            } else {
-                                20
-                            },
-                            format!(
-                                "G{}{} is not supported by GRBL{what}",
-                                code10 / 10,
-                                frac(code10)
-                            ),
-                        )
-                    })?;
+                    let code10 = g_code10(w.value)?;
+                    let group = g_word_group(code10)?;
                     if matches!(
                         code10,
                         0 | 10 | 20 | 30 | 100 | 280 | 300 | 382..=385 | 431 | 490 | 920
@@ -426,25 +389,10 @@ impl ModalState {
                         ));
                     }
                     groups.push(group);
-                    gcodes.push(code10);
+                    b.gcodes.push(code10);
                 }
                 'M' => {
-                    if w.value < 0.0 {
-                        return Err(BlockError::new(
-                            20,
-                            format!("M{} is not an M-code", w.value),
-                        ));
-                    }
-                    if w.value.fract() != 0.0 {
-                        return Err(BlockError::new(
-                            23,
-                            format!("M{}: M-codes take integers", w.value),
-                        ));
-                    }
-                    let code = w.value as u32;
-                    let group = m_group(code).ok_or_else(|| {
-                        BlockError::new(20, format!("M{code} is not supported by GRBL"))
-                    })?;
+                    let (code, group) = m_word(w.value)?;
                     // M7 and M8 are one group: GRBL takes them on separate lines.
                     if groups.contains(&group) {
                         return Err(BlockError::new(
@@ -453,20 +401,10 @@ impl ModalState {
                         ));
                     }
                     groups.push(group);
-                    mcodes.push(code);
+                    b.mcodes.push(code);
                 }
                 'F' | 'I' | 'J' | 'K' | 'L' | 'N' | 'P' | 'R' | 'S' | 'T' | 'X' | 'Y' | 'Z' => {
-                    let slot = &mut values[(w.letter as u8 - b'A') as usize];
-                    if slot.is_some() {
-                        return Err(BlockError::new(25, format!("`{}` appears twice", w.letter)));
-                    }
-                    if w.value < 0.0 && matches!(w.letter, 'F' | 'N' | 'P' | 'S' | 'T') {
-                        return Err(BlockError::new(
-                            4,
-                            format!("`{}` must not be negative", w.letter),
-                        ));
-                    }
-                    *slot = Some(w.value);
+                    b.set_value(w)?;
                 }
                 other => {
                     return Err(BlockError::new(
@@ -476,11 +414,209 @@ impl ModalState {
                 }
             }
         }
-        let v = |c: char| values[(c as u8 - b'A') as usize];
+        Ok(b)
+    }
 
-        // Order of execution follows GRBL: feed mode, F, S, T, spindle, coolant,
-        // plane, units, distance, WCS, non-modal, motion, stop.
-        for &g in &gcodes {
+    /// Stores a value word: once a block (error 25), and F, N, P, S and T
+    /// not negative (error 4).
+    fn set_value(&mut self, w: &Word) -> Result<(), BlockError> {
+        let slot = &mut self.values[(w.letter as u8 - b'A') as usize];
+        if slot.is_some() {
+            return Err(BlockError::new(25, format!("`{}` appears twice", w.letter)));
+        }
+        if w.value < 0.0 && matches!(w.letter, 'F' | 'N' | 'P' | 'S' | 'T') {
+            return Err(BlockError::new(
+                4,
+                format!("`{}` must not be negative", w.letter),
+            ));
+        }
+        *slot = Some(w.value);
+        Ok(())
+    }
+
+    /// The value of letter `c` (upper case, `A` to `Z`), if the block has it.
+    fn v(&self, c: char) -> Option<f64> {
+        self.values[(c as u8 - b'A') as usize]
+    }
+
+    /// The block's G code of `group`, if any (at most one, by error 21).
+    fn code_of(&self, group: Group) -> Option<u32> {
+        self.gcodes
+            .iter()
+            .copied()
+            .find(|g| g_group(*g) == Some(group))
+    }
+
+    /// GRBL's checks that the words a command needs are there and no others
+    /// (errors 26, 36, 27), given the block's non-modal command and whether
+    /// it has axis words.
+    fn check_word_use(&self, non_modal: Option<u32>, has_axes: bool) -> Result<(), BlockError> {
+        let explicit_motion = self
+            .gcodes
+            .iter()
+            .any(|g| g_group(*g) == Some(Group::Motion) && !matches!(g, 0 | 10 | 800));
+        if explicit_motion && !has_axes && non_modal.is_none() {
+            return Err(BlockError::new(26, "G2/G3/G38.x without axis words"));
+        }
+        if self.v('P').is_some() && !matches!(non_modal, Some(40) | Some(100)) {
+            return Err(BlockError::new(36, "P word without G4 or G10"));
+        }
+        if self.v('L').is_some() && non_modal != Some(100) {
+            return Err(BlockError::new(36, "L word without G10"));
+        }
+        if let Some(n) = self.v('N') {
+            if n.fract() != 0.0 || n > 9_999_999.0 {
+                return Err(BlockError::new(
+                    27,
+                    "line number N must be an integer up to 9999999",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A G word's number ×10 (G38.2 → 382), rejected as GRBL does: a negative
+/// or finer number is not a G-code (20); a decimal on a G-code that has none
+/// in GRBL is 23 (on one that has, G28.x, G38.x, G43.x, G61.x, G90.x, G92.x,
+/// the unknown variants are left to [`g_word_group`]).
+fn g_code10(value: f64) -> Result<u32, BlockError> {
+    let code10 = (value * 10.0).round();
+    if value < 0.0 || (value * 10.0 - code10).abs() > 1e-6 {
+        return Err(BlockError::new(20, format!("G{value} is not a G-code")));
+    }
+    let code10 = code10 as u32;
+    if code10 % 10 != 0
+        && matches!(
+            code10 / 10,
+            0..=4 | 10 | 17..=21 | 40 | 53..=58 | 80 | 93 | 94
+        )
+    {
+        return Err(BlockError::new(
+            23,
+            format!(
+                "G{}{}: GRBL has no such variant of G{}",
+                code10 / 10,
+                frac(code10),
+                code10 / 10
+            ),
+        ));
+    }
+    Ok(code10)
+}
+
+/// The modal group of a G code ×10, or GRBL's error for one it does not
+/// support (29 for G59.x, else 20), saying why where that is known.
+fn g_word_group(code10: u32) -> Result<Group, BlockError> {
+    g_group(code10).ok_or_else(|| {
+        let what = match code10 {
+            410 | 420 | 411 | 421 => " (cutter compensation is not in GRBL)",
+            430 => " (GRBL has only G43.1, the dynamic tool length offset)",
+            810..=890 => " (canned cycles are not in GRBL)",
+            591..=599 => " (G59.x is not in GRBL)",
+            _ => "",
+        };
+        BlockError::new(
+            if (591..=599).contains(&code10) {
+                29
+            } else {
+                20
+            },
+            format!(
+                "G{}{} is not supported by GRBL{what}",
+                code10 / 10,
+                frac(code10)
+            ),
+        )
+    })
+}
+
+/// An M word's code and group, or GRBL's error: 20 for a negative or unknown
+/// one, 23 for a fraction.
+fn m_word(value: f64) -> Result<(u32, Group), BlockError> {
+    if value < 0.0 {
+        return Err(BlockError::new(20, format!("M{value} is not an M-code")));
+    }
+    if value.fract() != 0.0 {
+        return Err(BlockError::new(
+            23,
+            format!("M{value}: M-codes take integers"),
+        ));
+    }
+    let code = value as u32;
+    let group = m_group(code)
+        .ok_or_else(|| BlockError::new(20, format!("M{code} is not supported by GRBL")))?;
+    Ok((code, group))
+}
+
+const MM_PER_INCH: f64 = 25.4;
+
+impl ModalState {
+    /// Runs one cleaned block (see [`clean_line`]) through the state, as GRBL's
+    /// parser would. On error the state is left unchanged, like GRBL does.
+    ///
+    /// An empty block is accepted and changes nothing. `$` system commands are not
+    /// G-code and are rejected with error 3 here; a sender handles them itself.
+    pub fn execute(&mut self, block: &str) -> Result<(), BlockError> {
+        if block.is_empty() {
+            return Ok(());
+        }
+        if block.starts_with('$') {
+            return Err(BlockError::new(3, "a `$` system command is not G-code"));
+        }
+        let words = tokenize(block)?;
+        let mut next = self.clone();
+        next.apply(&words)?;
+        *self = next;
+        Ok(())
+    }
+
+    /// Runs one tokenized block, GRBL's checks first and then its order of
+    /// execution: feed mode, F, S, T, spindle, coolant, plane, units, distance,
+    /// WCS, non-modal, motion, stop. The caller keeps the old state on error.
+    fn apply(&mut self, words: &[Word]) -> Result<(), BlockError> {
+        let b = BlockWords::collect(words)?;
+        self.set_modes(&b)?;
+        let non_modal = b.code_of(Group::NonModal);
+        if let Some(m) = b.code_of(Group::Motion) {
+            self.motion = motion_mode(m);
+        }
+        let axes = [b.v('X'), b.v('Y'), b.v('Z')];
+        let has_axes = axes.iter().any(Option::is_some);
+        b.check_word_use(non_modal, has_axes)?;
+        let scale = if self.units == Units::Inch {
+            MM_PER_INCH
+        } else {
+            1.0
+        };
+        if let Some(nm) = non_modal {
+            if self.run_non_modal(nm, &b, &axes, scale)? {
+                return Ok(());
+            }
+        }
+        let tool_length = self.apply_tool_length(&b)?;
+        if has_axes && !tool_length {
+            self.check_feed(&b)?;
+            if matches!(self.motion, Motion::ArcCw | Motion::ArcCcw) {
+                self.check_arc(&b, &axes, scale)?;
+            } else if ['I', 'J', 'K', 'R'].iter().any(|&c| b.v(c).is_some()) {
+                return Err(BlockError::new(36, "I/J/K/R words without an arc"));
+            }
+            self.position = self.target(&axes, scale);
+        } else if ['R', 'I', 'J', 'K'].iter().any(|&c| b.v(c).is_some()) {
+            return Err(BlockError::new(36, "arc words without axis words"));
+        }
+        if b.mcodes.iter().any(|&m| m == 2 || m == 30) {
+            self.end_program();
+        }
+        Ok(())
+    }
+
+    /// The modal settings a block sets before it moves, in GRBL's order: feed
+    /// mode, plane, units, distance, WCS; then F (converted to mm/min with the
+    /// block's units), S, T; then spindle and coolant.
+    fn set_modes(&mut self, b: &BlockWords) -> Result<(), BlockError> {
+        for &g in &b.gcodes {
             match g {
                 930 => self.feed_mode = FeedMode::InverseTime,
                 940 => self.feed_mode = FeedMode::UnitsPerMinute,
@@ -495,16 +631,16 @@ impl ModalState {
                 _ => {}
             }
         }
-        if let Some(f) = v('F') {
+        if let Some(f) = b.v('F') {
             self.feed = Some(match self.units {
                 Units::Inch => f * MM_PER_INCH,
                 Units::Mm => f,
             });
         }
-        if let Some(s) = v('S') {
+        if let Some(s) = b.v('S') {
             self.spindle_speed = s;
         }
-        if let Some(t) = v('T') {
+        if let Some(t) = b.v('T') {
             if t.fract() != 0.0 {
                 return Err(BlockError::new(23, "T needs an integer"));
             }
@@ -513,7 +649,7 @@ impl ModalState {
             }
             self.tool = t as u32;
         }
-        for &m in &mcodes {
+        for &m in &b.mcodes {
             match m {
                 3 => self.spindle = Spindle::Cw,
                 4 => self.spindle = Spindle::Ccw,
@@ -527,100 +663,64 @@ impl ModalState {
                 _ => {}
             }
         }
+        Ok(())
+    }
 
-        let non_modal = gcodes
-            .iter()
-            .copied()
-            .find(|g| g_group(*g) == Some(Group::NonModal));
-        if let Some(m) = gcodes
-            .iter()
-            .copied()
-            .find(|g| g_group(*g) == Some(Group::Motion))
-        {
-            self.motion = match m {
-                0 => Motion::Rapid,
-                10 => Motion::Linear,
-                20 => Motion::ArcCw,
-                30 => Motion::ArcCcw,
-                800 => Motion::None,
-                p => Motion::Probe(p as u16),
-            };
-        }
-        let axes = [v('X'), v('Y'), v('Z')];
-        let has_axes = axes.iter().any(Option::is_some);
-        let explicit_motion = gcodes
-            .iter()
-            .any(|g| g_group(*g) == Some(Group::Motion) && !matches!(g, 0 | 10 | 800));
-        if explicit_motion && !has_axes && non_modal.is_none() {
-            return Err(BlockError::new(26, "G2/G3/G38.x without axis words"));
-        }
-        if v('P').is_some() && !matches!(non_modal, Some(40) | Some(100)) {
-            return Err(BlockError::new(36, "P word without G4 or G10"));
-        }
-        if v('L').is_some() && non_modal != Some(100) {
-            return Err(BlockError::new(36, "L word without G10"));
-        }
-        if let Some(n) = v('N') {
-            if n.fract() != 0.0 || n > 9_999_999.0 {
-                return Err(BlockError::new(
-                    27,
-                    "line number N must be an integer up to 9999999",
-                ));
-            }
-        }
-        let scale = if self.units == Units::Inch {
-            MM_PER_INCH
-        } else {
-            1.0
-        };
-
-        match non_modal {
-            Some(40) => {
-                if v('P').is_none() {
+    /// Runs the non-modal command `nm` (G code ×10). `Ok(true)`: the block ends
+    /// here (G4, G10, G28, G30, G92, G53 take the axis words for themselves);
+    /// `Ok(false)`: G28.1, G30.1 and G92.1, which go on to the motion.
+    fn run_non_modal(
+        &mut self,
+        nm: u32,
+        b: &BlockWords,
+        axes: &[Option<f64>; 3],
+        scale: f64,
+    ) -> Result<bool, BlockError> {
+        match nm {
+            40 => {
+                if b.v('P').is_none() {
                     return Err(BlockError::new(28, "G4 needs a P word (dwell seconds)"));
                 }
-                return Ok(());
             }
-            Some(100) => {
-                // G10 L2/L20 change work offsets: the work position is no longer known.
-                for (axis, value) in axes.iter().enumerate() {
-                    if value.is_some() {
-                        self.position[axis] = None;
-                    }
-                }
-                return Ok(());
-            }
-            Some(280) | Some(300) => {
-                self.position = [None; 3];
-                return Ok(());
-            }
-            Some(920) => {
+            // G10 L2/L20 change work offsets: the work position is no longer known.
+            100 => self.forget_axes(axes),
+            280 | 300 => self.position = [None; 3],
+            920 => {
                 for (axis, value) in axes.iter().enumerate() {
                     if let Some(value) = value {
                         self.position[axis] = Some(value * scale);
                     }
                 }
-                return Ok(());
             }
-            Some(530) => {
+            530 => {
                 if !matches!(self.motion, Motion::Rapid | Motion::Linear) {
                     return Err(BlockError::new(30, "G53 only with G0 or G1"));
                 }
-                for (axis, value) in axes.iter().enumerate() {
-                    if value.is_some() {
-                        self.position[axis] = None;
-                    }
-                }
-                return Ok(());
+                self.forget_axes(axes);
             }
-            _ => {}
+            _ => return Ok(false),
         }
+        Ok(true)
+    }
 
-        // G43.1 Z<offset> sets a tool length offset and G49 clears it: the Z word
-        // is the offset, not a move, and the work Z position is no longer known.
-        let tool_length = gcodes.iter().any(|g| matches!(g, 431 | 490));
+    /// Marks the axes that have a word as of unknown work position.
+    fn forget_axes(&mut self, axes: &[Option<f64>; 3]) {
+        for (axis, value) in axes.iter().enumerate() {
+            if value.is_some() {
+                self.position[axis] = None;
+            }
+        }
+    }
+
+    /// G43.1 Z<offset> sets a tool length offset and G49 clears it: the Z word
+    /// is the offset, not a move, and the work Z position is no longer known.
+    /// Whether the block has either.
+    fn apply_tool_length(&mut self, b: &BlockWords) -> Result<bool, BlockError> {
+        let tool_length = b.gcodes.iter().any(|g| matches!(g, 431 | 490));
         if tool_length {
-            if gcodes.contains(&431) && (v('Z').is_none() || v('X').is_some() || v('Y').is_some()) {
+            if b.gcodes.contains(&431)
+                && (b.v('Z').is_none() || b.v('X').is_some() || b.v('Y').is_some())
+            {
                 return Err(BlockError::new(
                     37,
                     "G43.1 takes exactly one axis word, Z (GRBL's tool length axis)",
@@ -628,111 +728,119 @@ impl ModalState {
             }
             self.position[2] = None;
         }
+        Ok(tool_length)
+    }
 
-        if has_axes && !tool_length {
-            match self.motion {
-                Motion::None => {
-                    return Err(BlockError::new(31, "axis words with no motion mode (G80)"))
-                }
-                Motion::Linear | Motion::ArcCw | Motion::ArcCcw | Motion::Probe(_) => {
-                    if self.feed_mode == FeedMode::UnitsPerMinute {
-                        match self.feed {
-                            None => return Err(BlockError::new(22, "feed move before any F word")),
-                            // GRBL treats F0 as no feed rate at all.
-                            Some(f) if f <= 0.0 => {
-                                return Err(BlockError::new(22, "feed move at feed rate F0"))
-                            }
-                            Some(_) => {}
+    /// A move with axis words needs a motion mode, and a feed move a feed rate
+    /// (errors 31 and 22).
+    fn check_feed(&self, b: &BlockWords) -> Result<(), BlockError> {
+        match self.motion {
+            Motion::None => Err(BlockError::new(31, "axis words with no motion mode (G80)")),
+            Motion::Linear | Motion::ArcCw | Motion::ArcCcw | Motion::Probe(_) => {
+                if self.feed_mode == FeedMode::UnitsPerMinute {
+                    match self.feed {
+                        None => return Err(BlockError::new(22, "feed move before any F word")),
+                        // GRBL treats F0 as no feed rate at all.
+                        Some(f) if f <= 0.0 => {
+                            return Err(BlockError::new(22, "feed move at feed rate F0"))
                         }
-                    }
-                    if self.feed_mode == FeedMode::InverseTime && !v('F').is_some_and(|f| f > 0.0) {
-                        return Err(BlockError::new(
-                            22,
-                            "inverse-time feed move without a positive F",
-                        ));
+                        Some(_) => {}
                     }
                 }
-                Motion::Rapid => {}
-            }
-            if matches!(self.motion, Motion::ArcCw | Motion::ArcCcw) {
-                // In-plane axes and offset words: XY uses X/Y and I/J, ZX uses Z/X
-                // and K/I, YZ uses Y/Z and J/K.
-                let (axes_in_plane, offsets) = match self.plane {
-                    Plane::XY => (['X', 'Y'], ['I', 'J']),
-                    Plane::ZX => (['Z', 'X'], ['K', 'I']),
-                    Plane::YZ => (['Y', 'Z'], ['J', 'K']),
-                };
-                if axes_in_plane.iter().all(|&c| v(c).is_none()) {
-                    return Err(BlockError::new(32, "arc without an axis word in its plane"));
-                }
-                if v('R').is_none() && offsets.iter().all(|&c| v(c).is_none()) {
+                if self.feed_mode == FeedMode::InverseTime && !b.v('F').is_some_and(|f| f > 0.0) {
                     return Err(BlockError::new(
-                        35,
-                        "arc without R or an offset word (I/J/K) in its plane",
+                        22,
+                        "inverse-time feed move without a positive F",
                     ));
                 }
-                let target = self.target(&axes, scale);
-                let start = self.position;
-                let [a0, a1] = self.plane.axes();
-                if let (Some(s0), Some(s1), Some(t0), Some(t1)) =
-                    (start[a0], start[a1], target[a0], target[a1])
-                {
-                    let (x, y) = (t0 - s0, t1 - s1);
-                    if let Some(r) = v('R') {
-                        if start == target {
-                            return Err(BlockError::new(
-                                33,
-                                "R arc ending where it starts (a full circle needs I/J/K)",
-                            ));
-                        }
-                        let r = r * scale;
-                        if 4.0 * r * r - x * x - y * y < 0.0 {
-                            return Err(BlockError::new(
-                                34,
-                                format!(
-                                    "arc radius R{} is less than half the distance {:.4} mm \
-                                     between start and end",
-                                    r / scale,
-                                    x.hypot(y) / 2.0
-                                ),
-                            ));
-                        }
-                    } else {
-                        let i = v(offsets[0]).unwrap_or(0.0) * scale;
-                        let j = v(offsets[1]).unwrap_or(0.0) * scale;
-                        let r = i.hypot(j);
-                        let delta = ((x - i).hypot(y - j) - r).abs();
-                        if arc_radius_mismatch(r, delta) {
-                            return Err(BlockError::new(
-                                33,
-                                format!(
-                                    "arc end is {delta:.4} mm off the circle of radius {r:.4} \
-                                     mm (GRBL allows 0.005 mm, or 0.1 % of the radius)"
-                                ),
-                            ));
-                        }
-                    }
-                }
-            } else if ['I', 'J', 'K', 'R'].iter().any(|&c| v(c).is_some()) {
-                return Err(BlockError::new(36, "I/J/K/R words without an arc"));
+                Ok(())
             }
-            self.position = self.target(&axes, scale);
-        } else if v('R').is_some() || v('I').is_some() || v('J').is_some() || v('K').is_some() {
-            return Err(BlockError::new(36, "arc words without axis words"));
+            Motion::Rapid => Ok(()),
         }
-        if mcodes.iter().any(|&m| m == 2 || m == 30) {
-            self.ended = true;
-            // GRBL's program end restores these modes.
-            self.motion = Motion::Linear;
-            self.distance = Distance::Absolute;
-            self.plane = Plane::XY;
-            self.feed_mode = FeedMode::UnitsPerMinute;
-            self.wcs = 54;
-            self.spindle = Spindle::Off;
-            self.mist = false;
-            self.flood = false;
+    }
+
+    /// GRBL's checks of an arc block (errors 32 to 35): an axis word and an R
+    /// or offset word in its plane, and, where start and end are known, an R
+    /// that reaches the end or an end on the circle of the I/J/K centre.
+    fn check_arc(
+        &self,
+        b: &BlockWords,
+        axes: &[Option<f64>; 3],
+        scale: f64,
+    ) -> Result<(), BlockError> {
+        // In-plane axes and offset words: XY uses X/Y and I/J, ZX uses Z/X
+        // and K/I, YZ uses Y/Z and J/K.
+        let (axes_in_plane, offsets) = match self.plane {
+            Plane::XY => (['X', 'Y'], ['I', 'J']),
+            Plane::ZX => (['Z', 'X'], ['K', 'I']),
+            Plane::YZ => (['Y', 'Z'], ['J', 'K']),
+        };
+        if axes_in_plane.iter().all(|&c| b.v(c).is_none()) {
+            return Err(BlockError::new(32, "arc without an axis word in its plane"));
+        }
+        if b.v('R').is_none() && offsets.iter().all(|&c| b.v(c).is_none()) {
+            return Err(BlockError::new(
+                35,
+                "arc without R or an offset word (I/J/K) in its plane",
+            ));
+        }
+        let target = self.target(axes, scale);
+        let start = self.position;
+        let [a0, a1] = self.plane.axes();
+        let (Some(s0), Some(s1), Some(t0), Some(t1)) =
+            (start[a0], start[a1], target[a0], target[a1])
+        else {
+            return Ok(());
+        };
+        let (x, y) = (t0 - s0, t1 - s1);
+        if let Some(r) = b.v('R') {
+            if start == target {
+                return Err(BlockError::new(
+                    33,
+                    "R arc ending where it starts (a full circle needs I/J/K)",
+                ));
+            }
+            let r = r * scale;
+            if 4.0 * r * r - x * x - y * y < 0.0 {
+                return Err(BlockError::new(
+                    34,
+                    format!(
+                        "arc radius R{} is less than half the distance {:.4} mm \
+                         between start and end",
+                        r / scale,
+                        x.hypot(y) / 2.0
+                    ),
+                ));
+            }
+        } else {
+            let i = b.v(offsets[0]).unwrap_or(0.0) * scale;
+            let j = b.v(offsets[1]).unwrap_or(0.0) * scale;
+            let r = i.hypot(j);
+            let delta = ((x - i).hypot(y - j) - r).abs();
+            if arc_radius_mismatch(r, delta) {
+                return Err(BlockError::new(
+                    33,
+                    format!(
+                        "arc end is {delta:.4} mm off the circle of radius {r:.4} \
+                         mm (GRBL allows 0.005 mm, or 0.1 % of the radius)"
+                    ),
+                ));
+            }
         }
         Ok(())
+    }
+
+    /// M2/M30: the program has ended, and GRBL restores these modes.
+    fn end_program(&mut self) {
+        self.ended = true;
+        self.motion = Motion::Linear;
+        self.distance = Distance::Absolute;
+        self.plane = Plane::XY;
+        self.feed_mode = FeedMode::UnitsPerMinute;
+        self.wcs = 54;
+        self.spindle = Spindle::Off;
+        self.mist = false;
+        self.flood = false;
     }
 
     /// Where a move with these axis words (in program units, `scale` mm per

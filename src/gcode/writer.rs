@@ -235,6 +235,63 @@ struct Modal {
 }
 
 impl Modal {
+    /// The program's start: modes set, up to `safe_z` first (where the
+    /// machine is is unknown), then over the path's `start`; spindle on,
+    /// coolant and the spindle's dwell as the job's machine asks.
+    fn start(&mut self, job: &Job, start: Vec3, safe_z: f64) {
+        self.lines.push("G21 G90 G17 G94".into());
+        let z = fmt_num(safe_z);
+        self.lines.push(format!("G0 Z{z}"));
+        self.axis[2] = Some(z);
+        self.rapid(Vec3::new(start.x, start.y, safe_z));
+        let spindle = job.tool.spindle.round();
+        self.lines.push(format!("M3 S{}", fmt_num(spindle)));
+        if job.machine.coolant {
+            self.lines.push("M8".into());
+        }
+        if job.machine.spindle_dwell > 0.0 && spindle > 0.0 {
+            self.lines
+                .push(format!("G4 P{}", fmt_num(job.machine.spindle_dwell)));
+        }
+    }
+
+    /// Every section, its label as a comment before its moves; returns where
+    /// the tool ends (over the start at `safe_z` for an empty path).
+    fn sections(&mut self, tp: &Toolpath, safe_z: f64) -> Vec3 {
+        let mut at = Vec3::new(tp.start.x, tp.start.y, safe_z);
+        for s in &tp.sections {
+            self.lines.push(comment(&s.label));
+            for m in &s.moves {
+                match *m {
+                    Move::Rapid { to } => self.rapid(to),
+                    Move::Linear { to, feed } => self.linear(to, feed),
+                    Move::Arc {
+                        to,
+                        cx,
+                        cy,
+                        ccw,
+                        feed,
+                    } => self.arc(to, cx, cy, ccw, feed),
+                }
+                at = m.to();
+            }
+        }
+        at
+    }
+
+    /// The program's end: up to `safe_z` from `at` if below it, coolant and
+    /// spindle off, M2.
+    fn end(&mut self, job: &Job, at: Vec3, safe_z: f64) {
+        if at.z < safe_z {
+            self.rapid(Vec3::new(at.x, at.y, safe_z));
+        }
+        if job.machine.coolant {
+            self.lines.push("M9".into());
+        }
+        self.lines.push("M5".into());
+        self.lines.push("M2".into());
+    }
+
     /// The written position as numbers (0 for an axis not yet written).
     fn pos(&self, k: usize) -> f64 {
         self.axis[k]
@@ -509,47 +566,26 @@ pub fn write_gcode_on(
     check_finite(tp)?;
     let legal = arcfit::legalize(tp, &arc_limits(job));
     let tp = &legal;
-    let stats = tp.stats(job.machine.rapid_rate);
     let safe_z = job.stock.safe_z.max(tp.start.z);
     let mut out = Modal {
         axis: [None, None, None],
         feed: None,
-        lines: Vec::new(),
+        lines: header_lines(tp, job, stock),
     };
-    let l = &mut out.lines;
-    l.push(super::header_line(&job.name));
-    let corner = if job.tool.shape == crate::job::CutterShape::Bull {
-        format!(", corner {} mm", fmt_num(job.tool.corner))
-    } else {
-        String::new()
-    };
-    l.push(comment(&format!(
-        "tool: {} mm {}{corner}, feed {}, plunge {} mm/min, spindle {} rpm",
-        fmt_num(job.tool.diameter),
-        job.tool.shape.header_words(),
-        fmt_num(job.tool.feed),
-        fmt_num(job.tool.plunge_feed),
-        fmt_num(job.tool.spindle.round()),
-    )));
+    out.start(job, tp.start, safe_z);
+    let at = out.sections(tp, safe_z);
+    out.end(job, at, safe_z);
+    join_lines(out.lines)
+}
+
+/// The header comments: pfcam's marker line, the tool, the stock and work
+/// zero, the operation, the cut's bounds, the levels, the moves, the lengths
+/// and the estimated time.
+fn header_lines(tp: &Toolpath, job: &Job, stock: Option<(Vec2, Vec2)>) -> Vec<String> {
+    let stats = tp.stats(job.machine.rapid_rate);
+    let mut l = vec![super::header_line(&job.name), comment(&tool_line(job))];
     l.extend(stock_lines(tp, job, stock).iter().map(|c| comment(c)));
-    let kind = match job.operation.kind {
-        OperationKind::Profile => "profile",
-        OperationKind::Boss => "boss",
-        OperationKind::Cavity => "cavity",
-    };
-    let side = match job.operation.side {
-        Side::Outside => "outside",
-    };
-    let direction = match job.operation.direction {
-        Direction::Climb => "climb",
-        Direction::Conventional => "conventional",
-    };
-    l.push(comment(&format!(
-        "operation: {kind} {side} {direction}, depth {}, stepdown {}, tol {} mm",
-        fmt_num(job.operation.depth),
-        fmt_num(job.tool.stepdown),
-        fmt_num(job.operation.tolerance)
-    )));
+    l.push(comment(&operation_line(job)));
     if let Some((lo, hi)) = cut_bounds(tp) {
         l.push(comment(&format!(
             "cut min: X{} Y{} Z{}",
@@ -565,19 +601,7 @@ pub fn write_gcode_on(
         )));
     }
     l.push(comment(&levels_line(tp)));
-    let (arcs, lines) = tp.moves().fold((0, 0), |(a, b), m| match m {
-        Move::Arc { .. } => (a + 1, b),
-        Move::Linear { .. } => (a, b + 1),
-        Move::Rapid { .. } => (a, b),
-    });
-    l.push(comment(&if job.output.arcs {
-        format!(
-            "moves: {lines} lines, {arcs} arcs of radius <= {} mm",
-            fmt_num(job.output.max_arc_radius)
-        )
-    } else {
-        format!("moves: {lines} lines, arcs off")
-    }));
+    l.push(comment(&moves_line(tp, job)));
     l.push(comment(&format!(
         "length: cut {} mm, rapid {} mm",
         fmt_num((stats.cut_length * 10.0).round() / 10.0),
@@ -588,52 +612,71 @@ pub fn write_gcode_on(
         format_duration(stats.time_s),
         fmt_num(job.machine.rapid_rate)
     )));
-    l.push("G21 G90 G17 G94".into());
+    l
+}
 
-    // Where the machine is is unknown: up to safe Z first, then over the start.
-    let z = fmt_num(safe_z);
-    out.lines.push(format!("G0 Z{z}"));
-    out.axis[2] = Some(z);
-    out.rapid(Vec3::new(tp.start.x, tp.start.y, safe_z));
-    let spindle = job.tool.spindle.round();
-    out.lines.push(format!("M3 S{}", fmt_num(spindle)));
-    if job.machine.coolant {
-        out.lines.push("M8".into());
-    }
-    if job.machine.spindle_dwell > 0.0 && spindle > 0.0 {
-        out.lines
-            .push(format!("G4 P{}", fmt_num(job.machine.spindle_dwell)));
-    }
+/// The header's tool: diameter, shape (and a bull nose's corner), feeds and
+/// spindle speed.
+fn tool_line(job: &Job) -> String {
+    let corner = if job.tool.shape == crate::job::CutterShape::Bull {
+        format!(", corner {} mm", fmt_num(job.tool.corner))
+    } else {
+        String::new()
+    };
+    format!(
+        "tool: {} mm {}{corner}, feed {}, plunge {} mm/min, spindle {} rpm",
+        fmt_num(job.tool.diameter),
+        job.tool.shape.header_words(),
+        fmt_num(job.tool.feed),
+        fmt_num(job.tool.plunge_feed),
+        fmt_num(job.tool.spindle.round()),
+    )
+}
 
-    let mut at = Vec3::new(tp.start.x, tp.start.y, safe_z);
-    for s in &tp.sections {
-        out.lines.push(comment(&s.label));
-        for m in &s.moves {
-            match *m {
-                Move::Rapid { to } => out.rapid(to),
-                Move::Linear { to, feed } => out.linear(to, feed),
-                Move::Arc {
-                    to,
-                    cx,
-                    cy,
-                    ccw,
-                    feed,
-                } => out.arc(to, cx, cy, ccw, feed),
-            }
-            at = m.to();
-        }
-    }
-    if at.z < safe_z {
-        out.rapid(Vec3::new(at.x, at.y, safe_z));
-    }
-    if job.machine.coolant {
-        out.lines.push("M9".into());
-    }
-    out.lines.push("M5".into());
-    out.lines.push("M2".into());
+/// The header's operation: kind, side, direction, depth, stepdown, tolerance.
+fn operation_line(job: &Job) -> String {
+    let kind = match job.operation.kind {
+        OperationKind::Profile => "profile",
+        OperationKind::Boss => "boss",
+        OperationKind::Cavity => "cavity",
+    };
+    let side = match job.operation.side {
+        Side::Outside => "outside",
+    };
+    let direction = match job.operation.direction {
+        Direction::Climb => "climb",
+        Direction::Conventional => "conventional",
+    };
+    format!(
+        "operation: {kind} {side} {direction}, depth {}, stepdown {}, tol {} mm",
+        fmt_num(job.operation.depth),
+        fmt_num(job.tool.stepdown),
+        fmt_num(job.operation.tolerance)
+    )
+}
 
+/// The header's count of line and arc moves (and the arcs' largest radius).
+fn moves_line(tp: &Toolpath, job: &Job) -> String {
+    let (arcs, lines) = tp.moves().fold((0, 0), |(a, b), m| match m {
+        Move::Arc { .. } => (a + 1, b),
+        Move::Linear { .. } => (a, b + 1),
+        Move::Rapid { .. } => (a, b),
+    });
+    if job.output.arcs {
+        format!(
+            "moves: {lines} lines, {arcs} arcs of radius <= {} mm",
+            fmt_num(job.output.max_arc_radius)
+        )
+    } else {
+        format!("moves: {lines} lines, arcs off")
+    }
+}
+
+/// The lines joined, each ending in a newline; an error for a line longer
+/// than GRBL's [`MAX_LINE_LEN`].
+fn join_lines(lines: Vec<String>) -> Result<String, GcodeError> {
     let mut text = String::new();
-    for line in out.lines {
+    for line in lines {
         let len = line.chars().count();
         if len > MAX_LINE_LEN {
             return Err(GcodeError::LineTooLong { line, len });

@@ -1117,128 +1117,9 @@ pub struct Resume {
 /// feed rate is set, or when the program has an error before the line.
 pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, GrblError> {
     let n = resume.line;
-    let last = program.lines.len();
-    if n == 0 || n > last {
-        return Err(GrblError::Input(format!(
-            "--from-line {n}: the file has lines 1 to {last}"
-        )));
-    }
-    let state = program
-        .state_before(n)
-        .map_err(|e| GrblError::Input(format!("--from-line {n}: cannot compute the state: {e}")))?;
-    let (highest_z, plunge_feed) = history_before(program, n);
-    let safe_z = resume.safe_z.or(highest_z).ok_or_else(|| {
-        GrblError::Input(format!(
-            "--from-line {n}: no Z move before this line; give --safe-z"
-        ))
-    })?;
-    let axis = ['X', 'Y', 'Z'];
-    let mut pos = [0.0; 3];
-    for i in 0..3 {
-        pos[i] = state.position[i].ok_or_else(|| {
-            GrblError::Input(format!(
-                "--from-line {n}: the {} position before this line is not known \
-                 (set by G28/G30/G53/G10 or never set)",
-                axis[i]
-            ))
-        })?;
-    }
-    let feed = state.feed.ok_or_else(|| {
-        GrblError::Input(format!(
-            "--from-line {n}: no feed rate (F) is set before this line"
-        ))
-    })?;
-    if state.ended {
-        return Err(GrblError::Input(format!(
-            "--from-line {n}: the program has already ended (M2/M30) before this line"
-        )));
-    }
-    let to_units = |mm: f64| match state.units {
-        Units::Inch => mm / 25.4,
-        Units::Mm => mm,
-    };
-    let decimals = if state.units == Units::Inch { 5 } else { 4 };
-    let num = |v: f64| {
-        let s = format!("{v:.decimals$}");
-        let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
-        if s == "-0" {
-            "0".to_string()
-        } else {
-            s
-        }
-    };
-    let mut out: Vec<String> = Vec::new();
-    out.push(format!(
-        "{}{}G{}G90G94",
-        if state.units == Units::Inch {
-            "G20"
-        } else {
-            "G21"
-        },
-        match state.plane {
-            Plane::XY => "G17",
-            Plane::ZX => "G18",
-            Plane::YZ => "G19",
-        },
-        state.wcs
-    ));
-    // Rounded up, so the printed safe Z is never below the asked one.
-    let scale = 10f64.powi(decimals as i32);
-    let safe = (to_units(safe_z.max(pos[2])) * scale).ceil() / scale;
-    out.push(format!("G0Z{}", num(safe)));
-    let spindle = match state.spindle {
-        Spindle::Off => "M5",
-        Spindle::Cw => "M3",
-        Spindle::Ccw => "M4",
-    };
-    out.push(format!("{spindle}S{}", num(state.spindle_speed)));
-    match (state.mist, state.flood) {
-        (false, false) => out.push("M9".into()),
-        (true, false) => out.push("M7".into()),
-        (false, true) => out.push("M8".into()),
-        // M7 and M8 share GRBL's coolant modal group: two words in one block are
-        // error 21, so they go out as two lines.
-        (true, true) => {
-            out.push("M7".into());
-            out.push("M8".into());
-        }
-    }
-    if state.spindle != Spindle::Off && resume.spindle_delay > 0.0 {
-        out.push(format!("G4P{}", num(resume.spindle_delay)));
-    }
-    out.push(format!(
-        "G0X{}Y{}",
-        num(to_units(pos[0])),
-        num(to_units(pos[1]))
-    ));
-    // Down at the program's own plunge feed, then its cutting feed is restored.
-    let plunge = plunge_feed.unwrap_or(feed);
-    out.push(format!(
-        "G1Z{}F{}",
-        num(to_units(pos[2])),
-        num(to_units(plunge))
-    ));
-    let mut modes = String::new();
-    if plunge != feed {
-        modes.push_str(&format!("F{}", num(to_units(feed))));
-    }
-    if state.distance == Distance::Incremental {
-        modes.push_str("G91");
-    }
-    if state.feed_mode == FeedMode::InverseTime {
-        modes.push_str("G93");
-    }
-    match state.motion {
-        Motion::Rapid => modes.push_str("G0"),
-        Motion::None => modes.push_str("G80"),
-        // G1 is in force after the plunge; G2/G3/G38.x need axis words, so the
-        // program's own line has to name them (CAM output does).
-        _ => {}
-    }
-    if !modes.is_empty() {
-        out.push(modes);
-    }
-    let mut blocks: Vec<Block> = out
+    let point = ResumePoint::find(program, resume)?;
+    let mut blocks: Vec<Block> = point
+        .preamble(resume.spindle_delay)
         .into_iter()
         .map(|text| Block { line: 0, text })
         .collect();
@@ -1247,6 +1128,199 @@ pub fn resume_blocks(program: &Program, resume: &Resume) -> Result<Vec<Block>, G
         text: l.block.clone(),
     }));
     Ok(blocks)
+}
+
+/// Where a resumed program picks up and the state in force there.
+struct ResumePoint {
+    /// The modal state before the line.
+    state: ModalState,
+    /// The work position before the line, mm.
+    pos: [f64; 3],
+    /// The height to travel at, mm: `--safe-z`, else the highest Z before.
+    safe_z: f64,
+    /// The feed rate in force, mm/min.
+    feed: f64,
+    /// The program's plunge feed before the line, mm/min, if it has one.
+    plunge_feed: Option<f64>,
+}
+
+impl ResumePoint {
+    /// The state before `resume.line`: an error when the line is not in the
+    /// file, the program has an error or has ended before it, or the position,
+    /// a safe Z or the feed rate is not known there.
+    fn find(program: &Program, resume: &Resume) -> Result<ResumePoint, GrblError> {
+        let n = resume.line;
+        let last = program.lines.len();
+        if n == 0 || n > last {
+            return Err(GrblError::Input(format!(
+                "--from-line {n}: the file has lines 1 to {last}"
+            )));
+        }
+        let state = program.state_before(n).map_err(|e| {
+            GrblError::Input(format!("--from-line {n}: cannot compute the state: {e}"))
+        })?;
+        let (highest_z, plunge_feed) = history_before(program, n);
+        let safe_z = resume.safe_z.or(highest_z).ok_or_else(|| {
+            GrblError::Input(format!(
+                "--from-line {n}: no Z move before this line; give --safe-z"
+            ))
+        })?;
+        let axis = ['X', 'Y', 'Z'];
+        let mut pos = [0.0; 3];
+        for i in 0..3 {
+            pos[i] = state.position[i].ok_or_else(|| {
+                GrblError::Input(format!(
+                    "--from-line {n}: the {} position before this line is not known \
+                     (set by G28/G30/G53/G10 or never set)",
+                    axis[i]
+                ))
+            })?;
+        }
+        let feed = state.feed.ok_or_else(|| {
+            GrblError::Input(format!(
+                "--from-line {n}: no feed rate (F) is set before this line"
+            ))
+        })?;
+        if state.ended {
+            return Err(GrblError::Input(format!(
+                "--from-line {n}: the program has already ended (M2/M30) before this line"
+            )));
+        }
+        Ok(ResumePoint {
+            state,
+            pos,
+            safe_z,
+            feed,
+            plunge_feed,
+        })
+    }
+
+    /// The preamble (see [`resume_blocks`]), in the program's units, with a
+    /// dwell of `spindle_delay` s after a running spindle is started.
+    fn preamble(&self, spindle_delay: f64) -> Vec<String> {
+        let state = &self.state;
+        let u = ProgramUnits::of(state.units);
+        let mut out: Vec<String> = Vec::new();
+        out.push(format!(
+            "{}{}G{}G90G94",
+            if state.units == Units::Inch {
+                "G20"
+            } else {
+                "G21"
+            },
+            match state.plane {
+                Plane::XY => "G17",
+                Plane::ZX => "G18",
+                Plane::YZ => "G19",
+            },
+            state.wcs
+        ));
+        // Rounded up, so the printed safe Z is never below the asked one.
+        let scale = 10f64.powi(u.decimals as i32);
+        let safe = (u.of_mm(self.safe_z.max(self.pos[2])) * scale).ceil() / scale;
+        out.push(format!("G0Z{}", u.num(safe)));
+        let spindle = match state.spindle {
+            Spindle::Off => "M5",
+            Spindle::Cw => "M3",
+            Spindle::Ccw => "M4",
+        };
+        out.push(format!("{spindle}S{}", u.num(state.spindle_speed)));
+        out.extend(coolant_blocks(state.mist, state.flood));
+        if state.spindle != Spindle::Off && spindle_delay > 0.0 {
+            out.push(format!("G4P{}", u.num(spindle_delay)));
+        }
+        out.push(format!(
+            "G0X{}Y{}",
+            u.num(u.of_mm(self.pos[0])),
+            u.num(u.of_mm(self.pos[1]))
+        ));
+        // Down at the program's own plunge feed, then its cutting feed is restored.
+        let plunge = self.plunge_feed.unwrap_or(self.feed);
+        out.push(format!(
+            "G1Z{}F{}",
+            u.num(u.of_mm(self.pos[2])),
+            u.num(u.of_mm(plunge))
+        ));
+        out.extend(self.restored_modes(plunge, &u));
+        out
+    }
+
+    /// The block that restores, after the plunge at `plunge` mm/min, the
+    /// cutting feed, distance mode, feed mode and motion mode; `None` when
+    /// nothing differs from what the preamble leaves.
+    fn restored_modes(&self, plunge: f64, u: &ProgramUnits) -> Option<String> {
+        let state = &self.state;
+        let mut modes = String::new();
+        if plunge != self.feed {
+            modes.push_str(&format!("F{}", u.num(u.of_mm(self.feed))));
+        }
+        if state.distance == Distance::Incremental {
+            modes.push_str("G91");
+        }
+        if state.feed_mode == FeedMode::InverseTime {
+            modes.push_str("G93");
+        }
+        match state.motion {
+            Motion::Rapid => modes.push_str("G0"),
+            Motion::None => modes.push_str("G80"),
+            // G1 is in force after the plunge; G2/G3/G38.x need axis words, so the
+            // program's own line has to name them (CAM output does).
+            _ => {}
+        }
+        (!modes.is_empty()).then_some(modes)
+    }
+}
+
+/// The blocks that restore coolant: M9, M7, M8, or M7 and M8 on two lines
+/// (they share GRBL's coolant modal group: two words in one block are error
+/// 21).
+fn coolant_blocks(mist: bool, flood: bool) -> Vec<String> {
+    match (mist, flood) {
+        (false, false) => vec!["M9".into()],
+        (true, false) => vec!["M7".into()],
+        (false, true) => vec!["M8".into()],
+        (true, true) => vec!["M7".into(), "M8".into()],
+    }
+}
+
+/// Numbers written in a program's units: 4 decimals in mm, 5 in inches.
+struct ProgramUnits {
+    /// The program is in inches (G20).
+    inch: bool,
+    /// Decimals written.
+    decimals: usize,
+}
+
+impl ProgramUnits {
+    /// The units of a program in `units`.
+    fn of(units: Units) -> ProgramUnits {
+        let inch = units == Units::Inch;
+        ProgramUnits {
+            inch,
+            decimals: if inch { 5 } else { 4 },
+        }
+    }
+
+    /// A length (or feed) in mm in the program's units.
+    fn of_mm(&self, mm: f64) -> f64 {
+        if self.inch {
+            mm / 25.4
+        } else {
+            mm
+        }
+    }
+
+    /// A number with the units' decimals, trailing zeros dropped, no `-0`.
+    fn num(&self, v: f64) -> String {
+        let decimals = self.decimals;
+        let s = format!("{v:.decimals$}");
+        let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+        if s == "-0" {
+            "0".to_string()
+        } else {
+            s
+        }
+    }
 }
 
 #[cfg(test)]

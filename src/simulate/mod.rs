@@ -331,31 +331,11 @@ pub fn simulate_programs(
 ) -> Result<Sequence, SimError> {
     let res = positive("--resolution", opts.resolution)?;
     let job = opts.job.as_ref();
-    let mut prepared = Vec::with_capacity(programs.len());
-    for (k, &(name, text)) in programs.iter().enumerate() {
-        let in_program = |error: SimError| SimError::Program {
-            name: name.to_string(),
-            error: Box::new(error),
-        };
-        let head = header::read_header(text);
-        let base = base_tool(job, &head, k == 0);
-        let (tool, tool_source) = choose_tool(opts, base, k == 0).map_err(in_program)?;
-        let stepdown = match opts.stepdown {
-            Some(s) => Some(positive("--stepdown", s).map_err(in_program)?),
-            None => match (job, base) {
-                (Some(j), Some((_, "job"))) => Some(j.stepdown),
-                _ => head.stepdown,
-            },
-        };
-        prepared.push(Prepared {
-            name,
-            read: moves::read_moves(text),
-            head,
-            tool,
-            tool_source,
-            stepdown,
-        });
-    }
+    let prepared = programs
+        .iter()
+        .enumerate()
+        .map(|(k, &(name, text))| prepare(name, text, opts, k == 0))
+        .collect::<Result<Vec<_>, _>>()?;
     let Some(first) = prepared.first() else {
         return Err(SimError::Invalid("no program to simulate".into()));
     };
@@ -364,8 +344,78 @@ pub fn simulate_programs(
     let (stock, source) = choose_stock(opts, &first.head, &all_moves, r)?;
     let grid = Grid::covering(stock.lo, stock.hi, res, opts.max_cells.max(1));
     let mut map = HeightMap::new(grid, stock.top);
-    // The lines of all programs as one count (HeightMap::last_cut): program
-    // k's line L is bases[k] + L.
+    let bases = line_bases(&prepared, programs)?;
+    let mut reports = Vec::with_capacity(prepared.len());
+    for (p, &line_base) in prepared.iter().zip(&bases) {
+        let notes = program_notes(p, &grid, res, opts.max_cells);
+        let w = run::walk(
+            &mut map,
+            &p.read.moves,
+            &p.tool,
+            grid.res * CHORD_FRACTION,
+            p.stepdown,
+            line_base,
+        );
+        let stock_info = StockInfo {
+            lo: stock.lo,
+            hi: grid.hi(),
+            top: stock.top,
+            resolution: grid.res,
+            cells: [grid.nx, grid.ny],
+            source: source.into(),
+            lowest: map.min(),
+        };
+        reports.push(program_report(p, w, stock_info, notes));
+    }
+    let part = job
+        .and_then(|j| j.part.as_ref().map(|p| (j, p)))
+        .map(|(j, p)| compare_part(&map, p, j, &prepared, &bases, &mut reports));
+    for p in &mut reports {
+        p.report.findings.sort_by_key(|f| f.line);
+    }
+    Ok(Sequence {
+        programs: reports,
+        part,
+        map,
+    })
+}
+
+/// Reads program `name` and chooses its tool and stepdown (`first`: the
+/// first program, which may take the job's tool); errors name the program.
+fn prepare<'a>(
+    name: &'a str,
+    text: &str,
+    opts: &SimOptions,
+    first: bool,
+) -> Result<Prepared<'a>, SimError> {
+    let job = opts.job.as_ref();
+    let in_program = |error: SimError| SimError::Program {
+        name: name.to_string(),
+        error: Box::new(error),
+    };
+    let head = header::read_header(text);
+    let base = base_tool(job, &head, first);
+    let (tool, tool_source) = choose_tool(opts, base, first).map_err(in_program)?;
+    let stepdown = match opts.stepdown {
+        Some(s) => Some(positive("--stepdown", s).map_err(in_program)?),
+        None => match (job, base) {
+            (Some(j), Some((_, "job"))) => Some(j.stepdown),
+            _ => head.stepdown,
+        },
+    };
+    Ok(Prepared {
+        name,
+        read: moves::read_moves(text),
+        head,
+        tool,
+        tool_source,
+        stepdown,
+    })
+}
+
+/// The lines of all programs as one count (`HeightMap::last_cut`): program
+/// k's line L is `bases[k]` + L. An error past `u32::MAX` lines in all.
+fn line_bases(prepared: &[Prepared], programs: &[(&str, &str)]) -> Result<Vec<u32>, SimError> {
     let mut bases = Vec::with_capacity(prepared.len());
     let mut base: u64 = 0;
     for (p, &(_, text)) in prepared.iter().zip(programs) {
@@ -379,121 +429,121 @@ pub fn simulate_programs(
             )));
         }
     }
-    let mut reports = Vec::with_capacity(prepared.len());
-    for (p, &line_base) in prepared.iter().zip(&bases) {
-        let mut notes = Vec::new();
-        if grid.res > res {
-            notes.push(format!(
-                "the stock needs more than {} cells at {res} mm: simulated at {} mm",
-                opts.max_cells, grid.res
-            ));
-        }
-        if let Some(line) = &p.head.tool_unread {
-            notes.push(format!(
-                "the header's `{line}` names no tool pfcam simulate models (flat, ball or bull nose end mill): not used"
-            ));
-        }
-        for (line, e) in p.read.rejected.iter().take(10) {
-            notes.push(format!(
-                "line {line}: GRBL would reject it ({e}); not simulated"
-            ));
-        }
-        if p.read.rejected.len() > 10 {
-            notes.push(format!(
-                "{} more rejected lines",
-                p.read.rejected.len() - 10
-            ));
-        }
-        let w = run::walk(
-            &mut map,
-            &p.read.moves,
-            &p.tool,
-            grid.res * CHORD_FRACTION,
-            p.stepdown,
-            line_base,
-        );
-        reports.push(ProgramReport {
-            name: p.name.to_string(),
-            report: Report {
-                tool_diameter: p.tool.diameter(),
-                tool_shape: p.tool.shape(),
-                corner_radius: p.tool.corner_radius(),
-                tool_source: p.tool_source.clone(),
-                stepdown: p.stepdown.filter(|_| p.tool.shape() != ToolShape::Ball),
-                stock: StockInfo {
-                    lo: stock.lo,
-                    hi: grid.hi(),
-                    top: stock.top,
-                    resolution: grid.res,
-                    cells: [grid.nx, grid.ny],
-                    source: source.into(),
-                    lowest: map.min(),
-                },
-                moves: p.read.moves.len(),
-                unknown_start: p.read.unknown_start,
-                rapids_into_material: w.rapids_into_material,
-                worst_rapid: w.worst_rapid,
-                straight_plunges: w.straight_plunges,
-                steepest_entry_deg: w.steepest_entry,
-                max_axial: w.max_axial,
-                max_radial: w.max_radial,
-                deep_slots: w.deep_slots,
-                feed_length: w.feed_length,
-                air_length: w.air_length,
-                air_share: if w.feed_length > 0.0 {
-                    w.air_length / w.feed_length
-                } else {
-                    0.0
-                },
-                part: None,
-                findings: w.findings,
-                notes,
-            },
-        });
+    Ok(bases)
+}
+
+/// A program's notes: a coarser grid than asked (`res` mm, at most
+/// `max_cells`), a header tool pfcam cannot model, and the first ten lines
+/// GRBL would reject.
+fn program_notes(p: &Prepared, grid: &Grid, res: f64, max_cells: usize) -> Vec<String> {
+    let mut notes = Vec::new();
+    if grid.res > res {
+        notes.push(format!(
+            "the stock needs more than {max_cells} cells at {res} mm: simulated at {} mm",
+            grid.res
+        ));
     }
+    if let Some(line) = &p.head.tool_unread {
+        notes.push(format!(
+            "the header's `{line}` names no tool pfcam simulate models (flat, ball or bull nose end mill): not used"
+        ));
+    }
+    for (line, e) in p.read.rejected.iter().take(10) {
+        notes.push(format!(
+            "line {line}: GRBL would reject it ({e}); not simulated"
+        ));
+    }
+    if p.read.rejected.len() > 10 {
+        notes.push(format!(
+            "{} more rejected lines",
+            p.read.rejected.len() - 10
+        ));
+    }
+    notes
+}
+
+/// A program's report from its walk `w` over the stock `stock`.
+fn program_report(
+    p: &Prepared,
+    w: run::Walk,
+    stock: StockInfo,
+    notes: Vec<String>,
+) -> ProgramReport {
+    ProgramReport {
+        name: p.name.to_string(),
+        report: Report {
+            tool_diameter: p.tool.diameter(),
+            tool_shape: p.tool.shape(),
+            corner_radius: p.tool.corner_radius(),
+            tool_source: p.tool_source.clone(),
+            stepdown: p.stepdown.filter(|_| p.tool.shape() != ToolShape::Ball),
+            stock,
+            moves: p.read.moves.len(),
+            unknown_start: p.read.unknown_start,
+            rapids_into_material: w.rapids_into_material,
+            worst_rapid: w.worst_rapid,
+            straight_plunges: w.straight_plunges,
+            steepest_entry_deg: w.steepest_entry,
+            max_axial: w.max_axial,
+            max_radial: w.max_radial,
+            deep_slots: w.deep_slots,
+            feed_length: w.feed_length,
+            air_length: w.air_length,
+            air_share: if w.feed_length > 0.0 {
+                w.air_length / w.feed_length
+            } else {
+                0.0
+            },
+            part: None,
+            findings: w.findings,
+            notes,
+        },
+    }
+}
+
+/// The final stock against the job's part: gouges go to the findings of the
+/// program whose line made them, and the worst gouge and material left name
+/// their program's line (and, with several programs, the program). `bases`
+/// are the programs' line bases ([`line_bases`]).
+fn compare_part(
+    map: &HeightMap,
+    part: &PartModel,
+    job: &JobFacts,
+    prepared: &[Prepared],
+    bases: &[u32],
+    reports: &mut [ProgramReport],
+) -> PartComparison {
     // Program k holds the counted lines bases[k] + 1 ..= bases[k + 1].
     let locate = |id: usize| -> (usize, usize) {
         let k = bases.partition_point(|&b| (b as usize) < id).max(1) - 1;
         (k, id - bases[k] as usize)
     };
     let several = reports.len() > 1;
-    let part = job
-        .and_then(|j| j.part.as_ref().map(|p| (j, p)))
-        .map(|(j, p)| {
-            let mut gouges = Vec::new();
-            let last_tool = prepared.last().map(|p| &p.tool);
-            let mut cmp = part::compare(&map, p, j, last_tool, &mut gouges);
-            for mut f in gouges {
-                let (k, line) = locate(f.line);
-                f.line = line;
-                reports[k].report.findings.push(f);
-            }
-            for (worst, program) in [
-                (&mut cmp.max_gouge, &mut cmp.max_gouge_program),
-                (&mut cmp.max_left, &mut cmp.max_left_program),
-                (
-                    &mut cmp.max_left_reachable,
-                    &mut cmp.max_left_reachable_program,
-                ),
-            ] {
-                if worst.line > 0 {
-                    let (k, line) = locate(worst.line);
-                    worst.line = line;
-                    if several {
-                        *program = Some(reports[k].name.clone());
-                    }
-                }
-            }
-            cmp
-        });
-    for p in &mut reports {
-        p.report.findings.sort_by_key(|f| f.line);
+    let mut gouges = Vec::new();
+    let last_tool = prepared.last().map(|p| &p.tool);
+    let mut cmp = part::compare(map, part, job, last_tool, &mut gouges);
+    for mut f in gouges {
+        let (k, line) = locate(f.line);
+        f.line = line;
+        reports[k].report.findings.push(f);
     }
-    Ok(Sequence {
-        programs: reports,
-        part,
-        map,
-    })
+    for (worst, program) in [
+        (&mut cmp.max_gouge, &mut cmp.max_gouge_program),
+        (&mut cmp.max_left, &mut cmp.max_left_program),
+        (
+            &mut cmp.max_left_reachable,
+            &mut cmp.max_left_reachable_program,
+        ),
+    ] {
+        if worst.line > 0 {
+            let (k, line) = locate(worst.line);
+            worst.line = line;
+            if several {
+                *program = Some(reports[k].name.clone());
+            }
+        }
+    }
+    cmp
 }
 
 /// The stock: `--stock`, else the job's, else the header's rectangle, else the

@@ -1,0 +1,91 @@
+//! The page: the rectangle of the part the preview pictures, and the sizes
+//! (type, lines, header, document width) that scale with it. All in mm.
+
+use super::polyline::xy;
+use crate::geometry::Vec2;
+use crate::job::Job;
+use crate::pipeline::RunOutput;
+use crate::report::RunReport;
+
+/// The rectangle the preview (and `pfcam field`) pictures: the part, the tool
+/// path (rapids included) and the program's start point, with a margin of
+/// 5 % of the diagonal but at least two tool diameters and 3 mm.
+pub fn drawing_area(job: &Job, out: &RunOutput) -> (Vec2, Vec2) {
+    let mut lo = Vec2::new(f64::MAX, f64::MAX);
+    let mut hi = Vec2::new(f64::MIN, f64::MIN);
+    let mut add = |p: Vec2| {
+        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+    };
+    if let Some((a, b)) = out.shape.tight_bbox() {
+        add(a);
+        add(b);
+    }
+    if let Some((a, b)) = out.stock {
+        add(a);
+        add(b);
+    }
+    add(Vec2::ZERO);
+    add(xy(out.toolpath.start));
+    for m in out.toolpath.moves() {
+        add(xy(m.to()));
+    }
+    let margin = (0.05 * (hi - lo).norm())
+        .max(2.0 * job.tool.diameter)
+        .max(3.0);
+    let d = Vec2::new(margin, margin);
+    (lo - d, hi + d)
+}
+
+/// The preview's page: the drawing area in part coordinates and the sizes
+/// derived from it.
+pub(super) struct Frame {
+    /// Lower-left corner of the drawing area (part coordinates, y up).
+    pub lo: Vec2,
+    /// Upper-right corner of the drawing area.
+    pub hi: Vec2,
+    /// Width of the drawing area.
+    pub w: f64,
+    /// Height of the drawing area.
+    pub h: f64,
+    /// The longer of `w` and `h`.
+    pub size: f64,
+    /// Type size: size / 60, within 1.5 to 6.
+    pub fs: f64,
+    /// Base line width: size / 900, within 0.06 to 0.3.
+    pub lw: f64,
+    /// Document width: the drawing's, but at least 36 type sizes for the text.
+    pub doc_w: f64,
+    /// SVG x of the document's left edge (the drawing centred in it).
+    pub x0: f64,
+    /// SVG y of the document's top edge, above the header.
+    pub top_y: f64,
+    /// Chord tolerance for drawing curves: size / 4000, at least 0.005.
+    pub tol_draw: f64,
+}
+
+impl Frame {
+    /// The page of a run's preview; the header is a line taller with a warning.
+    pub fn new(job: &Job, out: &RunOutput, report: &RunReport) -> Frame {
+        let (lo, hi) = drawing_area(job, out);
+        let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+        let size = w.max(h);
+        let fs = (size / 60.0).clamp(1.5, 6.0);
+        let lw = (size / 900.0).clamp(0.06, 0.3);
+        let header = if report.warnings.is_empty() { 5.6 } else { 6.8 } * fs;
+        let doc_w = w.max(36.0 * fs);
+        Frame {
+            lo,
+            hi,
+            w,
+            h,
+            size,
+            fs,
+            lw,
+            doc_w,
+            x0: lo.x - 0.5 * (doc_w - w),
+            top_y: -hi.y - header,
+            tol_draw: (size / 4000.0).max(0.005),
+        }
+    }
+}

@@ -1,0 +1,97 @@
+//! The header above the drawing: the job's name and its key figures.
+
+use super::cut::Depths;
+use super::frame::Frame;
+use super::svgfmt::{num, text, FONT};
+use crate::gcode::format_duration;
+use crate::job::Job;
+use crate::report::RunReport;
+use svg::node::element::Group;
+
+/// The header: the job's name in bold, then the operation, tool and depths;
+/// the path's lengths and time; the field's error and the clearance; a line
+/// for a finishing program; and the first warning, if any, in orange.
+pub(super) fn header(job: &Job, report: &RunReport, depths: &Depths, frame: &Frame) -> Group {
+    let (fs, x0, top_y) = (frame.fs, frame.x0, frame.top_y);
+    let mut lines = figure_lines(job, report, depths);
+    if let Some(w) = warning_line(report, frame.doc_w - 2.0 * fs, fs) {
+        lines.push(w);
+    }
+    let mut head = Group::new()
+        .set("font-family", FONT)
+        .set("fill", "#000000")
+        .set("class", "header");
+    head = head
+        .add(text(x0 + fs, top_y + 1.5 * fs, 1.25 * fs, &report.job).set("font-weight", "bold"));
+    for (k, l) in lines.iter().enumerate() {
+        let t = text(x0 + fs, top_y + (2.9 + 1.2 * k as f64) * fs, 0.9 * fs, l);
+        // The fourth line, if any, is a warning.
+        head = head.add(if k == 3 { t.set("fill", "#b34700") } else { t });
+    }
+    head
+}
+
+/// The header's lines of figures, and a line for the finishing program (its
+/// own file, not drawn here) with its figures as the report gives them.
+fn figure_lines(job: &Job, report: &RunReport, depths: &Depths) -> Vec<String> {
+    let t = &report.totals;
+    let n_lv = depths.count();
+    let z_range = if n_lv == 0 {
+        "no cut".to_string()
+    } else if n_lv == 1 {
+        format!("1 level, z {} mm", num(depths.zmin))
+    } else {
+        format!(
+            "{n_lv} levels, z {} to {} mm",
+            num(depths.zmax),
+            num(depths.zmin)
+        )
+    };
+    let mut lines = vec![
+        format!(
+            "{} · tool ⌀{} mm · {}",
+            report.operation,
+            num(job.tool.diameter),
+            z_range
+        ),
+        format!(
+            "path {:.1} mm cutting + {:.1} mm rapid · est. time {}",
+            t.cut_length_mm,
+            t.rapid_length_mm,
+            format_duration(t.time_s)
+        ),
+        format!(
+            "max boundary error {:.2e} · min clearance {}",
+            t.max_boundary_error,
+            t.min_clearance_mm
+                .map_or("-".into(), |c| format!("{c:.4} mm"))
+        ),
+    ];
+    if let (Some(f), Some(p)) = (&job.finish, report.programs.get(1)) {
+        lines.push(format!(
+            "then {}: {} ⌀{} mm · {:.1} mm cutting · est. time {} (not drawn)",
+            p.file,
+            f.shape.header_words(),
+            num(f.diameter),
+            p.cut_length_mm,
+            format_duration(p.time_s)
+        ));
+    }
+    lines
+}
+
+/// The first warning, with how many there are, cut with `…` to fit `width`
+/// mm at type size 0.9 `fs` (DejaVu Sans averages about 0.55 em a character).
+fn warning_line(report: &RunReport, width: f64, fs: f64) -> Option<String> {
+    let w = report.warnings.first()?;
+    let mut w = format!(
+        "{} warning{}: {w}",
+        report.warnings.len(),
+        if report.warnings.len() == 1 { "" } else { "s" }
+    );
+    let fit = (width / (0.55 * 0.9 * fs)).floor().max(10.0) as usize;
+    if w.chars().count() > fit {
+        w = w.chars().take(fit - 1).collect::<String>() + "…";
+    }
+    Some(w)
+}
