@@ -230,81 +230,16 @@ pub fn plan_levels_reporting(
     job: &LevelJob,
     progress: &LevelProgress,
 ) -> Result<Planned, PlanError> {
-    let f = job.field;
-    let (s_lo, _) = job.profile.s_range();
-    // One grid for the whole job, grown until Γ(s_lo) closes inside it.
-    let (lo, hi) = polygons_bbox(job.glyphs).unwrap_or(EMPTY_BOX);
-    let diag = (hi - lo).norm();
-    let mut pad = 0.1 * diag;
-    let h = GRID_SPACING.max(diag / 2000.0);
-    let mut grid;
-    let mut tries = 0;
-    loop {
-        let (glo, ghi) = (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad));
-        grid = Grid::sample(f, glo, ghi, h, job.glyphs);
-        if grid.border_max() < s_lo || tries >= 5 {
-            break;
-        }
-        pad *= 1.8;
-        tries += 1;
-    }
-    if grid.border_max() >= s_lo {
-        return Err(PlanError::Invalid(format!(
-            "the level s = {s_lo} does not close within {pad:.0} mm of the shape; raise profile.s_bottom / profile.s2"
-        )));
-    }
-    let tol = job.params.tol;
+    let (grid, h) = job_grid(job)?;
     let t_start = std::time::Instant::now();
-    // Γ(s) at the level of z: s from the profile (mirrored for a cavity).
+    let c = LevelCurves {
+        job,
+        grid,
+        h,
+        cache: Mutex::new(HashMap::new()),
+    };
     let depth = job.profile.depth();
-    let s_of = |zrel: f64| {
-        if job.cavity {
-            job.profile.s_at(-depth - zrel)
-        } else {
-            job.profile.s_at(zrel)
-        }
-    };
-    let cache: Mutex<HashMap<u64, Vec<Vec<Vec2>>>> = Mutex::new(HashMap::new());
-    let contours_at = |s: f64| -> Vec<Vec<Vec2>> {
-        if let Some(c) = cache.lock().ok().and_then(|m| m.get(&s.to_bits()).cloned()) {
-            return c;
-        }
-        let polys = curves(&grid, f, job.glyphs, s, h, tol);
-        if let Ok(mut m) = cache.lock() {
-            m.insert(s.to_bits(), polys.clone());
-        }
-        polys
-    };
-    // Horizontal step between the contours of two levels: the largest distance
-    // from the wider contour's points to the narrower one.
-    let gap_nan = std::cell::Cell::new(false);
-    let gap = |za: f64, zb: f64| -> f64 {
-        let (ca, cb) = (contours_at(s_of(za)), contours_at(s_of(zb)));
-        let (wide, narrow) = if job.cavity { (ca, cb) } else { (cb, ca) };
-        let idx = DistanceIndex::new(&narrow);
-        let g = wide
-            .iter()
-            .flatten()
-            .map(|&p| idx.distance(p))
-            .fold(0.0, crate::num::max_or_nan);
-        if g.is_nan() {
-            gap_nan.set(true);
-        }
-        g
-    };
-    let max_levels = crate::job::limits::MAX_LEVELS;
-    let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, max_levels, &gap)
-        .ok_or_else(|| {
-            PlanError::Invalid(format!(
-                "operation.max_scallop = {} mm needs more than {max_levels} levels on this wall: raise it, or tool.stepdown",
-                job.max_scallop
-            ))
-        })?;
-    if gap_nan.get() {
-        return Err(PlanError::Invalid(
-            "the horizontal step between two levels is not a number (NaN): this is a pfcam bug, please report it with the job file".into(),
-        ));
-    }
+    let zs = level_schedule(job, &c)?;
     // The levels of the plain stepdown schedule clear everything; the ones added
     // for the scallop bound only the band down to the level below them, which is
     // cut before them ([`cutting_order`]).
@@ -313,17 +248,10 @@ pub fn plan_levels_reporting(
         .map(|k| -depth * k as f64 / n_rough as f64)
         .collect();
     let is_rough = |z: f64| rough_z.iter().any(|&zr| (zr - z).abs() < 1e-9);
-
     let t_schedule = t_start.elapsed().as_secs_f64();
-    // The stock: the largest level (a boss's base, a cavity's rim) plus the margin.
-    let base = contours_at(if job.cavity { s_of(0.0) } else { s_of(-depth) });
-    let (blo, bhi) = polygons_bbox(&base).unwrap_or(EMPTY_BOX);
-    let mut params = job.params;
-    params.stock_lo = blo - Vec2::new(job.margin, job.margin);
-    params.stock_hi = bhi + Vec2::new(job.margin, job.margin);
+    let params = with_stock(job, &c);
     let stock = (!job.cavity).then_some((params.stock_lo, params.stock_hi));
-
-    let area_at = |zrel: f64| level_area(&contours_at(s_of(zrel)), stock);
+    let area_at = |zrel: f64| level_area(&c.at(c.s_of(zrel)), stock);
     let bound = levels_bound(
         &rough_z[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
         &zs[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
@@ -344,116 +272,14 @@ pub fn plan_levels_reporting(
         })
         .collect();
     progress.total.store(levels.len(), Ordering::Relaxed);
-    type LevelResult = Result<(LevelCut, LevelInfo, Vec<String>), PlanError>;
-    let results: Vec<LevelResult> = levels
+    let results: Vec<Result<PlannedLevel, PlanError>> = levels
         .par_iter()
         .map(|&(k, z, z_below)| {
-            use crate::field::count::{set_stage, Stage};
-            set_stage(Stage::LevelGrid);
-            let s = s_of(z);
-            let polys = contours_at(s);
-            if polys.is_empty() {
-                return Err(PlanError::Invalid(format!(
-                    "level {k} (z {:.3}, s = {s:.4}) has no contour",
-                    job.top + z
-                )));
-            }
-            // The level's own MFS problem on Γ(s): material on the left (for a
-            // cavity the mould is outside Γ(s), so the loops are reversed).
-            let oriented: Vec<Vec<Vec2>> = if job.cavity {
-                polys
-                    .iter()
-                    .map(|p| p.iter().rev().copied().collect())
-                    .collect()
-            } else {
-                polys.clone()
-            };
-            let t0 = std::time::Instant::now();
-            let label = format!("level {k} (z {:.3})", job.top + z);
-            let mut warnings = Vec::new();
-            set_stage(Stage::LevelSolve);
-            let level = if job.cavity {
-                cavity_level_field(&oriented, tol, job.outer_radius, s, &label)?
-            } else {
-                let l = boss_level_field(f, s, &job.field_figures);
-                let (e, bound) = (l.figures.max_error, level_error_bound(s));
-                if e > bound || e.is_nan() {
-                    warnings.push(format!(
-                        "{label}, s = {s:.6}: its field (the shape's u/s) errs by {e:.2e}, above {bound:.1e} (a hundredth of 1 − s): lower profile.s1 (the top edge)"
-                    ));
-                }
-                l
-            };
-            let t_solve = t0.elapsed().as_secs_f64();
-            // A level added for the scallop bound clears only the band out to the
-            // contour of the level below it (wider for a boss, narrower for a
-            // cavity), which is cut first: the largest distance between the two.
-            set_stage(Stage::LevelGrid);
-            let reach = z_below.map(|zb| {
-                let other = contours_at(s_of(zb));
-                let (wide, narrow) = if job.cavity {
-                    (&polys, &other)
-                } else {
-                    (&other, &polys)
-                };
-                let idx = DistanceIndex::new(narrow);
-                wide.iter()
-                    .flatten()
-                    .map(|&q| idx.distance(q))
-                    .fold(0.0, crate::num::max_or_nan)
-            });
-            if reach.is_some_and(f64::is_nan) {
-                return Err(PlanError::Profile(ProfileError::NotFinite(format!(
-                    "{label}: the band it clears"
-                ))));
-            }
-            set_stage(Stage::Rings);
-            let (paths, uncut) = if job.cavity {
-                let (p, f) = crate::toolpath::zlevel::cavity_paths(
-                    &oriented,
-                    &level.field,
-                    &params,
-                    &label,
-                    &mut warnings,
-                    reach,
-                )?;
-                (p, Some(f))
-            } else {
-                (
-                    boss_paths(
-                        &oriented,
-                        &level.field,
-                        &params,
-                        &label,
-                        &mut warnings,
-                        reach,
-                    )?,
-                    None,
-                )
-            };
-            let info = LevelInfo {
-                z: job.top + z,
-                s,
-                n: level.field.n(),
-                m: level.figures.m,
-                max_error: level.figures.max_error,
-                distance: level.figures.distance,
-                uncut,
-                min_clearance: f64::NAN,
-                t_solve,
-                t_paths: t0.elapsed().as_secs_f64() - t_solve,
-            };
-            progress.done.fetch_add(1, Ordering::Relaxed);
-            Ok((
-                LevelCut {
-                    z: job.top + z,
-                    s,
-                    part: polys,
-                    paths,
-                },
-                info,
-                warnings,
-            ))
+            let r = plan_level(&c, &params, k, z, z_below);
+            progress
+                .done
+                .fetch_add(usize::from(r.is_ok()), Ordering::Relaxed);
+            r
         })
         .collect();
     let (mut cuts, mut info, mut warnings) = (Vec::new(), Vec::new(), Vec::new());
@@ -476,6 +302,250 @@ pub fn plan_levels_reporting(
         t_schedule,
         bound,
     })
+}
+
+/// One grid of u for the whole job (spacing [`GRID_SPACING`], or finer for a
+/// shape over 800 mm across), grown until Γ(s_bottom) closes inside it.
+fn job_grid(job: &LevelJob) -> Result<(Grid, f64), PlanError> {
+    let (s_lo, _) = job.profile.s_range();
+    let (lo, hi) = polygons_bbox(job.glyphs).unwrap_or(EMPTY_BOX);
+    let diag = (hi - lo).norm();
+    let mut pad = 0.1 * diag;
+    let h = GRID_SPACING.max(diag / 2000.0);
+    let mut grid;
+    let mut tries = 0;
+    loop {
+        let (glo, ghi) = (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad));
+        grid = Grid::sample(job.field, glo, ghi, h, job.glyphs);
+        if grid.border_max() < s_lo || tries >= 5 {
+            break;
+        }
+        pad *= 1.8;
+        tries += 1;
+    }
+    if grid.border_max() >= s_lo {
+        return Err(PlanError::Invalid(format!(
+            "the level s = {s_lo} does not close within {pad:.0} mm of the shape; raise profile.s_bottom / profile.s2"
+        )));
+    }
+    Ok((grid, h))
+}
+
+/// Γ(s) of the job's field from its one grid, each s extracted once (the
+/// schedule, the stock, the bound and the levels ask for the same curves).
+struct LevelCurves<'a> {
+    job: &'a LevelJob<'a>,
+    grid: Grid,
+    h: f64,
+    cache: Mutex<HashMap<u64, Vec<Vec<Vec2>>>>,
+}
+
+impl LevelCurves<'_> {
+    /// s at the level of `zrel` (relative to the stock top): from the profile,
+    /// mirrored for a cavity.
+    fn s_of(&self, zrel: f64) -> f64 {
+        let p = self.job.profile;
+        if self.job.cavity {
+            p.s_at(-p.depth() - zrel)
+        } else {
+            p.s_at(zrel)
+        }
+    }
+
+    /// Γ(s) ([`curves`]).
+    fn at(&self, s: f64) -> Vec<Vec<Vec2>> {
+        if let Some(c) = self
+            .cache
+            .lock()
+            .ok()
+            .and_then(|m| m.get(&s.to_bits()).cloned())
+        {
+            return c;
+        }
+        let polys = curves(
+            &self.grid,
+            self.job.field,
+            self.job.glyphs,
+            s,
+            self.h,
+            self.job.params.tol,
+        );
+        if let Ok(mut m) = self.cache.lock() {
+            m.insert(s.to_bits(), polys.clone());
+        }
+        polys
+    }
+
+    /// The horizontal step between the contours of the levels at `za` and
+    /// `zb`: the largest distance from the wider contour's points to the
+    /// narrower one (NaN if a distance is).
+    fn gap(&self, za: f64, zb: f64) -> f64 {
+        let (ca, cb) = (self.at(self.s_of(za)), self.at(self.s_of(zb)));
+        let (wide, narrow) = if self.job.cavity { (ca, cb) } else { (cb, ca) };
+        let idx = DistanceIndex::new(&narrow);
+        wide.iter()
+            .flatten()
+            .map(|&p| idx.distance(p))
+            .fold(0.0, crate::num::max_or_nan)
+    }
+}
+
+/// The z of every level, relative to the stock top, from 0 down
+/// ([`schedule`]: the stepdown levels plus those the scallop bound needs).
+fn level_schedule(job: &LevelJob, c: &LevelCurves) -> Result<Vec<f64>, PlanError> {
+    let gap_nan = std::cell::Cell::new(false);
+    let gap = |za: f64, zb: f64| -> f64 {
+        let g = c.gap(za, zb);
+        if g.is_nan() {
+            gap_nan.set(true);
+        }
+        g
+    };
+    let max_levels = crate::job::limits::MAX_LEVELS;
+    let depth = job.profile.depth();
+    let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, max_levels, &gap)
+        .ok_or_else(|| {
+            PlanError::Invalid(format!(
+                "operation.max_scallop = {} mm needs more than {max_levels} levels on this wall: raise it, or tool.stepdown",
+                job.max_scallop
+            ))
+        })?;
+    if gap_nan.get() {
+        return Err(PlanError::Invalid(
+            "the horizontal step between two levels is not a number (NaN): this is a pfcam bug, please report it with the job file".into(),
+        ));
+    }
+    Ok(zs)
+}
+
+/// The job's level settings with the stock: the largest level (a boss's
+/// base, a cavity's rim) plus the margin.
+fn with_stock(job: &LevelJob, c: &LevelCurves) -> LevelParams {
+    let depth = job.profile.depth();
+    let base = c.at(if job.cavity {
+        c.s_of(0.0)
+    } else {
+        c.s_of(-depth)
+    });
+    let (blo, bhi) = polygons_bbox(&base).unwrap_or(EMPTY_BOX);
+    let mut params = job.params;
+    params.stock_lo = blo - Vec2::new(job.margin, job.margin);
+    params.stock_hi = bhi + Vec2::new(job.margin, job.margin);
+    params
+}
+
+/// One level's cut, figures and warnings.
+type PlannedLevel = (LevelCut, LevelInfo, Vec<String>);
+
+/// Level `k` at `z` (relative to the stock top): its own MFS problem on
+/// Γ(s) ([`level_field`]) and its paths; `z_below` is the level below when
+/// this one was added for the scallop bound (it then clears only the band
+/// out to that level's contour, which is cut first).
+fn plan_level(
+    c: &LevelCurves,
+    params: &LevelParams,
+    k: usize,
+    z: f64,
+    z_below: Option<f64>,
+) -> Result<PlannedLevel, PlanError> {
+    use crate::field::count::{set_stage, Stage};
+    let job = c.job;
+    set_stage(Stage::LevelGrid);
+    let s = c.s_of(z);
+    let polys = c.at(s);
+    if polys.is_empty() {
+        return Err(PlanError::Invalid(format!(
+            "level {k} (z {:.3}, s = {s:.4}) has no contour",
+            job.top + z
+        )));
+    }
+    // Material on the left (for a cavity the mould is outside Γ(s), so the
+    // loops are reversed).
+    let oriented: Vec<Vec<Vec2>> = if job.cavity {
+        polys
+            .iter()
+            .map(|p| p.iter().rev().copied().collect())
+            .collect()
+    } else {
+        polys.clone()
+    };
+    let t0 = std::time::Instant::now();
+    let label = format!("level {k} (z {:.3})", job.top + z);
+    let mut warnings = Vec::new();
+    set_stage(Stage::LevelSolve);
+    let level = level_field(job, &oriented, s, &label, &mut warnings)?;
+    let t_solve = t0.elapsed().as_secs_f64();
+    set_stage(Stage::LevelGrid);
+    let reach = z_below.map(|zb| c.gap(z, zb));
+    if reach.is_some_and(f64::is_nan) {
+        return Err(PlanError::Profile(ProfileError::NotFinite(format!(
+            "{label}: the band it clears"
+        ))));
+    }
+    set_stage(Stage::Rings);
+    let (paths, uncut) = if job.cavity {
+        let (p, f) = crate::toolpath::zlevel::cavity_paths(
+            &oriented,
+            &level.field,
+            params,
+            &label,
+            &mut warnings,
+            reach,
+        )?;
+        (p, Some(f))
+    } else {
+        let p = boss_paths(
+            &oriented,
+            &level.field,
+            params,
+            &label,
+            &mut warnings,
+            reach,
+        )?;
+        (p, None)
+    };
+    let info = LevelInfo {
+        z: job.top + z,
+        s,
+        n: level.field.n(),
+        m: level.figures.m,
+        max_error: level.figures.max_error,
+        distance: level.figures.distance,
+        uncut,
+        min_clearance: f64::NAN,
+        t_solve,
+        t_paths: t0.elapsed().as_secs_f64() - t_solve,
+    };
+    let cut = LevelCut {
+        z: job.top + z,
+        s,
+        part: polys,
+        paths,
+    };
+    Ok((cut, info, warnings))
+}
+
+/// A level's own field: the cavity's MFS problem on Γ(s) (`oriented`), or
+/// the boss's u/s, with a warning when it errs by more than
+/// [`level_error_bound`].
+fn level_field(
+    job: &LevelJob,
+    oriented: &[Vec<Vec2>],
+    s: f64,
+    label: &str,
+    warnings: &mut Vec<String>,
+) -> Result<LevelField, PlanError> {
+    if job.cavity {
+        return cavity_level_field(oriented, job.params.tol, job.outer_radius, s, label);
+    }
+    let l = boss_level_field(job.field, s, &job.field_figures);
+    let (e, bound) = (l.figures.max_error, level_error_bound(s));
+    if e > bound || e.is_nan() {
+        warnings.push(format!(
+            "{label}, s = {s:.6}: its field (the shape's u/s) errs by {e:.2e}, above {bound:.1e} (a hundredth of 1 − s): lower profile.s1 (the top edge)"
+        ));
+    }
+    Ok(l)
 }
 
 /// One line for every cavity level whose field errs above
