@@ -342,13 +342,57 @@ impl Prepared {
     /// The problem for a layout, its points kept apart by role.
     pub fn groups(&self, layout: &Layout) -> Result<Groups, FieldError> {
         let b = &self.boundary;
+        let n = self.counts(layout)?;
+        let mut pr = Problem::default();
+        let shares = self.shares(n.pb);
+        let mut colloc_s = self.contour_charges(&mut pr, &shares, layout);
+        self.corner_clusters(&mut pr, &mut colloc_s, n.pairs, n.single);
+        self.check_points(&mut pr, &colloc_s, n.checks);
+        // Circles: outer (u = 0) and sinks (u = 0).
+        let outer = self.outer.then(|| {
+            circle(
+                b.centre,
+                b.radius,
+                b.radius * OUTER_CHARGE_FACTOR,
+                n.outer,
+                n.checks,
+            )
+        });
+        let sinks = self
+            .sinks
+            .iter()
+            .map(|sink| {
+                let g = circle(
+                    sink.centre,
+                    sink.radius,
+                    sink.radius * SINK_CHARGE_FACTOR,
+                    n.sink_charges,
+                    n.checks,
+                );
+                (*sink, g)
+            })
+            .collect();
+        Ok(Groups {
+            material: pr,
+            outer,
+            sinks,
+        })
+    }
+
+    /// How `layout.n_total` singularities are shared out: the outer circle's
+    /// and each sink's (fixed), the corner clusters' (`corner_fraction` of the
+    /// rest, per corner in pairs about the bisector once there are enough for
+    /// pairs to pay, else on the bisector), and the uniform ones on the
+    /// contours (the rest); an error when too few are left for four per
+    /// contour.
+    fn counts(&self, layout: &Layout) -> Result<Counts, FieldError> {
         let sink_charges = if layout.pairs {
             PAIRED_SINK_CHARGES
         } else {
             SINK_CHARGES
         };
         let n_sinks = self.sinks.len() * sink_charges;
-        let n_outer = match (self.outer, layout.pairs) {
+        let outer = match (self.outer, layout.pairs) {
             (false, _) => 0,
             (true, false) => OUTER_CHARGES,
             (true, true) => {
@@ -360,12 +404,13 @@ impl Prepared {
         } else {
             CHECKS_PER_INTERVAL.0
         };
-        let fixed = n_outer + n_sinks;
-        if layout.n_total < fixed + 4 * b.contours.len() {
+        let fixed = outer + n_sinks;
+        let contours = self.boundary.contours.len();
+        if layout.n_total < fixed + 4 * contours {
             return Err(FieldError::Invalid(format!(
                 "{} singularities are too few for this shape (at least {} needed)",
                 layout.n_total,
-                fixed + 4 * b.contours.len()
+                fixed + 4 * contours
             )));
         }
         let free = layout.n_total - fixed;
@@ -374,25 +419,31 @@ impl Prepared {
         } else {
             0
         };
-        // Charges per corner: in pairs about the bisector once there are enough
-        // for pairs to pay, else on the bisector.
-        let (n_pairs, n_single) = if layout.pairs && n_corner_each >= PAIR_MIN {
+        let (pairs, single) = if layout.pairs && n_corner_each >= PAIR_MIN {
             (n_corner_each / 2, 0)
         } else {
             (0, n_corner_each)
         };
-        let n_corner_total = (2 * n_pairs + n_single) * self.corners.len();
-        let n_pb = free - n_corner_total;
+        let n_corner_total = (2 * pairs + single) * self.corners.len();
+        Ok(Counts {
+            sink_charges,
+            outer,
+            checks,
+            pairs,
+            single,
+            pb: free - n_corner_total,
+        })
+    }
 
-        let mut pr = Problem::default();
-        // Contours: uniform charges and collocation, shared out by length.
+    /// `n_pb` uniform charges shared out among the contours by length (at
+    /// least two each), the remainder handed to the longest so Σ = n_pb.
+    fn shares(&self, n_pb: usize) -> Vec<usize> {
         let total_len = self.perimeter();
         let mut shares: Vec<usize> = self
             .lengths
             .iter()
             .map(|l| ((l / total_len) * n_pb as f64).floor().max(2.0) as usize)
             .collect();
-        // Hand out the remainder to the longest contours so Σ = n_pb exactly.
         let mut assigned: usize = shares.iter().sum();
         let mut order: Vec<usize> = (0..shares.len()).collect();
         order.sort_by(|&i, &j| self.lengths[j].total_cmp(&self.lengths[i]));
@@ -410,6 +461,19 @@ impl Prepared {
             }
             k += 1;
         }
+        shares
+    }
+
+    /// Uniform charges and collocation on every contour (`shares[ci]` charges,
+    /// twice as many collocation points between them); returns each contour's
+    /// collocation arc lengths.
+    fn contour_charges(
+        &self,
+        pr: &mut Problem,
+        shares: &[usize],
+        layout: &Layout,
+    ) -> Vec<Vec<f64>> {
+        let b = &self.boundary;
         let mut colloc_s: Vec<Vec<f64>> = vec![Vec::new(); b.contours.len()];
         for (ci, c) in b.contours.iter().enumerate() {
             let nc = shares[ci];
@@ -441,16 +505,26 @@ impl Prepared {
                 colloc_s[ci].push(s);
             }
         }
-        // Corner clusters at tapered distances: on the bisector, two collocation
-        // points per charge, one each side of the corner at the charge's
-        // distance; or in pairs about the bisector, four collocation points per
-        // pair, two each side, at the pair's distance and halfway (geometrically)
-        // to the next pair out.
+        colloc_s
+    }
+
+    /// Corner clusters at tapered distances: on the bisector, two collocation
+    /// points per charge, one each side of the corner at the charge's
+    /// distance; or in pairs about the bisector, four collocation points per
+    /// pair, two each side, at the pair's distance and halfway (geometrically)
+    /// to the next pair out.
+    fn corner_clusters(
+        &self,
+        pr: &mut Problem,
+        colloc_s: &mut [Vec<f64>],
+        n_pairs: usize,
+        n_single: usize,
+    ) {
+        if n_pairs + n_single == 0 {
+            return;
+        }
         for k in &self.corners {
-            if n_pairs + n_single == 0 {
-                break;
-            }
-            let c = &b.contours[k.ci];
+            let c = &self.boundary.contours[k.ci];
             let cum = c.cumulative_lengths();
             let deltas = cluster_distances(k.depth, n_pairs.max(n_single));
             let angle = PAIR_ANGLE.min(0.5 * k.half_wedge);
@@ -479,8 +553,12 @@ impl Prepared {
                 }
             }
         }
-        // Check points: `checks` between every pair of neighbouring collocation
-        // points on each contour, plus every corner.
+    }
+
+    /// Check points: `checks` between every pair of neighbouring collocation
+    /// points on each contour, plus every corner.
+    fn check_points(&self, pr: &mut Problem, colloc_s: &[Vec<f64>], checks: usize) {
+        let b = &self.boundary;
         for (ci, c) in b.contours.iter().enumerate() {
             let cum = c.cumulative_lengths();
             let mut ss = colloc_s[ci].clone();
@@ -510,52 +588,50 @@ impl Prepared {
                 value: 1.0,
             });
         }
-        // Circles: outer (u = 0) and sinks (u = 0).
-        let circle = |centre: Vec2, radius: f64, charge_radius: f64, n: usize| {
-            let mut pr = Problem::default();
-            for j in 0..n {
-                let a = TAU * (j as f64 + 0.25) / n as f64;
-                pr.charges
-                    .push(centre + Vec2::new(a.cos(), a.sin()) * charge_radius);
-            }
-            for j in 0..2 * n {
-                let a = TAU * j as f64 / (2 * n) as f64;
-                pr.colloc.push(Condition {
-                    p: centre + Vec2::new(a.cos(), a.sin()) * radius,
-                    value: 0.0,
-                });
-                for q in 1..=checks {
-                    let a = TAU * (j as f64 + q as f64 / (checks + 1) as f64) / (2 * n) as f64;
-                    pr.checks.push(Condition {
-                        p: centre + Vec2::new(a.cos(), a.sin()) * radius,
-                        value: 0.0,
-                    });
-                }
-            }
-            pr
-        };
-        let outer = self
-            .outer
-            .then(|| circle(b.centre, b.radius, b.radius * OUTER_CHARGE_FACTOR, n_outer));
-        let sinks = self
-            .sinks
-            .iter()
-            .map(|sink| {
-                let g = circle(
-                    sink.centre,
-                    sink.radius,
-                    sink.radius * SINK_CHARGE_FACTOR,
-                    sink_charges,
-                );
-                (*sink, g)
-            })
-            .collect();
-        Ok(Groups {
-            material: pr,
-            outer,
-            sinks,
-        })
     }
+}
+
+/// How a layout's singularities are shared out (see `Prepared::counts`).
+struct Counts {
+    /// Charges per sink.
+    sink_charges: usize,
+    /// Charges on the outer circle.
+    outer: usize,
+    /// Check points between neighbouring collocation points.
+    checks: usize,
+    /// Pairs per corner.
+    pairs: usize,
+    /// Single charges per corner (when not in pairs).
+    single: usize,
+    /// Uniform charges on the contours.
+    pb: usize,
+}
+
+/// A circle where u = 0 (the outer circle or a sink) of `radius` about
+/// `centre`: `n` charges on the concentric circle of `charge_radius`, 2n
+/// collocation points on it, `checks` check points between neighbours.
+fn circle(centre: Vec2, radius: f64, charge_radius: f64, n: usize, checks: usize) -> Problem {
+    let mut pr = Problem::default();
+    for j in 0..n {
+        let a = TAU * (j as f64 + 0.25) / n as f64;
+        pr.charges
+            .push(centre + Vec2::new(a.cos(), a.sin()) * charge_radius);
+    }
+    for j in 0..2 * n {
+        let a = TAU * j as f64 / (2 * n) as f64;
+        pr.colloc.push(Condition {
+            p: centre + Vec2::new(a.cos(), a.sin()) * radius,
+            value: 0.0,
+        });
+        for q in 1..=checks {
+            let a = TAU * (j as f64 + q as f64 / (checks + 1) as f64) / (2 * n) as f64;
+            pr.checks.push(Condition {
+                p: centre + Vec2::new(a.cos(), a.sin()) * radius,
+                value: 0.0,
+            });
+        }
+    }
+    pr
 }
 
 /// Tapered exponential distances δⱼ = δ_max·exp(−σ(√n − √j)), j = 1..n, from
