@@ -6,9 +6,10 @@
 //! regard to case; `fontdb` takes a face's typographic family, name ID 16,
 //! else its family, name ID 1); the words after it are weight, slope and
 //! width words ([`STYLE_WORDS`]), each kind at most once, defaulting to
-//! Regular, upright, normal width. The face chosen has exactly that slope and
-//! width and a weight class that rounds to the asked one (to the nearest 100;
-//! of several, the closest).
+//! Regular, upright, normal width. The face chosen has exactly that width, a
+//! weight class that rounds to the asked one (to the nearest 100; of several,
+//! the closest), and that slope (Italic and Oblique standing in for each
+//! other when the family has only one of them).
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -316,11 +317,21 @@ pub fn find_face(db: &fontdb::Database, name: &str) -> Result<FoundFace, LookupE
         word: word.into(),
         have: have(),
     })?;
-    let best = faces
-        .iter()
-        .filter(|f| Style::of(f) == want)
-        .min_by_key(|f| f.weight.0.abs_diff(want.weight));
-    let Some(face) = best else {
+    // Italic and Oblique stand in for each other when the family has only
+    // one of them (fontdb reads the slope from OS/2 fsSelection, where many
+    // fonts mark their oblique faces italic).
+    let other = match want.slope {
+        fontdb::Style::Italic => fontdb::Style::Oblique,
+        fontdb::Style::Oblique => fontdb::Style::Italic,
+        fontdb::Style::Normal => fontdb::Style::Normal,
+    };
+    let pick = |slope| {
+        faces
+            .iter()
+            .filter(|f| Style::of(f) == Style { slope, ..want })
+            .min_by_key(|f| f.weight.0.abs_diff(want.weight))
+    };
+    let Some(face) = pick(want.slope).or_else(|| pick(other)) else {
         return Err(LookupError::NoStyle {
             family,
             want: want.words(),
@@ -435,6 +446,58 @@ mod tests {
             (400, 300, 100)
         );
         assert_eq!(round_weight(1000), 900);
+    }
+
+    /// A face record as fontdb would read it from a file at `path`.
+    fn face(family: &str, path: &str, weight: u16, style: fontdb::Style) -> fontdb::FaceInfo {
+        fontdb::FaceInfo {
+            id: fontdb::ID::dummy(),
+            source: fontdb::Source::File(path.into()),
+            index: 0,
+            families: vec![(family.into(), fontdb::Language::English_UnitedStates)],
+            post_script_name: String::new(),
+            style,
+            weight: fontdb::Weight(weight),
+            stretch: fontdb::Stretch::Normal,
+            monospaced: false,
+        }
+    }
+
+    #[test]
+    fn italic_and_oblique_stand_in_for_each_other_only_when_needed() {
+        use fontdb::Style::{Italic, Normal, Oblique};
+        let mut db = fontdb::Database::new();
+        db.push_face_info(face("Test Sans", "/f/Sans.ttf", 400, Normal));
+        db.push_face_info(face("Test Sans", "/f/Sans-BoldOblique.ttf", 700, Italic));
+        db.push_face_info(face("Test Sans", "/f/Sans-Book.ttf", 380, Normal));
+        db.push_face_info(face("Test Serif", "/f/Serif-Italic.ttf", 400, Italic));
+        db.push_face_info(face("Test Serif", "/f/Serif-Oblique.ttf", 400, Oblique));
+        let path = |name: &str| find_face(&db, name).map(|f| f.path);
+        assert_eq!(
+            path("Test Sans Bold Oblique"),
+            Ok("/f/Sans-BoldOblique.ttf".into())
+        );
+        assert_eq!(
+            path("Test Sans Bold Italic"),
+            Ok("/f/Sans-BoldOblique.ttf".into())
+        );
+        assert_eq!(
+            path("Test Serif Oblique"),
+            Ok("/f/Serif-Oblique.ttf".into())
+        );
+        assert_eq!(path("Test Serif Italic"), Ok("/f/Serif-Italic.ttf".into()));
+        // Weight 380 rounds to 400 too; the exact 400 is closer.
+        assert_eq!(path("Test Sans"), Ok("/f/Sans.ttf".into()));
+        // No upright face stands in for a slanted one, nor the reverse.
+        assert!(matches!(
+            find_face(&db, "Test Sans Italic"),
+            Err(LookupError::NoStyle { want, have, .. })
+                if want == "Italic" && have == ["Regular", "Bold Italic"]
+        ));
+        assert!(matches!(
+            find_face(&db, "Test Serif Bold"),
+            Err(LookupError::NoStyle { .. })
+        ));
     }
 
     #[test]
