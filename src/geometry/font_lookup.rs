@@ -67,6 +67,12 @@ pub enum LookupError {
         /// The family's faces, as style words.
         have: Vec<String>,
     },
+    /// The name is longer than any family and style name.
+    #[error("is {chars} characters long; a family and style name has at most {MAX_NAME_CHARS}")]
+    TooLong {
+        /// Its length, characters.
+        chars: usize,
+    },
     /// The face is in memory, not a file (a database built from bytes).
     #[error("the face {name:?} was not loaded from a file")]
     NotAFile {
@@ -290,8 +296,16 @@ fn in_family(face: &fontdb::FaceInfo, family: &str) -> bool {
         .any(|(f, _)| f.to_lowercase() == family.to_lowercase())
 }
 
+/// Longest name looked up, characters: the search tries every leading run of
+/// words against every face, so its work grows as the square of the words.
+pub const MAX_NAME_CHARS: usize = 200;
+
 /// The face of `db` that `name` means (see the module's rules).
 pub fn find_face(db: &fontdb::Database, name: &str) -> Result<FoundFace, LookupError> {
+    let chars = name.chars().count();
+    if chars > MAX_NAME_CHARS {
+        return Err(LookupError::TooLong { chars });
+    }
     if db.is_empty() {
         return Err(LookupError::NoFonts { name: name.into() });
     }
