@@ -87,10 +87,13 @@ fn quoted(names: &[String]) -> String {
 }
 
 /// Whether a `font` value is a file path rather than a family name: it ends
-/// in `.ttf`, `.otf`, `.ttc` or `.otc` (any case) or contains `/` or `\`.
+/// in `.ttf`, `.otf`, `.ttc` or `.otc` (any case), contains `/` or `\`, or
+/// is `.` or `..`.
 pub fn is_font_path(value: &str) -> bool {
     let lower = value.to_ascii_lowercase();
-    value.contains('/')
+    value == "."
+        || value == ".."
+        || value.contains('/')
         || value.contains('\\')
         || [".ttf", ".otf", ".ttc", ".otc"]
             .iter()

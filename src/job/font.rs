@@ -3,7 +3,7 @@
 //! installed fonts.
 //!
 //! A value is a path when it ends in `.ttf`, `.otf`, `.ttc` or `.otc` (any
-//! case) or contains `/` or `\` ([`font_lookup::is_font_path`]); a relative
+//! case), contains `/` or `\`, or is `.` or `..` ([`font_lookup::is_font_path`]); a relative
 //! path is taken from the job file's directory. Any other value but `paper`
 //! is a name (`DejaVu Sans Bold`), found by [`font_lookup::find_face`].
 
@@ -71,6 +71,16 @@ pub fn resolve_font(
                 return Err(invalid(
                     font_key,
                     "must not be empty: give \"paper\", a font file's path or a family name",
+                ));
+            }
+            if name.chars().count() > font_lookup::MAX_NAME_CHARS {
+                return Err(invalid(
+                    font_key,
+                    format!(
+                        "{} is longer than a family and style name (at most {} characters)",
+                        echo::clip(name),
+                        font_lookup::MAX_NAME_CHARS
+                    ),
                 ));
             }
             let found = font_lookup::find_face(src.fonts.database(), name)
