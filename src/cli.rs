@@ -702,6 +702,9 @@ fn summary(job: &Job, out: &RunOutput, report: &RunReport, out_dir: &Path) -> St
         s += &format!("wrote {}\n", out_dir.join(&p.file).display());
     }
     s += &format!("glyphs: {}\n", out.glyphs.join(", "));
+    for font in job.shape.font_files() {
+        s += &format!("font: {}\n", font.describe());
+    }
     for r in &out.solves {
         s += &format!(
             "solve {}: N {}, M {}, pseudo-boundary {:.3} mm, max boundary error {:.2e}\n",

@@ -938,7 +938,10 @@ fn primitive_contours(part: &Part) -> Result<Option<Vec<Contour>>, ComposeError>
                 font: font.clone(),
                 height: *size,
                 letter_spacing: 0.0,
+                line_spacing: None,
+                align: crate::geometry::Align::Left,
                 origin: Vec2::ZERO,
+                as_lines: false,
             })
             .map_err(geo)?;
             Some(shape.contours().cloned().collect())

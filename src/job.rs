@@ -8,9 +8,7 @@
 //! documented in `docs/job-format.md`.
 
 use crate::geometry::svgfile::SvgSize;
-use crate::geometry::{
-    glyphs, BoolOp, Composition, FontSource, Part, PartSource, ShapeSource, Vec2,
-};
+use crate::geometry::{BoolOp, Composition, Part, PartSource, ShapeSource, Vec2};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -18,10 +16,15 @@ pub mod echo;
 mod exact;
 pub mod extent;
 pub mod finish;
+mod font;
 pub mod limits;
 mod svgfile;
+mod text;
 
 pub use finish::{CutterShape, Finish};
+use font::resolve_font;
+pub use font::{Fonts, Sources};
+use text::{check_line, check_text};
 
 /// A resolved job: units in mm, mm/min and rev/min, defaults applied, validated.
 #[derive(Clone, Debug, PartialEq)]
@@ -438,6 +441,12 @@ pub struct RawJobTable {
 pub struct RawShape {
     /// `text`
     pub text: Option<String>,
+    /// `lines`: several lines of text, top to bottom
+    pub lines: Option<Vec<String>>,
+    /// `align`: left, centre (center) or right
+    pub align: Option<String>,
+    /// `line_spacing`, em
+    pub line_spacing: Option<f64>,
     /// `svg_path`
     pub svg_path: Option<String>,
     /// `svg_file`: an SVG document, relative to the job file's directory
@@ -853,12 +862,22 @@ fn read_bounded(path: &Path) -> Result<String, JobError> {
 }
 
 /// Parse and resolve job text. `name_hint` is the name used when `[job] name` is
-/// absent; `base_dir` is where relative font paths are looked up.
+/// absent; `base_dir` is where relative font paths are looked up; font names
+/// are looked up among the system's fonts.
 pub fn parse_job(text: &str, name_hint: &str, base_dir: &Path) -> Result<Job, JobError> {
+    let src = Sources {
+        base_dir,
+        fonts: Fonts::System,
+    };
+    parse_job_with(text, name_hint, &src)
+}
+
+/// As [`parse_job`], with font names looked up in `src.fonts`.
+pub fn parse_job_with(text: &str, name_hint: &str, src: &Sources<'_>) -> Result<Job, JobError> {
     let table: toml::Table = text.parse().map_err(|e| parse_error(text, &e))?;
     check_sections(&table)?;
     let raw: RawJob = toml::from_str(text).map_err(|e| parse_error(text, &e))?;
-    raw.resolve(name_hint, base_dir)
+    raw.resolve_with(name_hint, src)
 }
 
 fn parse_error(text: &str, e: &toml::de::Error) -> JobError {
@@ -1072,8 +1091,19 @@ fn check_name(key: &str, name: &str) -> Result<(), JobError> {
 }
 
 impl RawJob {
-    /// Apply defaults and check every value; see `docs/job-format.md`.
+    /// Apply defaults and check every value; see `docs/job-format.md`. Font
+    /// names are looked up among the system's fonts.
     pub fn resolve(self, name_hint: &str, base_dir: &Path) -> Result<Job, JobError> {
+        let src = Sources {
+            base_dir,
+            fonts: Fonts::System,
+        };
+        self.resolve_with(name_hint, &src)
+    }
+
+    /// As [`resolve`](RawJob::resolve), with files and font names found
+    /// through `src`.
+    pub fn resolve_with(self, name_hint: &str, src: &Sources<'_>) -> Result<Job, JobError> {
         let name = match self.job.and_then(|j| j.name) {
             Some(n) => {
                 check_name("job.name", &n)?;
@@ -1146,7 +1176,7 @@ impl RawJob {
             )?,
         };
 
-        let mut shape = resolve_shape(self.shape.unwrap_or_default(), diameter, base_dir)?;
+        let mut shape = resolve_shape(self.shape.unwrap_or_default(), diameter, src)?;
         check_height_per_tool(&shape, diameter)?;
 
         let s = self.stock.unwrap_or_default();
@@ -1518,24 +1548,6 @@ fn check_height_per_tool(shape: &ShapeSource, diameter: f64) -> Result<(), JobEr
     }
 }
 
-/// Text to lay out: not blank, and at most `limits::MAX_TEXT_CHARS` characters.
-fn check_text(key: &str, text: &str) -> Result<(), JobError> {
-    if text.trim().is_empty() {
-        return Err(invalid(key, "must not be empty"));
-    }
-    let n = text.chars().count();
-    if n > limits::MAX_TEXT_CHARS {
-        return Err(invalid(
-            key,
-            format!(
-                "has {n} characters; at most {} are allowed",
-                limits::MAX_TEXT_CHARS
-            ),
-        ));
-    }
-    Ok(())
-}
-
 fn auto_word(key: &str, word: &str, what: &str) -> Result<(), JobError> {
     if word == "auto" {
         Ok(())
@@ -1550,7 +1562,7 @@ fn auto_word(key: &str, word: &str, what: &str) -> Result<(), JobError> {
 fn resolve_shape(
     s: RawShape,
     tool_diameter: f64,
-    base_dir: &Path,
+    src: &Sources<'_>,
 ) -> Result<ShapeSource, JobError> {
     let origin = match s.origin {
         Some([x, y]) => Vec2::new(
@@ -1566,6 +1578,7 @@ fn resolve_shape(
     if let Some(parts) = s.part {
         for (key, given) in [
             ("shape.text", s.text.is_some()),
+            ("shape.lines", s.lines.is_some()),
             ("shape.svg_path", s.svg_path.is_some()),
             ("shape.svg_file", s.svg_file.is_some()),
         ] {
@@ -1581,6 +1594,8 @@ fn resolve_shape(
         for (key, given) in [
             ("shape.font", s.font.is_some()),
             ("shape.letter_spacing", s.letter_spacing.is_some()),
+            ("shape.align", s.align.is_some()),
+            ("shape.line_spacing", s.line_spacing.is_some()),
         ] {
             if given {
                 return Err(invalid(
@@ -1589,7 +1604,7 @@ fn resolve_shape(
                 ));
             }
         }
-        let composition = resolve_composition(parts, s.result, base_dir)?;
+        let composition = resolve_composition(parts, s.result, src)?;
         return Ok(ShapeSource::Composite(Composition {
             height,
             origin,
@@ -1605,11 +1620,22 @@ fn resolve_shape(
     at_most_one(
         &[
             ("shape.text", s.text.is_some()),
+            ("shape.lines", s.lines.is_some()),
             ("shape.svg_path", s.svg_path.is_some()),
             ("shape.svg_file", s.svg_file.is_some()),
         ],
         "give exactly one",
     )?;
+    if s.text.is_none() && s.lines.is_none() {
+        for (key, given) in [
+            ("shape.align", s.align.is_some()),
+            ("shape.line_spacing", s.line_spacing.is_some()),
+        ] {
+            if given {
+                return Err(invalid(key, "only applies to shape.text or shape.lines"));
+            }
+        }
+    }
     if s.svg_file.is_none() {
         for (key, given) in [
             ("shape.id", s.id.is_some()),
@@ -1634,108 +1660,42 @@ fn resolve_shape(
             },
             origin,
             tool_diameter,
-            base_dir,
+            src.base_dir,
         );
     }
-    // Both given was refused above (`at_most_one`).
-    match (s.text, s.svg_path) {
-        (None, None) => Err(invalid(
+    // Two sources given were refused above (`at_most_one`).
+    if s.text.is_some() || s.lines.is_some() {
+        let raw = text::RawText {
+            text: s.text,
+            lines: s.lines,
+            font: s.font,
+            letter_spacing: s.letter_spacing,
+            line_spacing: s.line_spacing,
+            align: s.align,
+        };
+        return text::resolve(raw, height, origin, tool_diameter, src);
+    }
+    let Some(d) = s.svg_path else {
+        return Err(invalid(
             "shape.text",
-            "or shape.svg_path or shape.svg_file or [[shape.part]] is required (exactly one of them)",
-        )),
-        (Some(text), _) => {
-            check_text("shape.text", &text)?;
-            let font = resolve_font(
-                "shape.font",
-                "shape.text",
-                s.font.as_deref(),
-                &text,
-                base_dir,
-            )?;
-            let letter_spacing = limits::LETTER_SPACING.check(
-                "shape.letter_spacing",
-                s.letter_spacing.unwrap_or(tool_diameter),
-            )?;
-            Ok(ShapeSource::Text {
-                text,
-                font,
-                height: height.unwrap_or(defaults::TEXT_HEIGHT),
-                letter_spacing,
-                origin,
-            })
-        }
-        (None, Some(d)) => {
-            if s.font.is_some() {
-                return Err(invalid(
-                    "shape.font",
-                    "only applies to shape.text, not shape.svg_path",
-                ));
-            }
-            if s.letter_spacing.is_some() {
-                return Err(invalid(
-                    "shape.letter_spacing",
-                    "only applies to shape.text, not shape.svg_path",
-                ));
-            }
-            if d.trim().is_empty() {
-                return Err(invalid("shape.svg_path", "must not be empty"));
-            }
-            Ok(ShapeSource::SvgPath { d, height, origin })
+            "or shape.lines or shape.svg_path or shape.svg_file or [[shape.part]] is required (exactly one of them)",
+        ));
+    };
+    for (key, given) in [
+        ("shape.font", s.font.is_some()),
+        ("shape.letter_spacing", s.letter_spacing.is_some()),
+    ] {
+        if given {
+            return Err(invalid(
+                key,
+                "only applies to shape.text, not shape.svg_path",
+            ));
         }
     }
-}
-
-/// The font of `text` (`font_key` is where `font` was written, `text_key` where
-/// the text was): `paper` must have every character; a file path is relative to
-/// the job's directory and must exist.
-fn resolve_font(
-    font_key: &str,
-    text_key: &str,
-    font: Option<&str>,
-    text: &str,
-    base_dir: &Path,
-) -> Result<FontSource, JobError> {
-    match font.unwrap_or(defaults::FONT) {
-        "paper" => {
-            let have = glyphs::paper_chars();
-            if let Some(ch) = text.chars().find(|c| *c != ' ' && !have.contains(c)) {
-                let list: String = have.iter().collect();
-                return Err(invalid(
-                    text_key,
-                    format!("has {ch:?}, but the font `paper` has no glyph for it (it has {list})"),
-                ));
-            }
-            Ok(FontSource::Paper)
-        }
-        path => {
-            let p = base_dir.join(path);
-            if p.is_dir() {
-                return Err(invalid(
-                    font_key,
-                    format!(
-                        "is a directory, not a font file: {} (give a .ttf or .otf file)",
-                        p.display()
-                    ),
-                ));
-            }
-            if p.exists() && !p.is_file() {
-                return Err(invalid(
-                    font_key,
-                    format!(
-                        "is not a regular file: {} (give a .ttf or .otf file)",
-                        echo::clip(&p.display().to_string())
-                    ),
-                ));
-            }
-            if !p.is_file() {
-                return Err(JobError::FontNotFound {
-                    key: font_key.into(),
-                    path: p,
-                });
-            }
-            Ok(FontSource::File(p))
-        }
+    if d.trim().is_empty() {
+        return Err(invalid("shape.svg_path", "must not be empty"));
     }
+    Ok(ShapeSource::SvgPath { d, height, origin })
 }
 
 /// The accepted values of `shape.part.op`.
@@ -1747,7 +1707,7 @@ pub const PART_OPS: &[&str] = &["union", "intersect", "subtract", "invert"];
 fn resolve_composition(
     raw: Vec<RawPart>,
     result: Option<String>,
-    base_dir: &Path,
+    src: &Sources<'_>,
 ) -> Result<Composition, JobError> {
     if raw.is_empty() {
         return Err(invalid(
@@ -1791,7 +1751,7 @@ fn resolve_composition(
     for (i, p) in raw.into_iter().enumerate() {
         let k = format!("shape.part[{}]", i + 1);
         let key = |field: &str| format!("{k}.{field}");
-        let source = resolve_part_source(&k, &names[..i], &names[i..], &p, base_dir)?;
+        let source = resolve_part_source(&k, &names[..i], &names[i..], &p, src)?;
         let level = match p.level {
             None => None,
             Some(l) if l.is_finite() && l > 0.0 && l < 1.0 => Some(l),
@@ -1906,7 +1866,7 @@ fn resolve_part_source(
     earlier: &[String],
     this_and_later: &[String],
     p: &RawPart,
-    base_dir: &Path,
+    src: &Sources<'_>,
 ) -> Result<PartSource, JobError> {
     let key = |field: &str| format!("{k}.{field}");
     let names = [key("polygon"), key("svg"), key("text")];
@@ -1950,14 +1910,9 @@ fn resolve_part_source(
         return Ok(PartSource::Svg(d.clone()));
     }
     if let Some(text) = &p.text {
+        check_line(&key("text"), text, "a text part is one line")?;
         check_text(&key("text"), text)?;
-        let font = resolve_font(
-            &key("font"),
-            &key("text"),
-            p.font.as_deref(),
-            text,
-            base_dir,
-        )?;
+        let font = resolve_font(&key("font"), &key("text"), p.font.as_deref(), text, src)?;
         let size = match p.size {
             None => defaults::PART_TEXT_SIZE,
             Some(s) => limits::PART_SIZE.check(&key("size"), s)?,
@@ -2112,6 +2067,7 @@ fn resolve_polygon(key: &str, points: &[[f64; 2]]) -> Result<Vec<Vec2>, JobError
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::FontSource;
 
     const GOOD: &str = r#"
 [job]
@@ -3008,6 +2964,9 @@ mod doc_tests {
         let keys = [
             "name",
             "text",
+            "shape.lines",
+            "shape.line_spacing",
+            "shape.align",
             "font",
             "height",
             "letter_spacing",

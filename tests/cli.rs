@@ -123,6 +123,38 @@ fn missing_font_file_is_named() {
 }
 
 #[test]
+fn a_font_family_not_installed_is_named() {
+    // With the system's fonts (none on a bare CI machine, whose message
+    // differs) the key is named either way.
+    let job = GOOD.replace(
+        "text = \"I\"",
+        "text = \"I\"\nfont = \"No Such Family Xyzzy Bold\"",
+    );
+    assert_rejected(
+        "missing-family",
+        &job,
+        &["shape.font", "\"No Such Family Xyzzy Bold\""],
+    );
+}
+
+#[test]
+fn a_glyph_missing_from_a_font_file_is_named() {
+    let font = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/DejaVuSans.ttf");
+    let job = GOOD.replace(
+        "text = \"I\"",
+        &format!(
+            "text = \"I\\U0001D11E\"\nfont = {:?}",
+            font.display().to_string()
+        ),
+    );
+    assert_rejected(
+        "missing-glyph-file",
+        &job,
+        &["no glyph for '\u{1d11e}'", "DejaVuSans.ttf"],
+    );
+}
+
+#[test]
 fn glyph_missing_from_the_font() {
     let job = GOOD.replace("text = \"I\"", "text = \"Z\"");
     assert_rejected("missing-glyph", &job, &["shape.text", "no glyph", "'Z'"]);
@@ -345,6 +377,23 @@ fn run_writes_gcode_and_a_rerun_replaces_it_identically() {
             nc.with_extension("svg")
         ]
     );
+}
+
+#[test]
+fn the_summary_names_the_font_file() {
+    let dir = scratch("font-summary");
+    let font = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/DejaVuSans.ttf");
+    let job = GOOD.replace(
+        "text = \"I\"",
+        &format!("text = \"I\"\nfont = {:?}", font.display().to_string()),
+    );
+    fs::write(dir.join("job.toml"), job).expect("write job");
+    let o = pfcam(&["run", "job.toml", "--out", "out"], &dir);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let out = text(&o.stdout);
+    let want = format!("font: {}\n", font.display());
+    assert!(out.contains(&want), "summary lacks {want:?}: {out}");
+    assert!(out.contains("glyphs: I (1)\n"), "{out}");
 }
 
 #[test]
@@ -739,6 +788,11 @@ fn long_values_are_echoed_clipped() {
         (
             "font",
             GOOD.replace("height = 50.0", &format!("height = 50.0\nfont = \"{long}\"")),
+            "shape.font xxxxxxxxxx",
+        ),
+        (
+            "font-path",
+            GOOD.replace("height = 50.0", &format!("height = 50.0\nfont = \"fonts/{long}\"")),
             "shape.font: no such file",
         ),
         (
@@ -766,7 +820,8 @@ fn long_values_are_echoed_clipped() {
         assert!(err.len() < 400, "{case}: {} bytes: {}", err.len(), &err[..400]);
         assert!(err.contains("… (6000"), "{case}: not clipped: {err}");
         assert_eq!(err.lines().count(), 1, "{case}: {err}");
-        if case != "key" && case != "string-for-number" {
+        // The path is clipped with its directory: `fonts/xxx… (600006 characters)`.
+        if !["key", "string-for-number", "font-path"].contains(&case) {
             assert!(err.contains(&clipped), "{case}: {err}");
         }
     }

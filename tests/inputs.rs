@@ -367,33 +367,52 @@ fn grbl_responses_parse_the_same_with_blanks() {
     assert!(statuses > 100, "only {statuses} status reports survived");
 }
 
-/// docs/shapes.md's figures of the test font (DejaVu Serif): the cap height
-/// (the top of its H) of so many units per em, and its A–V kerning in units
-/// and in mm at a 50 mm cap height, as the font and pfcam's reader give them.
+/// docs/shapes.md's figures of the test fonts: DejaVu Serif's cap height (the
+/// top of its H) of so many units per em; DejaVu Sans's A–V and T–o kerning as
+/// the shaper sets it (its GPOS pairs: `geometry::shaping`'s tests read them
+/// from the table), in units and in mm at a 50 mm cap height, and its line
+/// height.
 #[test]
 fn shapes_doc_font_figures_are_the_test_fonts() {
     use pfcam::geometry::font::{self, FontFile};
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/DejaVuSerif.ttf");
-    let file = FontFile::open(&path).expect("DejaVu Serif");
+    use pfcam::geometry::shaping::shape_line;
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let file = FontFile::open(&data.join("DejaVuSerif.ttf"), 0).expect("DejaVu Serif");
     let face = file.face().expect("face");
     let cap = font::cap_height(&face, "DejaVu Serif").expect("cap height");
-    let a = font::glyph(&face, "DejaVu Serif", 'A').expect("A");
-    let v = font::glyph(&face, "DejaVu Serif", 'V').expect("V");
-    let kern = font::kerning(&face, a.id, v.id);
-    let shift = -kern * 50.0 / cap;
-    eprintln!(
-        "cap height {cap} of {} units per em; A–V kerning {kern} units, {shift:.3} mm at 50 mm",
-        face.units_per_em()
-    );
     let doc = doc_figures::read("docs/shapes.md");
     let what = "docs/shapes.md, DejaVu Serif";
     let stated = doc_figures::numbers_after(&doc, "docs/shapes.md", "the top of its H,", 2);
     doc_figures::assert_figure(what, &stated[0], cap);
     doc_figures::assert_figure(what, &stated[1], f64::from(face.units_per_em()));
-    let stated = doc_figures::number_after(&doc, "docs/shapes.md", "Serif kerns A–V by");
-    doc_figures::assert_figure(what, &stated, kern);
+
+    let file = FontFile::open(&data.join("DejaVuSans.ttf"), 0).expect("DejaVu Sans");
+    let face = file.face().expect("face");
+    let cap = font::cap_height(&face, "DejaVu Sans").expect("cap height");
+    let kern = |pair: &str| {
+        let g = shape_line(&face, "DejaVu Sans", pair).expect("shaped");
+        let first = face
+            .glyph_index(pair.chars().next().expect("char"))
+            .expect("glyph");
+        g[0].advance - f64::from(face.glyph_hor_advance(first).expect("advance"))
+    };
+    let (av, to) = (kern("AV"), kern("To"));
+    let shift = -av * 50.0 / cap;
+    let line = font::line_height(&face).expect("line height");
+    eprintln!(
+        "DejaVu Sans: cap height {cap}, A–V {av} units ({shift:.3} mm at 50 mm), T–o {to} units, line height {line} of {} units per em",
+        face.units_per_em()
+    );
+    let what = "docs/shapes.md, DejaVu Sans";
+    let stated = doc_figures::numbers_after(&doc, "docs/shapes.md", "DejaVu Sans kerns A–V by", 2);
+    doc_figures::assert_figure(what, &stated[0], av);
+    doc_figures::assert_figure(what, &stated[1], to);
     let stated = doc_figures::number_after(&doc, "docs/shapes.md", "which moves the V");
     doc_figures::assert_figure(what, &stated, shift);
+    let stated =
+        doc_figures::numbers_after(&doc, "docs/shapes.md", "DejaVu Sans's line height is", 2);
+    doc_figures::assert_figure(what, &stated[0], line);
+    doc_figures::assert_figure(what, &stated[1], f64::from(face.units_per_em()));
 }
 
 #[allow(dead_code)] // its `main` is the example's command line

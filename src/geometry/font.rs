@@ -1,11 +1,9 @@
 //! TrueType/OpenType fonts from a file, through `ttf-parser`: glyph outlines in
-//! font units (y up), advance widths, cap height and `kern`-table kerning.
+//! font units (y up), cap height and line height. Positioning (advances,
+//! kerning, ligatures, marks) is the shaper's: `geometry::shaping`.
 //!
 //! Quadratic (TrueType) curves are raised to cubics exactly with
-//! [`Segment::quad`]; CFF cubics are kept as they are. Kerning comes from the
-//! legacy `kern` table only (horizontal, non-variable subtables); the OpenType
-//! `GPOS` table is not applied, so fonts that kern only through GPOS are set
-//! with their plain advance widths.
+//! [`Segment::quad`]; CFF cubics are kept as they are.
 
 use super::{Contour, GeometryError, Segment, Vec2};
 use std::path::Path;
@@ -15,16 +13,8 @@ pub struct FontFile {
     /// The path as given, for messages.
     pub name: String,
     data: Vec<u8>,
-}
-
-/// One glyph in font units.
-pub struct FontGlyph {
-    /// The closed contours, as the font orders and orients them.
-    pub contours: Vec<Contour>,
-    /// Horizontal advance, font units.
-    pub advance: f64,
-    /// The glyph index, for kerning.
-    pub id: u16,
+    /// The face's index in a collection (`.ttc`); 0 for a single font.
+    index: u32,
 }
 
 fn font_err(name: &str, reason: impl Into<String>) -> GeometryError {
@@ -39,19 +29,22 @@ fn font_err(name: &str, reason: impl Into<String>) -> GeometryError {
 pub const MAX_FONT_BYTES: u64 = 64 << 20;
 
 impl FontFile {
-    /// Reads and checks the font at `path`. Errors name the path: missing,
+    /// Reads and checks face `index` of the font at `path` (0 for a single font;
+    /// a face of a `.ttc` collection otherwise). Errors name the path: missing,
     /// unreadable, larger than [`MAX_FONT_BYTES`], or not a TrueType/OpenType font.
-    pub fn open(path: &Path) -> Result<FontFile, GeometryError> {
+    pub fn open(path: &Path, index: u32) -> Result<FontFile, GeometryError> {
         let name = path.display().to_string();
         let data = read_capped(path, MAX_FONT_BYTES)?;
-        ttf_parser::Face::parse(&data, 0)
-            .map_err(|e| font_err(&name, format!("not a TrueType/OpenType font ({e})")))?;
-        Ok(FontFile { name, data })
+        let file = FontFile { name, data, index };
+        file.face()?;
+        Ok(file)
     }
 
-    /// The parsed face (checked to parse in `open`).
-    pub fn face(&self) -> Result<ttf_parser::Face<'_>, GeometryError> {
-        ttf_parser::Face::parse(&self.data, 0)
+    /// The parsed face, ready for the shaper (it dereferences to a
+    /// `ttf_parser::Face` for outlines and metrics).
+    pub fn face(&self) -> Result<rustybuzz::Face<'_>, GeometryError> {
+        ttf_parser::Face::parse(&self.data, self.index)
+            .map(rustybuzz::Face::from_face)
             .map_err(|e| font_err(&self.name, format!("not a TrueType/OpenType font ({e})")))
     }
 }
@@ -93,62 +86,34 @@ pub fn cap_height(face: &ttf_parser::Face<'_>, name: &str) -> Result<f64, Geomet
         })
 }
 
-/// The glyph for `ch`, or `MissingGlyph`. Whitespace without a glyph of its own
-/// gets the advance of the space (or a quarter em) and no contours.
-pub fn glyph(
+/// Baseline-to-baseline distance the font asks for, font units: ascender −
+/// descender + line gap, as `ttf-parser` reads them (the `hhea` values, or
+/// the OS/2 typographic ones when the font sets USE_TYPO_METRICS or `hhea`
+/// gives none). `None` when that sum is not positive.
+pub fn line_height(face: &ttf_parser::Face<'_>) -> Option<f64> {
+    let h = f64::from(face.ascender()) - f64::from(face.descender()) + f64::from(face.line_gap());
+    (h > 0.0).then_some(h)
+}
+
+/// The outline of glyph `id` as closed contours in font units, as the font
+/// orders and orients them; none for an empty glyph (a space). `what` names
+/// the glyph in errors (the characters it stands for).
+pub fn outline(
     face: &ttf_parser::Face<'_>,
     name: &str,
-    ch: char,
-) -> Result<FontGlyph, GeometryError> {
-    let Some(id) = face.glyph_index(ch) else {
-        if ch.is_whitespace() {
-            let advance = face
-                .glyph_index(' ')
-                .and_then(|id| face.glyph_hor_advance(id))
-                .map(f64::from)
-                .unwrap_or(f64::from(face.units_per_em()) / 4.0);
-            return Ok(FontGlyph {
-                contours: Vec::new(),
-                advance,
-                id: 0,
-            });
-        }
-        return Err(GeometryError::MissingGlyph {
-            font: name.to_string(),
-            ch,
-        });
-    };
+    id: u16,
+    what: &str,
+) -> Result<Vec<Contour>, GeometryError> {
     let mut b = Builder::default();
     // `None` means an empty outline (a space): no contours.
-    let _ = face.outline_glyph(id, &mut b);
+    let _ = face.outline_glyph(ttf_parser::GlyphId(id), &mut b);
     b.finish();
-    let contours = b
-        .contours
+    b.contours
         .into_iter()
         .filter(|segs| !segs.is_empty())
         .map(Contour::new)
         .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| font_err(name, format!("glyph for {ch:?}: {e}")))?;
-    let advance = face.glyph_hor_advance(id).map(f64::from).unwrap_or(0.0);
-    Ok(FontGlyph {
-        contours,
-        advance,
-        id: id.0,
-    })
-}
-
-/// Kerning between two glyphs in font units (negative brings them closer), summed
-/// over the horizontal, non-variable, non-cross-stream subtables of `kern`.
-pub fn kerning(face: &ttf_parser::Face<'_>, left: u16, right: u16) -> f64 {
-    let Some(kern) = face.tables().kern else {
-        return 0.0;
-    };
-    kern.subtables
-        .into_iter()
-        .filter(|s| s.horizontal && !s.variable && !s.has_cross_stream)
-        .filter_map(|s| s.glyphs_kerning(ttf_parser::GlyphId(left), ttf_parser::GlyphId(right)))
-        .map(f64::from)
-        .sum()
+        .map_err(|e| font_err(name, format!("glyph for {what:?}: {e}")))
 }
 
 /// Collects `ttf-parser` outline callbacks into closed segment lists.
@@ -232,7 +197,10 @@ mod tests {
         assert_eq!(read_capped(&path, 20).expect("at the cap").len(), 20);
         let e = read_capped(&path, 19).unwrap_err().to_string();
         assert!(e.contains("larger than 19 bytes; not a font file"), "{e}");
-        let e = FontFile::open(&path).err().expect("not a font").to_string();
+        let e = FontFile::open(&path, 0)
+            .err()
+            .expect("not a font")
+            .to_string();
         assert!(e.contains("not a TrueType/OpenType font"), "{e}");
         std::fs::remove_dir_all(&dir).ok();
     }

@@ -8,9 +8,11 @@ mod densify;
 mod distance;
 pub mod fill;
 pub mod font;
+pub mod font_lookup;
 pub mod glyphs;
 mod nesting;
 mod segment;
+pub mod shaping;
 pub mod svgfile;
 pub mod svgpath;
 pub mod text;
@@ -188,18 +190,24 @@ pub fn line_crossing(p: Vec2, d1: Vec2, r: Vec2, d2: Vec2) -> Option<(f64, f64)>
 /// Where a shape comes from, as the job describes it (mm).
 #[derive(Clone, Debug, PartialEq)]
 pub enum ShapeSource {
-    /// A string of glyphs.
+    /// Lines of glyphs.
     Text {
-        /// The characters.
+        /// The characters, lines separated by `\n`.
         text: String,
         /// `paper` (built in) or a TrueType/OpenType file.
         font: FontSource,
         /// Cap height in mm: the font's cap height is scaled to this.
         height: f64,
-        /// Extra space between letters, mm.
+        /// Extra space between letters (between clusters), mm.
         letter_spacing: f64,
-        /// Where the baseline-left of the first glyph goes, mm.
+        /// Baseline-to-baseline distance in em; `None` takes the font's own.
+        line_spacing: Option<f64>,
+        /// How each line sits on `origin.x`.
+        align: Align,
+        /// The first line's baseline point that `align` refers to, mm.
         origin: Vec2,
+        /// The job gave `shape.lines` rather than `shape.text` (for messages).
+        as_lines: bool,
     },
     /// SVG path data (`d` attribute syntax).
     SvgPath {
@@ -291,8 +299,77 @@ pub enum BoolOp {
 pub enum FontSource {
     /// The built-in letters of the paper.
     Paper,
-    /// A TrueType/OpenType file.
+    /// A TrueType/OpenType file given by its path (its first face).
     File(std::path::PathBuf),
+    /// A face found by family and style name among installed fonts
+    /// (`font_lookup`).
+    Found {
+        /// The name as the job wrote it (`DejaVu Sans Bold`).
+        name: String,
+        /// The font file.
+        path: std::path::PathBuf,
+        /// The face's index in the file (non-zero in a `.ttc` collection).
+        index: u32,
+    },
+}
+
+impl ShapeSource {
+    /// The font files the shape's text is set in (`paper` is not a file), each
+    /// once, in the order of the job.
+    pub fn font_files(&self) -> Vec<&FontSource> {
+        let mut out: Vec<&FontSource> = Vec::new();
+        let fonts: Vec<&FontSource> = match self {
+            ShapeSource::Text { font, .. } => vec![font],
+            ShapeSource::Composite(c) => c
+                .parts
+                .iter()
+                .filter_map(|p| match &p.source {
+                    PartSource::Text { font, .. } => Some(font),
+                    _ => None,
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        for f in fonts {
+            if *f != FontSource::Paper && !out.contains(&f) {
+                out.push(f);
+            }
+        }
+        out
+    }
+}
+
+impl FontSource {
+    /// The font in words for a run's summary: `paper`, the file, or the name
+    /// and the file it was found in.
+    pub fn describe(&self) -> String {
+        match self {
+            FontSource::Paper => "paper (built in)".into(),
+            FontSource::File(p) => p.display().to_string(),
+            FontSource::Found { name, path, index } => {
+                let face = if *index > 0 {
+                    format!(" (face {index})")
+                } else {
+                    String::new()
+                };
+                format!("{name:?} found in {}{face}", path.display())
+            }
+        }
+    }
+}
+
+/// Where each line of a text sits horizontally against `origin.x`: its
+/// advance box (from the pen's start to its end, letter spacing between
+/// clusters included) starts there, is centred on it, or ends there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Align {
+    /// The line starts at `origin.x`.
+    #[default]
+    Left,
+    /// The line is centred on `origin.x`.
+    Centre,
+    /// The line ends at `origin.x`.
+    Right,
 }
 
 #[cfg(test)]

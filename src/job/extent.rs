@@ -29,9 +29,9 @@ pub fn check_extent(source: &ShapeSource, shape: &Shape, diameter: f64) -> Resul
         return Ok(());
     }
     let (key, advice) = match source {
-        ShapeSource::Text { .. } => (
-            "shape.text",
-            "use fewer letters, a smaller shape.height or shape.letter_spacing",
+        ShapeSource::Text { as_lines, .. } => (
+            if *as_lines { "shape.lines" } else { "shape.text" },
+            "use fewer letters or lines, a smaller shape.height, shape.letter_spacing or shape.line_spacing",
         ),
         ShapeSource::SvgPath { height: None, .. } => (
             "shape.svg_path",
@@ -137,11 +137,28 @@ mod tests {
             font: FontSource::Paper,
             height: 50.0,
             letter_spacing: 40.0,
+            line_spacing: None,
+            align: crate::geometry::Align::Left,
             origin: Vec2::ZERO,
+            as_lines: false,
         };
         let shape = build_shape(&src).expect("shape");
         let e = check_extent(&src, &shape, 3.0).unwrap_err().to_string();
         assert!(e.starts_with("shape.text makes a shape "), "{e}");
         assert!(e.contains("fewer letters"), "{e}");
+        // Lines far apart make a tall shape, named by `shape.lines`.
+        let tall = ShapeSource::Text {
+            text: "I\n\n\nI".into(),
+            font: FontSource::Paper,
+            height: 50.0,
+            letter_spacing: 0.0,
+            line_spacing: Some(9.0),
+            align: crate::geometry::Align::Left,
+            origin: Vec2::ZERO,
+            as_lines: true,
+        };
+        let shape = build_shape(&tall).expect("shape");
+        let e = check_extent(&tall, &shape, 0.5).unwrap_err().to_string();
+        assert!(e.starts_with("shape.lines makes a shape "), "{e}");
     }
 }

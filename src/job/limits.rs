@@ -132,6 +132,9 @@ pub const SVG_SCALE: Range = Range::open(0.0, 1000.0, "");
 pub const ORIGIN: Range = Range::closed(-10_000.0, 10_000.0, "mm");
 /// `shape.letter_spacing`.
 pub const LETTER_SPACING: Range = Range::closed(-1000.0, 1000.0, "mm");
+/// `shape.line_spacing`, baseline to baseline in em: lines may overlap (below
+/// about 1) but not coincide; 10 em is already far apart.
+pub const LINE_SPACING: Range = Range::open(0.0, 10.0, "em");
 /// Every polygon coordinate of a part, design units.
 pub const DESIGN: Range = Range::closed(-1e6, 1e6, "design units");
 /// `shape.part[i].size`, the cap height of a text part, design units.
@@ -189,6 +192,7 @@ pub const KEYS: &[(&str, Range)] = &[
     ("shape.scale", SVG_SCALE),
     ("shape.origin", ORIGIN),
     ("shape.letter_spacing", LETTER_SPACING),
+    ("shape.line_spacing", LINE_SPACING),
     ("shape.part.size", PART_SIZE),
     ("shape.part.polygon", DESIGN),
     ("profile.steepness", STEEPNESS),
@@ -214,8 +218,11 @@ pub const MAX_SINGULARITIES: usize = 8000;
 pub const MAX_STUDY_COUNTS: usize = 50;
 /// Largest number of curves `pfcam preview --levels` draws.
 pub const MAX_PREVIEW_LEVELS: usize = 1000;
-/// Largest number of characters of `shape.text` or a text part.
+/// Largest number of characters of `shape.text`, of all of `shape.lines`
+/// together (line breaks not counted), or of a text part.
 pub const MAX_TEXT_CHARS: usize = 200;
+/// Largest number of `shape.lines`.
+pub const MAX_TEXT_LINES: usize = 50;
 /// Largest number of `[[shape.part]]` tables: each may need a field solve.
 pub const MAX_PARTS: usize = 100;
 /// Largest number of points of one polygon part.
