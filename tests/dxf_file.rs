@@ -365,6 +365,9 @@ fn mangled_drawings_never_panic() {
     for i in 0..1000 {
         let mut b = bytes.clone();
         for _ in 0..1 + next() % 8 {
+            if b.is_empty() {
+                break;
+            }
             let at = (next() as usize) % b.len();
             match next() % 4 {
                 0 => b[at] = b"0123456789-.eE \n"[(next() % 16) as usize],

@@ -141,9 +141,68 @@ fn read_drawing(path: &Path) -> Result<dxf::Drawing, GeometryError> {
             ),
         ));
     }
-    dxf::Drawing::load(&mut std::io::Cursor::new(bytes))
-        .map_err(|e| fail(FILE, format!("is not a readable DXF file: {e}: {shown}")))
+    let bytes = without_dates(bytes);
+    // dxf-rs panics on some malformed values (a date past chrono's range);
+    // such a panic is the file's fault, so it becomes this error.
+    let loaded = std::panic::catch_unwind(|| dxf::Drawing::load(&mut std::io::Cursor::new(bytes)));
+    match loaded {
+        Ok(Ok(d)) => Ok(d),
+        Ok(Err(e)) => Err(fail(FILE, format!("is not a readable DXF file: {e}: {shown}"))),
+        Err(_) => Err(fail(FILE, format!("is not a readable DXF file: the DXF reader (dxf-rs) failed on a malformed value: {shown}"))),
+    }
 }
+
+/// An ASCII DXF without what pfcam does not read and dxf-rs may panic on:
+/// the header's dates and times (`$TD...`: a value past chrono's range
+/// panics) and the CLASSES, OBJECTS, THUMBNAILIMAGE and ACDSDATA sections
+/// (object timestamps). A binary DXF, or one whose lines do not pair into
+/// group code and value, is returned as it is.
+fn without_dates(bytes: Vec<u8>) -> Vec<u8> {
+    let Ok(text) = std::str::from_utf8(&bytes) else {
+        return bytes;
+    };
+    let lines: Vec<&str> = text.split_inclusive('\n').collect();
+    if bytes.starts_with(b"AutoCAD Binary DXF") || lines.len() % 2 != 0 {
+        return bytes;
+    }
+    let mut out = String::with_capacity(text.len());
+    let (mut section, mut skip_var) = (String::new(), false);
+    let mut opening: Option<&[&str]> = None;
+    for pair in lines.chunks(2) {
+        let (code, value) = (pair[0].trim(), pair[1].trim());
+        if code == "0" && value == "SECTION" {
+            opening = Some(pair);
+            continue;
+        }
+        if let Some(open) = opening.take() {
+            section = if code == "2" {
+                value.to_string()
+            } else {
+                String::new()
+            };
+            if !DROPPED.contains(&section.as_str()) {
+                out.extend(open.iter().copied());
+            }
+        }
+        match code {
+            "0" => skip_var = false,
+            "9" => skip_var = value.starts_with("$TD"),
+            _ => {}
+        }
+        let dropped = DROPPED.contains(&section.as_str());
+        if code == "0" && value == "ENDSEC" {
+            section.clear();
+        }
+        if dropped || (section == "HEADER" && skip_var) {
+            continue;
+        }
+        out.extend(pair.iter().copied());
+    }
+    out.into_bytes()
+}
+
+/// Sections pfcam drops before reading (see [`without_dates`]).
+const DROPPED: [&str; 4] = ["CLASSES", "OBJECTS", "THUMBNAILIMAGE", "ACDSDATA"];
 
 /// A binary DXF's sentinel, or an ASCII DXF's first group: code 0 then
 /// `SECTION`, or a 999 comment.
