@@ -447,3 +447,46 @@ fn a_job_names_the_file_key_and_resolves_it_beside_the_job() {
             .starts_with("shape.svg_file and shape.dxf_file")
     );
 }
+
+/// docs/shapes.md's figures for the test drawing: each layer's area at the
+/// default tolerance against the analytic (or ezdxf's) area, within the bound
+/// perimeter × tolerance (`cargo test --release --test dxf_file --
+/// --nocapture layer_figures` prints them).
+#[test]
+fn layer_figures() {
+    let tab = 60.0 - 2.25 * PI;
+    let rows: [(&str, f64); 13] = [
+        ("CIRCLE", 100.0 * PI),
+        ("LINES", 600.0),
+        ("LWPOLY", 480.0 + 64.0 * PI),
+        ("POLYLINE", 800.0 - (4.0 - PI) * 25.0),
+        ("SLOT", 250.0 + 25.0 * PI),
+        ("ELLIPSE", 112.5 * PI),
+        ("HALF_ELLIPSE", 30.0 * PI),
+        ("SPLINE", SPLINE_AREA),
+        ("SPLINE_OPEN", SPLINE_OPEN_AREA),
+        ("INSERT", 3.0 * tab),
+        ("NESTED", 0.5 * tab),
+        ("HOLE", 400.0 - 21.0 * PI),
+        ("BOWTIE", 200.0),
+    ];
+    for (name, want) in rows {
+        let s = layer(name);
+        let vertices: usize = s.contours().map(|c| c.segments.len()).sum();
+        eprintln!(
+            "| {name} | {want:.4} | {:.4} | {:+.4} | {:.4} | {vertices} |",
+            area(&s),
+            area(&s) - want,
+            perimeter(&s) * TOL
+        );
+        assert_area(&s, want, name);
+    }
+    let t = std::time::Instant::now();
+    let s = dxf_file_shape(&source("dxf-entities.dxf", None)).expect("drawing");
+    let vertices: usize = s.contours().map(|c| c.segments.len()).sum();
+    eprintln!(
+        "whole drawing: {} regions, {vertices} vertices, {:?}",
+        s.regions.len(),
+        t.elapsed()
+    );
+}

@@ -15,6 +15,7 @@ Files:
 - dxf-unitless.dxf   $INSUNITS = 0: the same drawing, taken as mm.
 - dxf-open.dxf       an open chain of LINEs and an ARC (an error).
 - dxf-huge.dxf       a 5 m square (past any job's size bound).
+- ../../jobs/dxf-plate.dxf  the drawing of jobs/dxf-plate.toml.
 """
 import math
 import os
@@ -176,9 +177,36 @@ def huge():
     doc.saveas(os.path.join(HERE, "dxf-huge.dxf"))
 
 
+def plate():
+    """jobs/dxf-plate.dxf, $INSUNITS = 4: a 40 x 24 mm plate whose outline is
+    an LWPOLYLINE with 4 mm corner bulges, two mounting holes (an INSERT of a
+    block HOLE, r 2.5, twice), and a slot of two ARCs and two
+    LINEs; a text on layer NOTES is not material."""
+    doc = new_doc(4)
+    msp = doc.modelspace()
+    b = math.tan(math.pi / 8)
+    r = 4
+    msp.add_lwpolyline(
+        [(r, 0, 0, 0, 0), (40 - r, 0, 0, 0, b), (40, r, 0, 0, 0), (40, 24 - r, 0, 0, b),
+         (40 - r, 24, 0, 0, 0), (r, 24, 0, 0, b), (0, 24 - r, 0, 0, 0), (0, r, 0, 0, b)],
+        format="xyseb", close=True, dxfattribs={"layer": "PLATE"})
+    hole = doc.blocks.new("HOLE")
+    hole.add_circle((0, 0), 2.5)
+    for x in (7, 33):
+        msp.add_blockref("HOLE", (x, 17), dxfattribs={"layer": "PLATE"})
+    S = {"layer": "PLATE"}
+    msp.add_line((14, 5), (26, 5), dxfattribs=S)
+    msp.add_arc((26, 8), 3, 270, 90, dxfattribs=S)
+    msp.add_line((26, 11), (14, 11), dxfattribs=S)
+    msp.add_arc((14, 8), 3, 90, 270, dxfattribs=S)
+    msp.add_text("pfcam DXF plate", dxfattribs={"layer": "NOTES", "height": 2}).set_placement((0, -5))
+    doc.saveas(os.path.join(HERE, "..", "..", "jobs", "dxf-plate.dxf"))
+
+
 if __name__ == "__main__":
     entities()
     inches(1, "dxf-inches.dxf")
     inches(0, "dxf-unitless.dxf")
     open_chain()
     huge()
+    plate()
