@@ -308,7 +308,7 @@ fn errors_name_the_key() {
         (
             with(data("dxf-entities.dxf"), Some("EMPTY")),
             "shape.layer",
-            "\"EMPTY\" has no closed geometry in the drawing (layers with entities pfcam reads: BOWTIE, CIRCLE, ELLIPSE, HALF_ELLIPSE, HOLE, INSERT, LINES, LWPOLY, NESTED, POLYLINE, SLOT, SPLINE)",
+            "\"EMPTY\" has no closed geometry in the drawing (layers with entities pfcam reads: BOWTIE, CIRCLE, ELLIPSE, HALF_ELLIPSE, HOLE, INSERT, LINES, LWPOLY, NESTED, POLYLINE, SLOT, SPLINE and 1 more)",
         ),
         (with(data("dxf-entities.dxf"), Some("NOTES")), "shape.layer", "has no closed geometry"),
         (with(data("dxf-entities.dxf"), Some("nope")), "shape.layer", "has no closed geometry"),
@@ -489,4 +489,78 @@ fn layer_figures() {
         s.regions.len(),
         t.elapsed()
     );
+}
+
+/// Drawings written here with the dxf crate itself: a block that inserts
+/// itself, an INSERT of a missing block, a SPLINE with fit points only, a
+/// circle with a NaN radius, a MINSERT of a million copies.
+#[test]
+fn hostile_drawings_give_errors() {
+    use dxf::entities::{Circle, Entity, EntityType, Insert, Spline};
+    use dxf::{Block, Drawing, Point};
+    let scratch = std::env::temp_dir().join(format!("pfcam-dxf-hostile-{}", std::process::id()));
+    std::fs::create_dir_all(&scratch).expect("scratch dir");
+    let insert = |name: &str, rows: i16| {
+        let mut i = Insert::default();
+        i.name = name.into();
+        i.row_count = rows;
+        i.column_count = rows;
+        Entity::new(EntityType::Insert(i))
+    };
+    let write = |name: &str, build: &dyn Fn(&mut Drawing)| {
+        let mut d = Drawing::new();
+        d.header.version = dxf::enums::AcadVersion::R2000;
+        build(&mut d);
+        let path = scratch.join(name);
+        d.save_file(&path).expect("save");
+        path
+    };
+    let self_insert = write("self.dxf", &|d| {
+        let mut b = Block::default();
+        b.name = "LOOP".into();
+        b.entities.push(insert("LOOP", 1));
+        d.add_block(b);
+        d.add_entity(insert("LOOP", 1));
+    });
+    let missing = write("missing.dxf", &|d| {
+        d.add_entity(insert("NOPE", 1));
+    });
+    let fit = write("fit.dxf", &|d| {
+        let mut s = Spline::default();
+        s.degree_of_curve = 3;
+        s.fit_points = vec![Point::new(0.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0)];
+        d.add_entity(Entity::new(EntityType::Spline(s)));
+    });
+    let nan = write("nan.dxf", &|d| {
+        d.add_entity(Entity::new(EntityType::Circle(Circle::new(
+            Point::new(0.0, 0.0, 0.0),
+            f64::NAN,
+        ))));
+    });
+    let many = write("many.dxf", &|d| {
+        let mut b = Block::default();
+        b.name = "DOT".into();
+        b.entities.push(Entity::new(EntityType::Circle(Circle::new(
+            Point::new(0.0, 0.0, 0.0),
+            0.1,
+        ))));
+        d.add_block(b);
+        d.add_entity(insert("DOT", 1000));
+    });
+    let cases = [
+        (self_insert, "nests INSERTs deeper than 16"),
+        (missing, "INSERT of block \"NOPE\""),
+        (fit, "given by fit points only"),
+        (nan, "not a finite number"),
+        (many, "has more than 500000 entities"),
+    ];
+    for (path, words) in cases {
+        let (k, m) = failure(&DxfFileSource {
+            path: path.clone(),
+            ..source("dxf-entities.dxf", None)
+        });
+        assert_eq!(k, "shape.dxf_file", "{path:?}: {m}");
+        assert!(m.contains(words), "{path:?}: {m}");
+    }
+    std::fs::remove_dir_all(&scratch).ok();
 }

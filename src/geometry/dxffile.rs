@@ -67,6 +67,12 @@ pub fn dxf_file_shape(src: &DxfFileSource) -> Result<Shape, GeometryError> {
     let mut open = Vec::new();
     for p in &read.paths {
         let pts = p.flatten(tol, &mut budget).map_err(|()| too_detailed())?;
+        if pts.iter().any(|q| !q.is_finite()) {
+            return Err(fail(
+                FILE,
+                "has a coordinate, radius, angle or scale that is not a finite number",
+            ));
+        }
         if pts.len() < 2 {
             continue;
         }
@@ -345,7 +351,14 @@ fn nothing(src: &DxfFileSource, layers: &std::collections::BTreeSet<String>) -> 
         "it has no LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE, POLYLINE, SPLINE or INSERT in model space".to_string()
     } else {
         let list: Vec<&str> = layers.iter().map(String::as_str).take(12).collect();
-        format!("layers with entities pfcam reads: {}", list.join(", "))
+        let more = match layers.len() {
+            n if n > 12 => format!(" and {} more", n - 12),
+            _ => String::new(),
+        };
+        format!(
+            "layers with entities pfcam reads: {}{more}",
+            list.join(", ")
+        )
     };
     match &src.layer {
         Some(l) => fail(

@@ -180,7 +180,7 @@ impl Piece {
             }
             Piece::Conic { c, u, v, t0, t1 } => {
                 let n = conic_chords(*u, *v, t1 - t0, tol);
-                if !(n as f64).is_finite() || n == 0 {
+                if n == 0 {
                     return Err(());
                 }
                 budget.take(n)?;

@@ -408,3 +408,54 @@ fn spline(e: &Entity, s: &dxf::entities::Spline, xf: &Affine3) -> Result<Nurbs, 
         weights,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn the_arbitrary_axis_algorithm_mirrors_x_for_a_downward_extrusion() {
+        let up = ocs([0.0, 0.0, 1.0]).unwrap();
+        assert_eq!(up, Affine3::IDENTITY);
+        let down = ocs([0.0, 0.0, -2.0]).unwrap();
+        assert!(down.point([3.0, 4.0, 0.0]).dist(Vec2::new(-3.0, 4.0)) < 1e-15);
+        // A tilted normal: the OCS axes are orthonormal and x lies in the
+        // world's xy plane (Wz × N).
+        let t = ocs([1.0, 0.0, 1.0]).unwrap();
+        let ax = t.vector([1.0, 0.0, 0.0]);
+        assert!((ax.norm() - 1.0).abs() < 1e-15);
+        assert!(ocs([0.0, 0.0, 0.0]).is_none());
+    }
+
+    #[test]
+    fn a_bulge_makes_the_arc_through_its_ends() {
+        // Bulge tan(θ/4) for θ = 90°, from (1, 0) to (0, 1): the quarter of
+        // the unit circle about the origin, counter-clockwise.
+        let b = (PI / 8.0).tan();
+        let path = bulged(
+            &Affine3::IDENTITY,
+            &[([1.0, 0.0, 0.0], b), ([0.0, 1.0, 0.0], 0.0)],
+            false,
+        );
+        let Piece::Conic { c, u, v, t0, t1 } = path.pieces[0] else {
+            panic!("{path:?}")
+        };
+        assert!(
+            c.norm() < 1e-15 && (u.norm() - 1.0).abs() < 1e-15 && (v.norm() - 1.0).abs() < 1e-15
+        );
+        assert!(t0.abs() < 1e-15 && (t1 - PI / 2.0).abs() < 1e-15);
+        // A negative bulge goes clockwise, the centre on the other side.
+        let path = bulged(
+            &Affine3::IDENTITY,
+            &[([1.0, 0.0, 0.0], -b), ([0.0, 1.0, 0.0], 0.0)],
+            false,
+        );
+        let end = path.pieces[0].start();
+        assert!(end.dist(Vec2::new(1.0, 0.0)) < 1e-15);
+        let Piece::Conic { c, t0, t1, .. } = path.pieces[0] else {
+            panic!()
+        };
+        assert!(c.dist(Vec2::new(1.0, 1.0)) < 1e-15 && (t1 - t0 + PI / 2.0).abs() < 1e-15);
+    }
+}
