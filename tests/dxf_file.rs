@@ -501,11 +501,12 @@ fn hostile_drawings_give_errors() {
     let scratch = std::env::temp_dir().join(format!("pfcam-dxf-hostile-{}", std::process::id()));
     std::fs::create_dir_all(&scratch).expect("scratch dir");
     let insert = |name: &str, rows: i16| {
-        let mut i = Insert::default();
-        i.name = name.into();
-        i.row_count = rows;
-        i.column_count = rows;
-        Entity::new(EntityType::Insert(i))
+        Entity::new(EntityType::Insert(Insert {
+            name: name.into(),
+            row_count: rows,
+            column_count: rows,
+            ..Default::default()
+        }))
     };
     let write = |name: &str, build: &dyn Fn(&mut Drawing)| {
         let mut d = Drawing::new();
@@ -516,20 +517,22 @@ fn hostile_drawings_give_errors() {
         path
     };
     let self_insert = write("self.dxf", &|d| {
-        let mut b = Block::default();
-        b.name = "LOOP".into();
-        b.entities.push(insert("LOOP", 1));
-        d.add_block(b);
+        d.add_block(Block {
+            name: "LOOP".into(),
+            entities: vec![insert("LOOP", 1)],
+            ..Default::default()
+        });
         d.add_entity(insert("LOOP", 1));
     });
     let missing = write("missing.dxf", &|d| {
         d.add_entity(insert("NOPE", 1));
     });
     let fit = write("fit.dxf", &|d| {
-        let mut s = Spline::default();
-        s.degree_of_curve = 3;
-        s.fit_points = vec![Point::new(0.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0)];
-        d.add_entity(Entity::new(EntityType::Spline(s)));
+        d.add_entity(Entity::new(EntityType::Spline(Spline {
+            degree_of_curve: 3,
+            fit_points: vec![Point::new(0.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0)],
+            ..Default::default()
+        })));
     });
     let nan = write("nan.dxf", &|d| {
         d.add_entity(Entity::new(EntityType::Circle(Circle::new(
@@ -538,13 +541,14 @@ fn hostile_drawings_give_errors() {
         ))));
     });
     let many = write("many.dxf", &|d| {
-        let mut b = Block::default();
-        b.name = "DOT".into();
-        b.entities.push(Entity::new(EntityType::Circle(Circle::new(
-            Point::new(0.0, 0.0, 0.0),
-            0.1,
-        ))));
-        d.add_block(b);
+        d.add_block(Block {
+            name: "DOT".into(),
+            entities: vec![Entity::new(EntityType::Circle(Circle::new(
+                Point::new(0.0, 0.0, 0.0),
+                0.1,
+            )))],
+            ..Default::default()
+        });
         d.add_entity(insert("DOT", 1000));
     });
     let cases = [
