@@ -12,6 +12,7 @@ use crate::geometry::{BoolOp, Composition, Part, PartSource, ShapeSource, Vec2};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
+mod dxffile;
 pub mod echo;
 mod exact;
 pub mod extent;
@@ -243,6 +244,8 @@ pub mod defaults {
     pub const SAFE_CLEARANCE: f64 = 5.0;
     /// `operation.tolerance`, mm.
     pub const TOLERANCE: f64 = 0.01;
+    /// `shape.join_tolerance`, mm: DXF pieces whose ends are closer join.
+    pub const JOIN_TOLERANCE: f64 = 0.01;
     /// `machine.rapid_rate`, mm/min (GRBL's own default `$110` is 500; most
     /// hobby machines are set faster).
     pub const RAPID_RATE: f64 = 1000.0;
@@ -457,6 +460,12 @@ pub struct RawShape {
     pub scale: Option<f64>,
     /// `width`, mm: the `svg_file` drawing's width
     pub width: Option<f64>,
+    /// `dxf_file`: a DXF drawing, relative to the job file's directory
+    pub dxf_file: Option<String>,
+    /// `layer`: only this layer of `dxf_file`
+    pub layer: Option<String>,
+    /// `join_tolerance`, mm: `dxf_file` pieces whose ends are closer join
+    pub join_tolerance: Option<f64>,
     /// `font`
     pub font: Option<String>,
     /// `height`, mm
@@ -1263,6 +1272,9 @@ impl RawJob {
         if let ShapeSource::SvgFile(f) = &mut shape {
             f.tolerance = tolerance;
         }
+        if let ShapeSource::DxfFile(f) = &mut shape {
+            f.tolerance = tolerance;
+        }
         let max_scallop = limits::MAX_SCALLOP.check(
             "operation.max_scallop",
             o.max_scallop.unwrap_or(defaults::MAX_SCALLOP),
@@ -1532,6 +1544,7 @@ fn check_height_per_tool(shape: &ShapeSource, diameter: f64) -> Result<(), JobEr
             SvgSize::Height(h) => Some(h),
             _ => None,
         },
+        ShapeSource::DxfFile(_) => None,
         ShapeSource::Composite(c) => c.height,
     };
     match height {
@@ -1581,6 +1594,7 @@ fn resolve_shape(
             ("shape.lines", s.lines.is_some()),
             ("shape.svg_path", s.svg_path.is_some()),
             ("shape.svg_file", s.svg_file.is_some()),
+            ("shape.dxf_file", s.dxf_file.is_some()),
         ] {
             if given {
                 return Err(invalid(
@@ -1623,6 +1637,7 @@ fn resolve_shape(
             ("shape.lines", s.lines.is_some()),
             ("shape.svg_path", s.svg_path.is_some()),
             ("shape.svg_file", s.svg_file.is_some()),
+            ("shape.dxf_file", s.dxf_file.is_some()),
         ],
         "give exactly one",
     )?;
@@ -1635,6 +1650,37 @@ fn resolve_shape(
                 return Err(invalid(key, "only applies to shape.text or shape.lines"));
             }
         }
+    }
+    if s.dxf_file.is_none() {
+        for (key, given) in [
+            ("shape.layer", s.layer.is_some()),
+            ("shape.join_tolerance", s.join_tolerance.is_some()),
+        ] {
+            if given {
+                return Err(invalid(key, "only applies to shape.dxf_file"));
+            }
+        }
+    }
+    if let Some(file) = s.dxf_file {
+        let others = [
+            ("shape.font", s.font.is_some()),
+            ("shape.letter_spacing", s.letter_spacing.is_some()),
+            ("shape.height", height.is_some()),
+            ("shape.id", s.id.is_some()),
+            ("shape.scale", s.scale.is_some()),
+            ("shape.width", s.width.is_some()),
+        ];
+        return dxffile::resolve(
+            dxffile::RawDxfFile {
+                file,
+                layer: s.layer,
+                join_tolerance: s.join_tolerance,
+                others: others.iter().filter(|k| k.1).map(|k| k.0).collect(),
+            },
+            origin,
+            tool_diameter,
+            src.base_dir,
+        );
     }
     if s.svg_file.is_none() {
         for (key, given) in [
@@ -1678,7 +1724,7 @@ fn resolve_shape(
     let Some(d) = s.svg_path else {
         return Err(invalid(
             "shape.text",
-            "or shape.lines or shape.svg_path or shape.svg_file or [[shape.part]] is required (exactly one of them)",
+            "or shape.lines or shape.svg_path or shape.svg_file or shape.dxf_file or [[shape.part]] is required (exactly one of them)",
         ));
     };
     for (key, given) in [
@@ -2972,6 +3018,13 @@ mod doc_tests {
             "letter_spacing",
             "origin",
             "svg_path",
+            "svg_file",
+            "id",
+            "scale",
+            "width",
+            "dxf_file",
+            "layer",
+            "join_tolerance",
             "diameter",
             "feed",
             "plunge_feed",

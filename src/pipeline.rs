@@ -92,7 +92,8 @@ pub enum Progress {
 /// A shape error as the run reports it: `shape: ...`, or the key it names.
 fn shape_message(e: &crate::geometry::GeometryError) -> String {
     match e {
-        crate::geometry::GeometryError::SvgFile { .. } => e.to_string(),
+        crate::geometry::GeometryError::SvgFile { .. }
+        | crate::geometry::GeometryError::DxfFile { .. } => e.to_string(),
         _ => format!("shape: {e}"),
     }
 }

@@ -409,7 +409,7 @@ fn readme_jobs_table_levels_match_the_samples() {
 #[test]
 fn readme_jobs_table_times_are_the_headers() {
     let readme = doc_figures::read("README.md");
-    let rows: [(&str, &[&str]); 7] = [
+    let rows: [(&str, &[&str]); 8] = [
         ("`jobs/mfs-sign.toml`", &["mfs-sign"]),
         (
             "`jobs/mfs-mould.toml`",
@@ -423,6 +423,7 @@ fn readme_jobs_table_times_are_the_headers() {
         ("`jobs/q-sign.toml`", &["q-sign.rough", "q-sign.finish"]),
         ("`jobs/q-mould.toml`", &["q-mould.rough", "q-mould.finish"]),
         ("`jobs/svg-logo.toml`", &["svg-logo"]),
+        ("`jobs/dxf-plate.toml`", &["dxf-plate"]),
     ];
     for (key, names) in rows {
         let cells = doc_figures::table_row(&readme, "README.md", key);

@@ -680,7 +680,7 @@ fn every_job_sample_is_within_its_part() {
             let stated = doc_figures::number_after(
                 &doc,
                 "docs/simulate.md",
-                "`mfs-profile`, `svg-logo`): max gouge",
+                "`mfs-profile`, `svg-logo`, `dxf-plate`): max gouge",
             );
             let what = format!("docs/simulate.md, the profiles' max gouge ({})", job.name);
             doc_figures::assert_figure(&what, &stated, p.max_gouge.value);

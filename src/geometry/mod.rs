@@ -6,6 +6,7 @@ mod bvh;
 mod contour;
 mod densify;
 mod distance;
+pub mod dxffile;
 pub mod fill;
 pub mod font;
 pub mod font_lookup;
@@ -68,6 +69,15 @@ pub enum GeometryError {
     /// (`shape.svg_file`, `shape.id`, `shape.width`, ...).
     #[error("{key}: {message}")]
     SvgFile {
+        /// the key
+        key: String,
+        /// what is wrong
+        message: String,
+    },
+    /// A DXF drawing that cannot be used, with the job key to look at
+    /// (`shape.dxf_file`, `shape.layer`).
+    #[error("{key}: {message}")]
+    DxfFile {
         /// the key
         key: String,
         /// what is wrong
@@ -220,6 +230,8 @@ pub enum ShapeSource {
     },
     /// A whole SVG document (`shape.svg_file`).
     SvgFile(svgfile::SvgFileSource),
+    /// A DXF drawing (`shape.dxf_file`).
+    DxfFile(dxffile::DxfFileSource),
     /// Parts combined by the paper's Boolean operations on fields (Section 4);
     /// built by `field::boolean`, since every step needs a potential field.
     Composite(Composition),

@@ -65,6 +65,7 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
             svgpath::svg_shape(d, *height, *origin)
         }
         ShapeSource::SvgFile(src) => super::svgfile::svg_file_shape(src),
+        ShapeSource::DxfFile(src) => super::dxffile::dxf_file_shape(src),
         ShapeSource::Composite(_) => Err(GeometryError::Invalid(
             "a composition of parts is built with its fields (pipeline::job_shape)".into(),
         )),

@@ -50,6 +50,10 @@ pub fn check_extent(source: &ShapeSource, shape: &Shape, diameter: f64) -> Resul
             SvgSize::Width(_) => ("shape.width", "the drawing is tall for its width: lower shape.width"),
             SvgSize::Height(_) => ("shape.height", "the drawing is wide for its height: lower shape.height"),
         },
+        ShapeSource::DxfFile(_) => (
+            "shape.dxf_file",
+            "the drawing keeps the size its $INSUNITS gives: check its units, or scale it in the CAD program",
+        ),
         ShapeSource::Composite(c) if c.height.is_none() => (
             "shape.result",
             "1 design unit is 1 mm without shape.height: set shape.height to scale it",

@@ -128,6 +128,10 @@ pub const SHAPE_HEIGHT: Range = Range::closed(0.1, 2000.0, "mm");
 pub const SHAPE_WIDTH: Range = Range::closed(0.1, 2000.0, "mm");
 /// `shape.scale` (with `shape.svg_file`): the document's size times this.
 pub const SVG_SCALE: Range = Range::open(0.0, 1000.0, "");
+/// `shape.join_tolerance` (with `shape.dxf_file`): from a micrometre (below
+/// any drawing's rounding of interest) to 10 mm (past that, pieces that are
+/// meant apart would join).
+pub const JOIN_TOLERANCE: Range = Range::closed(0.000001, 10.0, "mm");
 /// `shape.origin`, each coordinate.
 pub const ORIGIN: Range = Range::closed(-10_000.0, 10_000.0, "mm");
 /// `shape.letter_spacing`.
@@ -191,6 +195,7 @@ pub const KEYS: &[(&str, Range)] = &[
     ("shape.width", SHAPE_WIDTH),
     ("shape.scale", SVG_SCALE),
     ("shape.origin", ORIGIN),
+    ("shape.join_tolerance", JOIN_TOLERANCE),
     ("shape.letter_spacing", LETTER_SPACING),
     ("shape.line_spacing", LINE_SPACING),
     ("shape.part.size", PART_SIZE),
