@@ -193,11 +193,9 @@ pub fn boss_paths<N: Navigator + Sync>(
     warnings: &mut Vec<String>,
     reach: Option<f64>,
 ) -> Result<Vec<CutPath>, ProfileError> {
-    use rayon::prelude::*;
     let index = DistanceIndex::new(part);
     // Rings are offsets of the wall radius; the tool covers its true radius.
     let r = p.wall();
-    let keep = Keepout::around_stock(p.stock_lo, p.stock_hi, p.radius);
     let dmax = farthest_stock_point(part, &index, p.stock_lo, p.stock_hi, p.stepover);
     let full = ((dmax - r - p.radius) / p.stepover).ceil().max(0.0) as usize;
     // A level added for the scallop bound only clears the band, `reach` wide, out
@@ -210,84 +208,139 @@ pub fn boss_paths<N: Navigator + Sync>(
             .min(full),
         None => full,
     };
-    let outer: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
-    let holes: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
-    let tp = |radius: f64| TraceParams {
-        radius,
-        tol: p.tol,
-        part_on_left: !p.climb,
+    let w = Walls {
+        part,
+        index: &index,
+        nav,
+        p,
+        label,
     };
-    // Rings in parallel over j; for each j the outer loops in turn, skipping a loop
-    // whose ring was already traced from another (the rings of neighbouring letters
-    // merge as they grow).
-    type Rings = Result<Vec<(usize, Vec<Vec2>)>, ProfileError>;
-    let traced: Vec<Rings> = (0..=rings)
-        .rev()
-        .collect::<Vec<_>>()
-        .par_iter()
-        .map(|&j| {
-            let rj = r + j as f64 * p.stepover;
-            let mut done: Vec<Vec<Vec2>> = Vec::new();
-            let mut out = Vec::new();
-            for lp in &outer {
-                let low = lowest(lp);
-                let probe = low - Vec2::new(0.0, rj);
-                if !done.is_empty() {
-                    let idx = DistanceIndex::new(&done);
-                    if idx.distance(probe) < 0.5 * rj.min(p.stepover) + 10.0 * p.tol {
-                        continue;
+    let mut paths = w.outer_rings(rings)?;
+    // On a level added for the scallop bound, only the band next to a hole's
+    // wall (the level below cleared the counter inside its own contour).
+    let most = if reach.is_some() { rings } else { usize::MAX };
+    let holes: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
+    for (h, hole) in holes.iter().enumerate() {
+        paths.extend(w.hole_rings(h, hole, most, warnings)?);
+    }
+    if reach.is_none() {
+        super::bays::clear_bays(part, &index, nav, p, label, &mut paths, warnings)?;
+    }
+    Ok(paths)
+}
+
+/// What a boss level's rings are traced against: the part (Γ(s), material on
+/// the left), its distance index, the level's field, the settings and the
+/// level's label.
+struct Walls<'a, N> {
+    part: &'a [Vec<Vec2>],
+    index: &'a DistanceIndex,
+    nav: &'a N,
+    p: &'a LevelParams,
+    label: &'a str,
+}
+
+impl<N: Navigator + Sync> Walls<'_, N> {
+    /// Tracing settings for a disk of `radius`.
+    fn tp(&self, radius: f64) -> TraceParams {
+        TraceParams {
+            radius,
+            tol: self.p.tol,
+            part_on_left: !self.p.climb,
+        }
+    }
+
+    /// Rings 0..=`rings` around the part, at the wall radius + j·stepover, in
+    /// parallel over j; for each j the outer loops in turn, skipping a loop
+    /// whose ring was already traced from another (the rings of neighbouring
+    /// letters merge as they grow). Each ring is clipped to the stock: the
+    /// runs that cross it, then the closed rings, outermost first (the linker
+    /// orders them, `runs::order`).
+    fn outer_rings(&self, rings: usize) -> Result<Vec<CutPath>, ProfileError> {
+        use rayon::prelude::*;
+        let (p, label) = (self.p, self.label);
+        let keep = Keepout::around_stock(p.stock_lo, p.stock_hi, p.radius);
+        type Rings = Result<Vec<(usize, Vec<Vec2>)>, ProfileError>;
+        let traced: Vec<Rings> = (0..=rings)
+            .rev()
+            .collect::<Vec<_>>()
+            .par_iter()
+            .map(|&j| self.rings_at(j))
+            .collect();
+        let (mut open, mut closed) = (Vec::new(), Vec::new());
+        for res in traced {
+            for (j, ring) in res? {
+                for (run, whole) in clip_ring(&ring, &keep) {
+                    if whole {
+                        closed.push((j, run));
+                    } else {
+                        open.push((j, run));
                     }
-                }
-                let start = low - Vec2::new(0.0, rj + 1.0);
-                let t =
-                    trace(nav, &index, start, tp(rj)).map_err(|source| ProfileError::Trace {
-                        label: format!("{label}: ring {j} around the part"),
-                        source,
-                    })?;
-                done.push(t.points[..t.points.len() - 1].to_vec());
-                out.push((j, t.points));
-            }
-            Ok(out)
-        })
-        .collect();
-    // The runs that cross the stock, then the closed rings, outermost first
-    // (the linker orders them, `runs::order`).
-    let (mut open, mut closed) = (Vec::new(), Vec::new());
-    for res in traced {
-        for (j, ring) in res? {
-            for (run, whole) in clip_ring(&ring, &keep) {
-                if whole {
-                    closed.push((j, run));
-                } else {
-                    open.push((j, run));
                 }
             }
         }
+        let ring_path = |(j, run): (usize, Vec<Vec2>), closed: bool| CutPath {
+            label: format!("{label}: ring {j} around the part"),
+            points: run,
+            closed,
+            ring: Some(j),
+        };
+        let mut paths: Vec<CutPath> = open.into_iter().map(|r| ring_path(r, false)).collect();
+        paths.extend(closed.into_iter().map(|r| ring_path(r, true)));
+        Ok(paths)
     }
-    let ring_path = |(j, run): (usize, Vec<Vec2>), closed: bool| CutPath {
-        label: format!("{label}: ring {j} around the part"),
-        points: run,
-        closed,
-        ring: Some(j),
-    };
-    let mut paths: Vec<CutPath> = open.into_iter().map(|r| ring_path(r, false)).collect();
-    paths.extend(closed.into_iter().map(|r| ring_path(r, true)));
-    // Holes (counters of the sign): rings from the innermost out to the finishing ring.
-    for (h, hole) in holes.iter().enumerate() {
-        let (deep, room) = deepest_point(hole, &index);
+
+    /// The rings of index `j` around the part's outer loops (see
+    /// [`Self::outer_rings`]).
+    fn rings_at(&self, j: usize) -> Result<Vec<(usize, Vec<Vec2>)>, ProfileError> {
+        let p = self.p;
+        let rj = p.wall() + j as f64 * p.stepover;
+        let mut done: Vec<Vec<Vec2>> = Vec::new();
+        let mut out = Vec::new();
+        for lp in self.part.iter().filter(|q| signed_area(q) > 0.0) {
+            let low = lowest(lp);
+            let probe = low - Vec2::new(0.0, rj);
+            if !done.is_empty() {
+                let idx = DistanceIndex::new(&done);
+                if idx.distance(probe) < 0.5 * rj.min(p.stepover) + 10.0 * p.tol {
+                    continue;
+                }
+            }
+            let start = low - Vec2::new(0.0, rj + 1.0);
+            let t = trace(self.nav, self.index, start, self.tp(rj)).map_err(|source| {
+                ProfileError::Trace {
+                    label: format!("{}: ring {j} around the part", self.label),
+                    source,
+                }
+            })?;
+            done.push(t.points[..t.points.len() - 1].to_vec());
+            out.push((j, t.points));
+        }
+        Ok(out)
+    }
+
+    /// Rings in hole `h` (a counter of the sign) from the innermost out to the
+    /// wall ring, at most `most` + 1 of them; a hole too small for the tool
+    /// gets a warning and no ring.
+    fn hole_rings(
+        &self,
+        h: usize,
+        hole: &[Vec2],
+        most: usize,
+        warnings: &mut Vec<String>,
+    ) -> Result<Vec<CutPath>, ProfileError> {
+        let (p, label) = (self.p, self.label);
+        let r = p.wall();
+        let (deep, room) = deepest_point(hole, self.index);
         if room < r + p.tol {
             warnings.push(format!(
                 "{label}: hole {} is too small for the tool (largest inscribed radius {room:.3} mm, tool radius {r:.3} mm): not cut",
                 h + 1
             ));
-            continue;
+            return Ok(Vec::new());
         }
-        // On a level added for the scallop bound, only the band next to the wall
-        // (the level below cleared the counter inside its own contour).
-        let n_in = (((room - r - p.tol) / p.stepover).floor() as usize).min(match reach {
-            Some(_) => rings,
-            None => usize::MAX,
-        });
+        let n_in = (((room - r - p.tol) / p.stepover).floor() as usize).min(most);
+        let mut paths = Vec::new();
         for j in (0..=n_in).rev() {
             let rj = r + j as f64 * p.stepover;
             if rj > room - p.tol {
@@ -297,16 +350,16 @@ pub fn boss_paths<N: Navigator + Sync>(
             // medial axis, which the rolling disk may fail to close (the Q's
             // counter): such a ring is retried up to three times, each a fifth
             // of a stepover closer to the wall, which keeps the rings within a
-            // stepover of each other.
-            let mut traced = trace(nav, &index, deep, tp(rj));
+            // stepover of each other. Nearer the wall than planned only
+            // overlaps the ring outside it more: no warning, nothing for the
+            // user to do.
+            let mut traced = trace(self.nav, self.index, deep, self.tp(rj));
             for k in 1..=3 {
                 if traced.is_ok() || j == 0 {
                     break;
                 }
                 let rk = rj - 0.2 * k as f64 * p.stepover;
-                // Nearer the wall than planned only overlaps the ring
-                // outside it more: no warning, nothing for the user to do.
-                traced = trace(nav, &index, deep, tp(rk));
+                traced = trace(self.nav, self.index, deep, self.tp(rk));
             }
             let t = traced.map_err(|source| ProfileError::Trace {
                 label: format!("{label}: ring {j} in hole {}", h + 1),
@@ -319,11 +372,8 @@ pub fn boss_paths<N: Navigator + Sync>(
                 ring: None,
             });
         }
+        Ok(paths)
     }
-    if reach.is_none() {
-        super::bays::clear_bays(part, &index, nav, p, label, &mut paths, warnings)?;
-    }
-    Ok(paths)
 }
 
 /// Link the levels, in the order given, into a tool path, keeping a model of the stock
