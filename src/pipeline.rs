@@ -485,6 +485,72 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
     }
 }
 
+/// The level planner's settings of a job (the stock rectangle is filled in
+/// by the planner).
+fn level_params(job: &Job) -> LevelParams {
+    LevelParams {
+        radius: job.tool.diameter / 2.0,
+        tol: job.operation.tolerance,
+        stepover: job.tool.stepover,
+        ramp_angle: job.tool.ramp_angle,
+        climb: job.operation.direction == Direction::Climb,
+        feed: job.tool.feed,
+        plunge_feed: job.tool.plunge_feed,
+        safe_z: job.stock.safe_z,
+        retract_z: job.stock.retract_z,
+        top: job.stock.top,
+        stepdown: job.tool.stepdown,
+        rapid_rate: job.machine.rapid_rate,
+        leave: job.operation.stock_to_leave,
+        stock_lo: crate::geometry::Vec2::ZERO,
+        stock_hi: crate::geometry::Vec2::ZERO,
+    }
+}
+
+/// The gouge check of a z-level tool path, level by level (in parallel),
+/// against each level's Γ(s_k) as polygons, with the stock to leave as extra
+/// clearance; the first failing level in cutting order is the error. Fills
+/// each level's `min_clearance` and returns the smallest, measured from the
+/// part itself (the stock to leave included).
+fn check_levels(
+    toolpath: &Toolpath,
+    in_order: &[&LevelCut],
+    order: &[usize],
+    info: &mut [crate::levels::plan::LevelInfo],
+    job: &Job,
+) -> Result<f64, PipelineError> {
+    use rayon::prelude::*;
+    let tol = job.operation.tolerance;
+    let leave = job.operation.stock_to_leave;
+    let radius = job.tool.diameter / 2.0;
+    let reports: Vec<GougeReport> = toolpath
+        .sections
+        .par_iter()
+        .zip(in_order)
+        .map(|(section, cut)| {
+            let part = DistanceIndex::new(&cut.part);
+            let one = Toolpath {
+                start: toolpath.start,
+                sections: vec![section.clone()],
+            };
+            gouge::check(&one, &part, radius + leave, job.stock.top)
+        })
+        .collect();
+    let mut min_clearance = f64::INFINITY;
+    for (rep, &k) in reports.iter().zip(order) {
+        if !rep.passes(tol) {
+            return Err(PipelineError::Gouge {
+                clearance: rep.min_clearance,
+                at: rep.at,
+                tol,
+            });
+        }
+        min_clearance = min_clearance.min(rep.min_clearance + leave);
+        info[k].min_clearance = rep.min_clearance + leave;
+    }
+    Ok(min_clearance)
+}
+
 /// A boss or cavity: the shape's field, the levels (each with its own MFS solve on
 /// Γ(s_k)), linking, and the gouge check of every level against its Γ(s_k).
 fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
@@ -500,23 +566,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let (solved, shape_report, outer_radius) = solve_shape(&shape, job, flat_tol, progress)?;
     let glyphs: Vec<Vec<crate::geometry::Vec2>> =
         shape.contours().map(|c| c.flatten(flat_tol)).collect();
-    let params = LevelParams {
-        radius: job.tool.diameter / 2.0,
-        tol,
-        stepover: job.tool.stepover,
-        ramp_angle: job.tool.ramp_angle,
-        climb: job.operation.direction == Direction::Climb,
-        feed: job.tool.feed,
-        plunge_feed: job.tool.plunge_feed,
-        safe_z: job.stock.safe_z,
-        retract_z: job.stock.retract_z,
-        top: job.stock.top,
-        stepdown: job.tool.stepdown,
-        rapid_rate: job.machine.rapid_rate,
-        leave: job.operation.stock_to_leave,
-        stock_lo: crate::geometry::Vec2::ZERO,
-        stock_hi: crate::geometry::Vec2::ZERO,
-    };
+    let params = level_params(job);
     let lj = LevelJob {
         field: &solved.solution.field,
         glyphs: &glyphs,
@@ -535,7 +585,6 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         params,
         max_hours: job.machine.max_hours,
     };
-    let leave = job.operation.stock_to_leave;
     set_stage(Stage::LevelGrid);
     let mut planned = plan_with_progress(&lj, progress)?;
     set_stage(Stage::Other);
@@ -545,38 +594,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let linked = link_levels(&in_order, &planned.params);
     // Arcs within tol/2 of the traced rings, before the gouge check (as for a profile).
     let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
-    // Gouge check, level by level (in parallel), against that level's Γ(s_k)
-    // as polygons; the first failing level in order is the one reported.
-    let reports: Vec<GougeReport> = {
-        use rayon::prelude::*;
-        toolpath
-            .sections
-            .par_iter()
-            .zip(&in_order)
-            .map(|(section, cut)| {
-                let part = DistanceIndex::new(&cut.part);
-                let one = Toolpath {
-                    start: toolpath.start,
-                    sections: vec![section.clone()],
-                };
-                // With stock to leave, the moves keep that much more clearance.
-                gouge::check(&one, &part, params.radius + leave, job.stock.top)
-            })
-            .collect()
-    };
-    let mut min_clearance = f64::INFINITY;
-    for (rep, &k) in reports.iter().zip(&planned.order) {
-        if !rep.passes(tol) {
-            return Err(PipelineError::Gouge {
-                clearance: rep.min_clearance,
-                at: rep.at,
-                tol,
-            });
-        }
-        // Reported from the part itself (the stock to leave included).
-        min_clearance = min_clearance.min(rep.min_clearance + leave);
-        planned.info[k].min_clearance = rep.min_clearance + leave;
-    }
+    let min_clearance = check_levels(&toolpath, &in_order, &planned.order, &mut planned.info, job)?;
     set_stage(Stage::Finishing);
     let finish = match &job.finish {
         Some(f) => Some(finish_program(
