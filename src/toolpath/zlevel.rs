@@ -877,59 +877,120 @@ pub(super) fn cover_left(
     label: &str,
 ) -> Result<(Vec<CutPath>, f64), ProfileError> {
     use crate::field::count::{set_stage, Stage};
-    use crate::field::isolines::Grid;
-    let r = p.radius;
     let vindex = DistanceIndex::new(v);
     let Some((lo, hi)) = polygons_bbox(v) else {
         return Ok((paths, 0.0));
     };
-    let pad = Vec2::new(2.0 * r, 2.0 * r);
-    // The mask's rectangle reaches past the grid below (whose last row and
-    // column may overshoot `hi + pad` by a spacing): outside it the mask
-    // reads "not material", which would put a sliver of the part's thin
-    // serifs beyond V's box into V.
-    let mask = region_mask(v, lo, hi, 4.0 * r);
     // 4. Coverage: reachable points (in V, or within r of V) not within r of a path,
     // on a grid of r/10. Where points are left (between rings that part around a
     // lobe), small loops of radius r/2 are added at them, centred where the tool
     // centre may go, and coverage is measured again.
     set_stage(Stage::Coverage);
-    let hc = (r / 10.0).max(0.05);
-    let empty = crate::field::Field::new(vec![], vec![]);
-    let pocket_mask: Vec<Vec<Vec2>> = part
-        .iter()
-        .map(|q| q.iter().rev().copied().collect())
-        .collect();
-    let in_cavity = Grid::sample(&empty, lo - pad, hi + pad, hc, &pocket_mask);
-    let out_v = Grid::sample(&empty, lo - pad, hi + pad, hc, &mask);
-    let measure = |paths: &[CutPath]| -> (usize, Vec<Vec2>) {
+    let cov = Coverage::new(part, index, v, &vindex, (lo, hi), p.radius, band);
+    let (reach, mut left) = cov.measure(&paths);
+    if !left.is_empty() {
+        let spots = cov.spot_loops(&left, p, label);
+        // Cut first, each next to the last, so the linker can step from one to
+        // the next at depth instead of retracting and ramping in again.
+        paths.splice(0..0, nearest_neighbour_order(spots));
+        left = cov.measure(&paths).1;
+    }
+    let frac = if reach > 0 {
+        left.len() as f64 / reach as f64
+    } else {
+        0.0
+    };
+    Ok((paths, frac))
+}
+
+/// The coverage grid of a cavity level: points inside the cavity (spacing
+/// r/10, at least 0.05 mm) over V's box grown by 2r, and which of them lie
+/// outside V (where the tool centre may not go).
+struct Coverage<'a> {
+    index: &'a DistanceIndex,
+    vindex: &'a DistanceIndex,
+    in_cavity: crate::field::isolines::Grid,
+    out_v: crate::field::isolines::Grid,
+    r: f64,
+    hc: f64,
+    band: Option<f64>,
+}
+
+impl<'a> Coverage<'a> {
+    fn new(
+        part: &[Vec<Vec2>],
+        index: &'a DistanceIndex,
+        v: &[Vec<Vec2>],
+        vindex: &'a DistanceIndex,
+        (lo, hi): (Vec2, Vec2),
+        r: f64,
+        band: Option<f64>,
+    ) -> Coverage<'a> {
+        use crate::field::isolines::Grid;
+        let pad = Vec2::new(2.0 * r, 2.0 * r);
+        // The mask's rectangle reaches past the grid below (whose last row and
+        // column may overshoot `hi + pad` by a spacing): outside it the mask
+        // reads "not material", which would put a sliver of the part's thin
+        // serifs beyond V's box into V.
+        let mask = region_mask(v, lo, hi, 4.0 * r);
+        let hc = (r / 10.0).max(0.05);
+        let empty = crate::field::Field::new(vec![], vec![]);
+        let pocket_mask: Vec<Vec<Vec2>> = part
+            .iter()
+            .map(|q| q.iter().rev().copied().collect())
+            .collect();
+        Coverage {
+            index,
+            vindex,
+            in_cavity: Grid::sample(&empty, lo - pad, hi + pad, hc, &pocket_mask),
+            out_v: Grid::sample(&empty, lo - pad, hi + pad, hc, &mask),
+            r,
+            hc,
+            band,
+        }
+    }
+
+    /// The grid point at `(i, j)`.
+    fn point(&self, i: usize, j: usize) -> Vec2 {
+        let g = &self.in_cavity;
+        Vec2::new(
+            g.origin.x + self.hc * i as f64,
+            g.origin.y + self.hc * j as f64,
+        )
+    }
+
+    /// How many grid points the tool can reach (in V or within r of it, and
+    /// within the band's reach of the wall), and those of them farther than
+    /// r from every path.
+    fn measure(&self, paths: &[CutPath]) -> (usize, Vec<Vec2>) {
+        let r = self.r;
         let all: Vec<Vec<Vec2>> = paths
             .iter()
             .map(|c| c.points[..c.points.len() - 1].to_vec())
             .collect();
         let pindex = DistanceIndex::new(&all);
         let hints: [std::cell::Cell<u32>; 3] = Default::default();
-        let mut reach = 0usize;
-        let mut left = Vec::new();
-        for j in 0..in_cavity.ny {
-            for i in 0..in_cavity.nx {
-                let k = j * in_cavity.nx + i;
-                if !in_cavity.inside[k] {
+        let (mut reach, mut left) = (0usize, Vec::new());
+        let g = &self.in_cavity;
+        for j in 0..g.ny {
+            for i in 0..g.nx {
+                let k = j * g.nx + i;
+                if !g.inside[k] {
                     continue;
                 }
-                let q = Vec2::new(
-                    in_cavity.origin.x + hc * i as f64,
-                    in_cavity.origin.y + hc * j as f64,
-                );
+                let q = self.point(i, j);
                 // `closer_than(q, next_up(x))` is exactly `distance(q) <= x`
                 // (the same minimum over the edges), but stops at the first
                 // edge that decides it and needs no nearest point: the
                 // coverage grid asks millions of these (issue 13).
-                if band.is_some_and(|d| !index.closer_than(q, next_up(d + r), &hints[0])) {
+                if self
+                    .band
+                    .is_some_and(|d| !self.index.closer_than(q, next_up(d + r), &hints[0]))
+                {
                     continue;
                 }
-                let in_v = !out_v.inside[k];
-                if in_v || vindex.closer_than(q, next_up(r), &hints[1]) {
+                let in_v = !self.out_v.inside[k];
+                if in_v || self.vindex.closer_than(q, next_up(r), &hints[1]) {
                     reach += 1;
                     if !pindex.closer_than(q, next_up(r + 1e-9), &hints[2]) {
                         left.push(q);
@@ -938,32 +999,37 @@ pub(super) fn cover_left(
             }
         }
         (reach, left)
-    };
-    let (reach, left) = measure(&paths);
-    let mut left = left;
-    if !left.is_empty() {
+    }
+
+    /// Whether the grid point nearest `q` lies in V.
+    fn in_v(&self, q: Vec2) -> bool {
+        let g = &self.in_cavity;
+        let i = ((q.x - g.origin.x) / self.hc).round() as usize;
+        let j = ((q.y - g.origin.y) / self.hc).round() as usize;
+        !self.out_v.inside[(j.min(g.ny - 1)) * g.nx + i.min(g.nx - 1)]
+    }
+
+    /// Loops of radius r/2 at the uncut points `left` (one per cluster),
+    /// centred at the point or pulled into V when it lies near ∂V, skipped
+    /// where such a loop would not keep clear of ∂V and of the part.
+    fn spot_loops(&self, left: &[Vec2], p: &LevelParams, label: &str) -> Vec<CutPath> {
+        let (r, hc) = (self.r, self.hc);
         let dab_r = 0.5 * r;
         let mut dabs: Vec<Vec2> = Vec::new();
         let mut spots: Vec<CutPath> = Vec::new();
-        for &q in &left {
+        for &q in left {
             if dabs.iter().any(|d| d.dist(q) <= r + dab_r - 2.0 * hc) {
                 continue;
             }
-            // Centre the loop at q, or pulled toward the inside of V if q is near ∂V.
-            let (dv, near) = vindex.nearest(q);
-            let inside = !out_v.inside[{
-                let i = ((q.x - in_cavity.origin.x) / hc).round() as usize;
-                let j = ((q.y - in_cavity.origin.y) / hc).round() as usize;
-                (j.min(in_cavity.ny - 1)) * in_cavity.nx + i.min(in_cavity.nx - 1)
-            }];
-            let c = if inside && dv >= dab_r + p.tol {
-                q
-            } else if inside {
-                q + (q - near).normalized() * (dab_r + p.tol - dv)
-            } else {
+            let (dv, near) = self.vindex.nearest(q);
+            let c = if !self.in_v(q) {
                 continue;
+            } else if dv >= dab_r + p.tol {
+                q
+            } else {
+                q + (q - near).normalized() * (dab_r + p.tol - dv)
             };
-            if vindex.distance(c) < dab_r + 0.5 * p.tol || index.distance(c) < r + dab_r {
+            if self.vindex.distance(c) < dab_r + 0.5 * p.tol || self.index.distance(c) < r + dab_r {
                 continue;
             }
             dabs.push(c);
@@ -982,17 +1048,8 @@ pub(super) fn cover_left(
                 ring: None,
             });
         }
-        // Cut first, each next to the last, so the linker can step from one to
-        // the next at depth instead of retracting and ramping in again.
-        paths.splice(0..0, nearest_neighbour_order(spots));
-        left = measure(&paths).1;
+        spots
     }
-    let frac = if reach > 0 {
-        left.len() as f64 / reach as f64
-    } else {
-        0.0
-    };
-    Ok((paths, frac))
 }
 
 #[cfg(test)]
