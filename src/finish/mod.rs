@@ -174,12 +174,21 @@ pub fn finish(
         width,
         job.operation.stock_to_leave,
     )?;
-    let mut loops = Vec::new();
-    for (k, (s, polys)) in levels.iter().enumerate() {
-        for poly in polys {
-            loops.push(path::tip_loop(poly, k, *s, field, &p, mesh)?);
-        }
-    }
+    // Every loop of every pass on its own (in parallel; the order kept).
+    let jobs: Vec<(usize, f64, &Vec<Vec2>)> = levels
+        .iter()
+        .enumerate()
+        .flat_map(|(k, (s, polys))| polys.iter().map(move |poly| (k, *s, poly)))
+        .collect();
+    let loops: Vec<path::Loop> = {
+        use rayon::prelude::*;
+        let each: Vec<Result<path::Loop, String>> = jobs
+            .par_iter()
+            .map(|&(k, s, poly)| path::tip_loop(poly, k, s, field, &p, mesh))
+            .collect();
+        // The first failure in pass order, whichever thread met it first.
+        each.into_iter().collect::<Result<_, _>>()?
+    };
     let order = path::order(
         &loops,
         2.0 * width,

@@ -174,25 +174,44 @@ fn drop_tips(
 /// halved at most [`CHORD_DEPTH`] times.
 fn chord_safe(tips: Vec<Vec3>, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec3> {
     let n = tips.len();
+    let mid = |a: Vec3, b: Vec3| Vec3::new(0.5 * (a.x + b.x), 0.5 * (a.y + b.y), 0.5 * (a.z + b.z));
+    // The first halving of every chord in one parallel batch; the few chords
+    // that need more are split one at a time.
+    let firsts: Vec<(f64, f64)> = (0..n)
+        .map(|i| {
+            let m = mid(tips[i], tips[(i + 1) % n]);
+            (m.x, m.y)
+        })
+        .collect();
+    let drops = p.cutter.drop_many(mesh, &firsts);
     let mut out = Vec::with_capacity(n);
     for i in 0..n {
-        out.push(tips[i]);
-        let mut stack = vec![(tips[i], tips[(i + 1) % n], 0)];
-        let mut mids = Vec::new();
+        let (a, b) = (tips[i], tips[(i + 1) % n]);
+        out.push(a);
+        let m = mid(a, b);
+        let Some(z) = drops[i].filter(|&z| z > m.z + 0.25 * p.tol) else {
+            continue;
+        };
+        let first = Vec3::new(m.x, m.y, z);
+        let mut mids = vec![(0, first)];
+        // Depth first, the first half first.
+        let mut stack = vec![(first, b, 1), (a, first, 1)];
         while let Some((a, b, depth)) = stack.pop() {
-            let m = Vec3::new(0.5 * (a.x + b.x), 0.5 * (a.y + b.y), 0.5 * (a.z + b.z));
+            if depth >= CHORD_DEPTH {
+                continue;
+            }
+            let m = mid(a, b);
             let Some(z) = p.cutter.drop(mesh, m.x, m.y) else {
                 continue;
             };
-            if z > m.z + 0.25 * p.tol && depth < CHORD_DEPTH {
-                let mid = Vec3::new(m.x, m.y, z);
-                // Depth first, the first half first: `mids` stays in order.
-                stack.push((mid, b, depth + 1));
-                stack.push((a, mid, depth + 1));
-                mids.push((depth, mid));
+            if z > m.z + 0.25 * p.tol {
+                let q = Vec3::new(m.x, m.y, z);
+                stack.push((q, b, depth + 1));
+                stack.push((a, q, depth + 1));
+                mids.push((depth, q));
             }
         }
-        out.extend(order_between(tips[i], mids));
+        out.extend(order_between(a, mids));
     }
     out
 }
