@@ -16,11 +16,15 @@ mod dxffile;
 pub mod echo;
 mod exact;
 pub mod extent;
+mod field;
 pub mod finish;
 mod font;
 pub mod limits;
+mod operation;
+mod stock;
 mod svgfile;
 mod text;
+mod tool;
 
 pub use finish::{CutterShape, Finish};
 use font::resolve_font;
@@ -1002,29 +1006,6 @@ fn key_at(text: &str, pos: usize) -> Option<String> {
     })
 }
 
-/// `x` as the user wrote it, short: `-3`, `0.5`, `1e300` (never 300 digits).
-/// `stock.retract_z`: above the stock top (nothing is ever higher: the
-/// tool may rapid over any of it there), at most `stock.safe_z`; `safe_z` when
-/// not given.
-fn resolve_retract(retract_z: Option<f64>, top: f64, safe_z: f64) -> Result<f64, JobError> {
-    let Some(z) = retract_z else {
-        return Ok(safe_z);
-    };
-    let z = finite("stock.retract_z", z)?;
-    if z <= top || z > safe_z {
-        return Err(invalid(
-            "stock.retract_z",
-            format!(
-                "must be above stock.top ({}) and at most stock.safe_z ({}), got {}",
-                show(top),
-                show(safe_z),
-                show(z)
-            ),
-        ));
-    }
-    Ok(z)
-}
-
 /// Of `keys`, each with whether the job gives it, at most one: the error
 /// names the first two given (keyed on the first) and says `rule`; else the
 /// one given, if any.
@@ -1039,6 +1020,7 @@ fn at_most_one<'a>(keys: &[(&'a str, bool)], rule: &str) -> Result<Option<&'a st
     }
 }
 
+/// `x` as the user wrote it, short: `-3`, `0.5`, `1e300` (never 300 digits).
 fn show(x: f64) -> String {
     if x.fract() == 0.0 && x.abs() < 1e15 {
         format!("{x}")
@@ -1111,300 +1093,31 @@ impl RawJob {
     }
 
     /// As [`resolve`](RawJob::resolve), with files and font names found
-    /// through `src`.
+    /// through `src`. The tables in the order their checks run: the tool
+    /// first (the letter spacing defaults to its diameter), then the shape,
+    /// the stock, the operation with `[profile]` and `[finish]`, the field,
+    /// the machine and the output.
     pub fn resolve_with(self, name_hint: &str, src: &Sources<'_>) -> Result<Job, JobError> {
-        let name = match self.job.and_then(|j| j.name) {
-            Some(n) => {
-                check_name("job.name", &n)?;
-                n
-            }
-            None => {
-                check_name("job.name", name_hint).map_err(|_| {
-                    invalid(
-                        "job.name",
-                        format!(
-                            "is needed: the file name {name_hint:?} does not make a safe output name"
-                        ),
-                    )
-                })?;
-                name_hint.to_string()
-            }
-        };
-
-        // The tool first: the letter spacing defaults to its diameter.
-        let t = self.tool.unwrap_or_default();
-        let diameter = limits::TOOL_DIAMETER.check(
-            "tool.diameter",
-            t.diameter
-                .ok_or_else(|| invalid("tool.diameter", "is required (mm)"))?,
+        let name = resolve_job_name(self.job.and_then(|j| j.name), name_hint)?;
+        let tool = tool::resolve(self.tool.unwrap_or_default())?;
+        let mut shape = resolve_shape(self.shape.unwrap_or_default(), tool.diameter, src)?;
+        check_height_per_tool(&shape, tool.diameter)?;
+        let stock = stock::resolve(self.stock.unwrap_or_default())?;
+        let operation::Resolved {
+            operation,
+            profile,
+            finish,
+        } = operation::resolve(
+            self.operation.unwrap_or_default(),
+            &tool,
+            &stock,
+            self.profile,
+            self.finish,
         )?;
-        let tool = Tool {
-            shape: CutterShape::Flat,
-            corner: 0.0,
-            diameter,
-            feed: limits::FEED.check("tool.feed", t.feed.unwrap_or(defaults::FEED))?,
-            plunge_feed: limits::FEED.check(
-                "tool.plunge_feed",
-                t.plunge_feed.unwrap_or(defaults::PLUNGE_FEED),
-            )?,
-            spindle: limits::SPINDLE
-                .check("tool.spindle", t.spindle.unwrap_or(defaults::SPINDLE))?,
-            stepdown: limits::STEPDOWN
-                .check("tool.stepdown", t.stepdown.unwrap_or(defaults::STEPDOWN))?,
-            stepover: {
-                let so = limits::STEPOVER.check(
-                    "tool.stepover",
-                    t.stepover.unwrap_or(defaults::STEPOVER_FRACTION * diameter),
-                )?;
-                if so < diameter * limits::MIN_STEPOVER_FRACTION {
-                    return Err(invalid(
-                        "tool.stepover",
-                        format!(
-                            "must be at least {} of tool.diameter ({} mm): finer steps multiply the clearing rings and the run time, got {}",
-                            show(limits::MIN_STEPOVER_FRACTION),
-                            show(diameter * limits::MIN_STEPOVER_FRACTION),
-                            show(so)
-                        ),
-                    ));
-                }
-                if so > diameter / 2.0 {
-                    return Err(invalid(
-                        "tool.stepover",
-                        format!(
-                            "must be at most the tool radius ({} mm) so neighbouring rings overlap, got {}",
-                            show(diameter / 2.0),
-                            show(so)
-                        ),
-                    ));
-                }
-                so
-            },
-            ramp_angle: limits::RAMP_ANGLE.check(
-                "tool.ramp_angle",
-                t.ramp_angle.unwrap_or(defaults::RAMP_ANGLE),
-            )?,
-        };
-
-        let mut shape = resolve_shape(self.shape.unwrap_or_default(), diameter, src)?;
-        check_height_per_tool(&shape, diameter)?;
-
-        let s = self.stock.unwrap_or_default();
-        let top = limits::STOCK_TOP.check("stock.top", s.top.unwrap_or(defaults::STOCK_TOP))?;
-        let safe_z = finite(
-            "stock.safe_z",
-            s.safe_z.unwrap_or(top + defaults::SAFE_CLEARANCE),
-        )?;
-        if safe_z > top && !limits::SAFE_CLEARANCE.contains(safe_z - top) {
-            return Err(invalid(
-                "stock.safe_z",
-                format!(
-                    "must be at most {} mm above stock.top ({}), got {}",
-                    show(limits::SAFE_CLEARANCE.hi),
-                    show(top),
-                    show(safe_z)
-                ),
-            ));
-        }
-        if safe_z <= top {
-            return Err(invalid(
-                "stock.safe_z",
-                format!(
-                    "must be above stock.top ({}), got {}",
-                    show(top),
-                    show(safe_z)
-                ),
-            ));
-        }
-        let retract_z = resolve_retract(s.retract_z, top, safe_z)?;
-        let margin = limits::MARGIN.check("stock.margin", s.margin.unwrap_or(defaults::MARGIN))?;
-        let stock = Stock {
-            top,
-            safe_z,
-            retract_z,
-            margin,
-        };
-
-        let o = self.operation.unwrap_or_default();
-        let kind = o.kind.unwrap_or_else(|| "profile".into());
-        one_of("operation.kind", &kind, OPERATION_KINDS)?;
-        let side = o.side.unwrap_or_else(|| "outside".into());
-        one_of("operation.side", &side, SIDES)?;
-        let direction = o.direction.unwrap_or_else(|| "climb".into());
-        one_of("operation.direction", &direction, DIRECTIONS)?;
-        let depth = o
-            .depth
-            .ok_or_else(|| invalid("operation.depth", "is required (mm below stock.top)"))?;
-        if !(depth.is_finite() && depth > 0.0) {
-            return Err(invalid(
-                "operation.depth",
-                format!("must be > 0 (mm below stock.top), got {}", show(depth)),
-            ));
-        }
-        limits::DEPTH.check("operation.depth", depth)?;
-        if depth / tool.stepdown > limits::MAX_PASSES {
-            return Err(invalid(
-                "operation.depth",
-                format!(
-                    "needs {} passes of tool.stepdown = {} mm; at most {} are allowed (raise tool.stepdown)",
-                    (depth / tool.stepdown).ceil(),
-                    show(tool.stepdown),
-                    limits::MAX_PASSES
-                ),
-            ));
-        }
-        let tolerance = o.tolerance.unwrap_or(defaults::TOLERANCE);
-        if tolerance >= diameter / 2.0 {
-            return Err(invalid(
-                "operation.tolerance",
-                format!(
-                    "must be smaller than the tool radius ({} mm), got {}{}",
-                    show(diameter / 2.0),
-                    show(tolerance),
-                    if o.tolerance.is_none() {
-                        " (the default): set it for so small a tool"
-                    } else {
-                        ""
-                    }
-                ),
-            ));
-        }
-        limits::TOLERANCE.check("operation.tolerance", tolerance)?;
-        if let ShapeSource::SvgFile(f) = &mut shape {
-            f.tolerance = tolerance;
-        }
-        if let ShapeSource::DxfFile(f) = &mut shape {
-            f.tolerance = tolerance;
-        }
-        let max_scallop = limits::MAX_SCALLOP.check(
-            "operation.max_scallop",
-            o.max_scallop.unwrap_or(defaults::MAX_SCALLOP),
-        )?;
-        let op_kind = match kind.as_str() {
-            "boss" => OperationKind::Boss,
-            "cavity" => OperationKind::Cavity,
-            _ => OperationKind::Profile,
-        };
-        let rings = (stock.margin / tool.stepover).ceil();
-        if op_kind == OperationKind::Boss && rings > limits::MAX_MARGIN_RINGS {
-            return Err(invalid(
-                "stock.margin",
-                format!(
-                    "= {} mm is {rings} clearing rings of tool.stepover = {} mm around a boss, at every level; at most {} are allowed (lower the margin or raise tool.stepover)",
-                    show(stock.margin),
-                    show(tool.stepover),
-                    limits::MAX_MARGIN_RINGS
-                ),
-            ));
-        }
-        let levels = (depth / tool.stepdown - 1e-9).ceil();
-        if op_kind != OperationKind::Profile && levels >= limits::MAX_LEVELS as f64 {
-            return Err(invalid(
-                "operation.depth",
-                format!(
-                    "needs {levels} levels of tool.stepdown = {} mm; a boss or cavity has fewer than {} (raise tool.stepdown)",
-                    show(tool.stepdown),
-                    limits::MAX_LEVELS
-                ),
-            ));
-        }
-        let profile = if op_kind == OperationKind::Profile {
-            if self.profile.is_some() {
-                return Err(invalid(
-                    "profile",
-                    "only applies to operation.kind = \"boss\" or \"cavity\"",
-                ));
-            }
-            None
-        } else {
-            Some(resolve_profile(self.profile.unwrap_or_default(), depth)?)
-        };
-        let finish = match self.finish {
-            None => None,
-            Some(_) if op_kind == OperationKind::Profile => {
-                return Err(invalid(
-                    "finish",
-                    "only applies to operation.kind = \"boss\" or \"cavity\" (a profile's walls are the tool's own)",
-                ))
-            }
-            Some(f) => Some(f.resolve(&tool)?),
-        };
-        let stock_to_leave = limits::STOCK_TO_LEAVE.check(
-            "operation.stock_to_leave",
-            o.stock_to_leave.unwrap_or(if finish.is_some() {
-                finish::defaults::STOCK_TO_LEAVE
-            } else {
-                0.0
-            }),
-        )?;
-        if stock_to_leave > 0.0 && op_kind == OperationKind::Profile {
-            return Err(invalid(
-                "operation.stock_to_leave",
-                "only applies to operation.kind = \"boss\" or \"cavity\"",
-            ));
-        }
-        let operation = Operation {
-            stock_to_leave,
-            max_scallop,
-            kind: op_kind,
-            side: Side::Outside,
-            depth,
-            tolerance,
-            direction: if direction == "climb" {
-                Direction::Climb
-            } else {
-                Direction::Conventional
-            },
-        };
-
-        let f = self.field.unwrap_or_default();
-        let singularities = match f.singularities {
-            None => None,
-            Some(AutoOr::Word(w)) => {
-                auto_word("field.singularities", &w, "a whole number of singularities")?;
-                None
-            }
-            Some(AutoOr::Float(x)) => {
-                return Err(invalid(
-                    "field.singularities",
-                    format!("must be \"auto\" or a whole number, got {x:?}"),
-                ))
-            }
-            Some(AutoOr::Int(n)) => Some(limits::count(
-                "field.singularities",
-                n,
-                limits::MAX_SINGULARITIES,
-                "singularities",
-            )?),
-        };
-        let pseudo_boundary = match f.pseudo_boundary {
-            None => None,
-            Some(AutoOr::Word(w)) => {
-                auto_word("field.pseudo_boundary", &w, "a distance in mm")?;
-                None
-            }
-            Some(AutoOr::Int(d)) => {
-                Some(limits::PSEUDO_BOUNDARY.check("field.pseudo_boundary", d as f64)?)
-            }
-            Some(AutoOr::Float(d)) => {
-                Some(limits::PSEUDO_BOUNDARY.check("field.pseudo_boundary", d)?)
-            }
-        };
-        let field = FieldSpec {
-            singularities,
-            pseudo_boundary,
-        };
-
+        set_file_tolerance(&mut shape, operation.tolerance);
+        let field = field::resolve(self.field.unwrap_or_default())?;
         let machine = self.machine.unwrap_or_default().resolve()?;
-
-        let o = self.output.unwrap_or_default();
-        let output = Output {
-            arcs: o.arcs.unwrap_or(defaults::ARCS),
-            max_arc_radius: limits::MAX_ARC_RADIUS.check(
-                "output.max_arc_radius",
-                o.max_arc_radius.unwrap_or(defaults::MAX_ARC_RADIUS),
-            )?,
-        };
-
+        let output = resolve_output(self.output.unwrap_or_default())?;
         Ok(Job {
             name,
             shape,
@@ -1418,6 +1131,48 @@ impl RawJob {
             finish,
         })
     }
+}
+
+/// `job.name`, or else the file name `name_hint`: either must make a safe
+/// output file name ([`check_name`]).
+fn resolve_job_name(given: Option<String>, name_hint: &str) -> Result<String, JobError> {
+    match given {
+        Some(n) => {
+            check_name("job.name", &n)?;
+            Ok(n)
+        }
+        None => {
+            check_name("job.name", name_hint).map_err(|_| {
+                invalid(
+                    "job.name",
+                    format!(
+                        "is needed: the file name {name_hint:?} does not make a safe output name"
+                    ),
+                )
+            })?;
+            Ok(name_hint.to_string())
+        }
+    }
+}
+
+/// An SVG or DXF file's curves are flattened to `operation.tolerance` (mm).
+fn set_file_tolerance(shape: &mut ShapeSource, tolerance: f64) {
+    match shape {
+        ShapeSource::SvgFile(f) => f.tolerance = tolerance,
+        ShapeSource::DxfFile(f) => f.tolerance = tolerance,
+        _ => {}
+    }
+}
+
+/// `[output]`: whether arcs are written, and the largest arc radius (mm).
+fn resolve_output(o: RawOutput) -> Result<Output, JobError> {
+    Ok(Output {
+        arcs: o.arcs.unwrap_or(defaults::ARCS),
+        max_arc_radius: limits::MAX_ARC_RADIUS.check(
+            "output.max_arc_radius",
+            o.max_arc_radius.unwrap_or(defaults::MAX_ARC_RADIUS),
+        )?,
+    })
 }
 
 /// `[profile]` into a depth profile; `depth` is `operation.depth`, which spline
@@ -1808,25 +1563,7 @@ fn resolve_composition(
                 ))
             }
         };
-        let singularities = match p.singularities {
-            None => None,
-            Some(AutoOr::Word(w)) => {
-                auto_word(&key("singularities"), &w, "a whole number of singularities")?;
-                None
-            }
-            Some(AutoOr::Float(x)) => {
-                return Err(invalid(
-                    &key("singularities"),
-                    format!("must be \"auto\" or a whole number, got {x:?}"),
-                ))
-            }
-            Some(AutoOr::Int(n)) => Some(limits::count(
-                &key("singularities"),
-                n,
-                limits::MAX_SINGULARITIES,
-                "singularities",
-            )?),
-        };
+        let singularities = field::resolve_singularities(&key("singularities"), p.singularities)?;
         parts.push(Part {
             name: names[i].clone(),
             source,
