@@ -8,7 +8,7 @@
 //! documented in `docs/job-format.md`.
 
 use crate::geometry::svgfile::SvgSize;
-use crate::geometry::{Composition, ShapeSource, Vec2};
+use crate::geometry::ShapeSource;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -22,6 +22,7 @@ pub mod finish;
 mod font;
 pub mod limits;
 mod operation;
+mod shape;
 mod stock;
 mod svgfile;
 mod text;
@@ -1100,7 +1101,7 @@ impl RawJob {
     pub fn resolve_with(self, name_hint: &str, src: &Sources<'_>) -> Result<Job, JobError> {
         let name = resolve_job_name(self.job.and_then(|j| j.name), name_hint)?;
         let tool = tool::resolve(self.tool.unwrap_or_default())?;
-        let mut shape = resolve_shape(self.shape.unwrap_or_default(), tool.diameter, src)?;
+        let mut shape = shape::resolve(self.shape.unwrap_or_default(), tool.diameter, src)?;
         check_height_per_tool(&shape, tool.diameter)?;
         let stock = stock::resolve(self.stock.unwrap_or_default())?;
         let operation::Resolved {
@@ -1327,182 +1328,10 @@ fn auto_word(key: &str, word: &str, what: &str) -> Result<(), JobError> {
     }
 }
 
-fn resolve_shape(
-    s: RawShape,
-    tool_diameter: f64,
-    src: &Sources<'_>,
-) -> Result<ShapeSource, JobError> {
-    let origin = match s.origin {
-        Some([x, y]) => Vec2::new(
-            limits::ORIGIN.check("shape.origin", x)?,
-            limits::ORIGIN.check("shape.origin", y)?,
-        ),
-        None => Vec2::ZERO,
-    };
-    let height = s
-        .height
-        .map(|h| limits::SHAPE_HEIGHT.check("shape.height", h))
-        .transpose()?;
-    if let Some(parts) = s.part {
-        for (key, given) in [
-            ("shape.text", s.text.is_some()),
-            ("shape.lines", s.lines.is_some()),
-            ("shape.svg_path", s.svg_path.is_some()),
-            ("shape.svg_file", s.svg_file.is_some()),
-            ("shape.dxf_file", s.dxf_file.is_some()),
-        ] {
-            if given {
-                return Err(invalid(
-                    "shape.part",
-                    format!(
-                        "cannot be combined with {key}: a job has one shape source (a part may itself be text or svg: shape.part[i].text, shape.part[i].svg)"
-                    ),
-                ));
-            }
-        }
-        for (key, given) in [
-            ("shape.font", s.font.is_some()),
-            ("shape.letter_spacing", s.letter_spacing.is_some()),
-            ("shape.align", s.align.is_some()),
-            ("shape.line_spacing", s.line_spacing.is_some()),
-        ] {
-            if given {
-                return Err(invalid(
-                    key,
-                    "only applies to shape.text, not to [[shape.part]] (a text part has its own font: shape.part[i].font)",
-                ));
-            }
-        }
-        let composition = composition::resolve(parts, s.result, src)?;
-        return Ok(ShapeSource::Composite(Composition {
-            height,
-            origin,
-            ..composition
-        }));
-    }
-    if s.result.is_some() {
-        return Err(invalid(
-            "shape.result",
-            "only applies to a composition: it names one of the [[shape.part]] tables",
-        ));
-    }
-    at_most_one(
-        &[
-            ("shape.text", s.text.is_some()),
-            ("shape.lines", s.lines.is_some()),
-            ("shape.svg_path", s.svg_path.is_some()),
-            ("shape.svg_file", s.svg_file.is_some()),
-            ("shape.dxf_file", s.dxf_file.is_some()),
-        ],
-        "give exactly one",
-    )?;
-    if s.text.is_none() && s.lines.is_none() {
-        for (key, given) in [
-            ("shape.align", s.align.is_some()),
-            ("shape.line_spacing", s.line_spacing.is_some()),
-        ] {
-            if given {
-                return Err(invalid(key, "only applies to shape.text or shape.lines"));
-            }
-        }
-    }
-    if s.dxf_file.is_none() {
-        for (key, given) in [
-            ("shape.layer", s.layer.is_some()),
-            ("shape.join_tolerance", s.join_tolerance.is_some()),
-        ] {
-            if given {
-                return Err(invalid(key, "only applies to shape.dxf_file"));
-            }
-        }
-    }
-    if let Some(file) = s.dxf_file {
-        let others = [
-            ("shape.font", s.font.is_some()),
-            ("shape.letter_spacing", s.letter_spacing.is_some()),
-            ("shape.height", height.is_some()),
-            ("shape.id", s.id.is_some()),
-            ("shape.scale", s.scale.is_some()),
-            ("shape.width", s.width.is_some()),
-        ];
-        return dxffile::resolve(
-            dxffile::RawDxfFile {
-                file,
-                layer: s.layer,
-                join_tolerance: s.join_tolerance,
-                others: others.iter().filter(|k| k.1).map(|k| k.0).collect(),
-            },
-            origin,
-            tool_diameter,
-            src.base_dir,
-        );
-    }
-    if s.svg_file.is_none() {
-        for (key, given) in [
-            ("shape.id", s.id.is_some()),
-            ("shape.scale", s.scale.is_some()),
-            ("shape.width", s.width.is_some()),
-        ] {
-            if given {
-                return Err(invalid(key, "only applies to shape.svg_file"));
-            }
-        }
-    }
-    if let Some(file) = s.svg_file {
-        return svgfile::resolve(
-            svgfile::RawSvgFile {
-                file,
-                id: s.id,
-                scale: s.scale,
-                width: s.width,
-                height,
-                font: s.font.is_some(),
-                letter_spacing: s.letter_spacing.is_some(),
-            },
-            origin,
-            tool_diameter,
-            src.base_dir,
-        );
-    }
-    // Two sources given were refused above (`at_most_one`).
-    if s.text.is_some() || s.lines.is_some() {
-        let raw = text::RawText {
-            text: s.text,
-            lines: s.lines,
-            font: s.font,
-            letter_spacing: s.letter_spacing,
-            line_spacing: s.line_spacing,
-            align: s.align,
-        };
-        return text::resolve(raw, height, origin, tool_diameter, src);
-    }
-    let Some(d) = s.svg_path else {
-        return Err(invalid(
-            "shape.text",
-            "or shape.lines or shape.svg_path or shape.svg_file or shape.dxf_file or [[shape.part]] is required (exactly one of them)",
-        ));
-    };
-    for (key, given) in [
-        ("shape.font", s.font.is_some()),
-        ("shape.letter_spacing", s.letter_spacing.is_some()),
-    ] {
-        if given {
-            return Err(invalid(
-                key,
-                "only applies to shape.text, not shape.svg_path",
-            ));
-        }
-    }
-    if d.trim().is_empty() {
-        return Err(invalid("shape.svg_path", "must not be empty"));
-    }
-    Ok(ShapeSource::SvgPath { d, height, origin })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{BoolOp, FontSource, Part, PartSource};
+    use crate::geometry::{BoolOp, Composition, FontSource, Part, PartSource, Vec2};
 
     const GOOD: &str = r#"
 [job]
