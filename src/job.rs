@@ -22,6 +22,7 @@ pub mod finish;
 mod font;
 pub mod limits;
 mod operation;
+mod profile;
 mod shape;
 mod stock;
 mod svgfile;
@@ -1174,120 +1175,6 @@ fn resolve_output(o: RawOutput) -> Result<Output, JobError> {
             o.max_arc_radius.unwrap_or(defaults::MAX_ARC_RADIUS),
         )?,
     })
-}
-
-/// `[profile]` into a depth profile; `depth` is `operation.depth`, which spline
-/// and table points must agree with (their lowest z is −depth).
-fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProfile, JobError> {
-    use crate::levels::DepthProfile;
-    let kind = p.kind.unwrap_or_else(|| defaults::PROFILE_KIND.into());
-    one_of("profile.kind", &kind, PROFILE_KINDS)?;
-    let unit = |key: &str, v: f64| -> Result<f64, JobError> {
-        if v.is_finite() && v > 0.0 && v < 1.0 {
-            Ok(v)
-        } else {
-            Err(invalid(
-                key,
-                format!("must be an equipotential value in (0, 1), got {}", show(v)),
-            ))
-        }
-    };
-    let unused = |key: &str, present: bool| -> Result<(), JobError> {
-        if present {
-            Err(invalid(
-                key,
-                format!("does not apply to profile.kind = {kind:?}"),
-            ))
-        } else {
-            Ok(())
-        }
-    };
-    match kind.as_str() {
-        "linear" => {
-            unused("profile.s1", p.s1.is_some())?;
-            unused("profile.s2", p.s2.is_some())?;
-            unused("profile.steepness", p.steepness.is_some())?;
-            unused("profile.exponent", p.exponent.is_some())?;
-            unused("profile.points", p.points.is_some())?;
-            let s_bottom = unit("profile.s_bottom", p.s_bottom.unwrap_or(defaults::S_BOTTOM))?;
-            Ok(DepthProfile::Linear { s_bottom, depth })
-        }
-        "sigmoid" | "power" => {
-            unused("profile.s_bottom", p.s_bottom.is_some())?;
-            unused("profile.points", p.points.is_some())?;
-            let sigmoid = kind == "sigmoid";
-            if sigmoid {
-                unused("profile.exponent", p.exponent.is_some())?;
-            } else {
-                unused("profile.steepness", p.steepness.is_some())?;
-            }
-            let (d1, d2, dk) = if sigmoid {
-                defaults::SIGMOID
-            } else {
-                defaults::POWER
-            };
-            let s1 = unit("profile.s1", p.s1.unwrap_or(d1))?;
-            let s2 = unit("profile.s2", p.s2.unwrap_or(d2))?;
-            if s2 >= s1 {
-                return Err(invalid(
-                    "profile.s2",
-                    format!("must be below profile.s1 ({}), got {}", show(s1), show(s2)),
-                ));
-            }
-            Ok(if sigmoid {
-                let steepness =
-                    limits::STEEPNESS.check("profile.steepness", p.steepness.unwrap_or(dk))?;
-                DepthProfile::Sigmoid {
-                    s1,
-                    s2,
-                    steepness,
-                    depth,
-                }
-            } else {
-                let exponent =
-                    limits::EXPONENT.check("profile.exponent", p.exponent.unwrap_or(dk))?;
-                DepthProfile::Power {
-                    s1,
-                    s2,
-                    exponent,
-                    depth,
-                }
-            })
-        }
-        _ => {
-            unused("profile.s_bottom", p.s_bottom.is_some())?;
-            unused("profile.s1", p.s1.is_some())?;
-            unused("profile.s2", p.s2.is_some())?;
-            unused("profile.steepness", p.steepness.is_some())?;
-            unused("profile.exponent", p.exponent.is_some())?;
-            let points = p
-                .points
-                .ok_or_else(|| invalid("profile.points", "is required for a spline or table: [[s, z], ...] with z in mm relative to stock.top"))?;
-            if points.len() > limits::MAX_PROFILE_POINTS {
-                return Err(invalid(
-                    "profile.points",
-                    format!(
-                        "has {} points; at most {} are allowed",
-                        points.len(),
-                        limits::MAX_PROFILE_POINTS
-                    ),
-                ));
-            }
-            let prof = DepthProfile::from_points(&points, kind == "spline")
-                .map_err(|e| invalid("profile.points", e.to_string()))?;
-            if (prof.depth() - depth).abs() > 1e-9 {
-                return Err(invalid(
-                    "profile.points",
-                    format!(
-                        "the lowest point is at z = {} but operation.depth is {}: they must agree",
-                        show(-prof.depth()),
-                        show(depth)
-                    ),
-                ));
-            }
-            Ok(prof)
-        }
-    }
 }
 
 /// The shape's height against the tool: a sign thousands of tool diameters

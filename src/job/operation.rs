@@ -3,9 +3,8 @@
 
 use super::finish::{self, RawFinish};
 use super::{
-    defaults, invalid, limits, one_of, resolve_profile, show, Direction, Finish, JobError,
-    Operation, OperationKind, RawOperation, RawProfile, Side, Stock, Tool, DIRECTIONS,
-    OPERATION_KINDS, SIDES,
+    defaults, invalid, limits, one_of, show, Direction, Finish, JobError, Operation, OperationKind,
+    RawOperation, RawProfile, Side, Stock, Tool, DIRECTIONS, OPERATION_KINDS, SIDES,
 };
 use crate::levels::DepthProfile;
 
@@ -167,7 +166,10 @@ fn resolve_profile_table(
         }
         return Ok(None);
     }
-    Ok(Some(resolve_profile(profile.unwrap_or_default(), depth)?))
+    Ok(Some(super::profile::resolve(
+        profile.unwrap_or_default(),
+        depth,
+    )?))
 }
 
 /// `[finish]`, if given: only for a boss or cavity.
