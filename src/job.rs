@@ -8,24 +8,30 @@
 //! documented in `docs/job-format.md`.
 
 use crate::geometry::svgfile::SvgSize;
-use crate::geometry::{BoolOp, Composition, Part, PartSource, ShapeSource, Vec2};
+use crate::geometry::ShapeSource;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
+mod composition;
 mod dxffile;
 pub mod echo;
 mod exact;
 pub mod extent;
+mod field;
 pub mod finish;
 mod font;
 pub mod limits;
+mod operation;
+mod profile;
+mod shape;
+mod stock;
 mod svgfile;
 mod text;
+mod tool;
 
+pub use composition::PART_OPS;
 pub use finish::{CutterShape, Finish};
-use font::resolve_font;
 pub use font::{Fonts, Sources};
-use text::{check_line, check_text};
 
 /// A resolved job: units in mm, mm/min and rev/min, defaults applied, validated.
 #[derive(Clone, Debug, PartialEq)]
@@ -1002,29 +1008,6 @@ fn key_at(text: &str, pos: usize) -> Option<String> {
     })
 }
 
-/// `x` as the user wrote it, short: `-3`, `0.5`, `1e300` (never 300 digits).
-/// `stock.retract_z`: above the stock top (nothing is ever higher: the
-/// tool may rapid over any of it there), at most `stock.safe_z`; `safe_z` when
-/// not given.
-fn resolve_retract(retract_z: Option<f64>, top: f64, safe_z: f64) -> Result<f64, JobError> {
-    let Some(z) = retract_z else {
-        return Ok(safe_z);
-    };
-    let z = finite("stock.retract_z", z)?;
-    if z <= top || z > safe_z {
-        return Err(invalid(
-            "stock.retract_z",
-            format!(
-                "must be above stock.top ({}) and at most stock.safe_z ({}), got {}",
-                show(top),
-                show(safe_z),
-                show(z)
-            ),
-        ));
-    }
-    Ok(z)
-}
-
 /// Of `keys`, each with whether the job gives it, at most one: the error
 /// names the first two given (keyed on the first) and says `rule`; else the
 /// one given, if any.
@@ -1039,6 +1022,7 @@ fn at_most_one<'a>(keys: &[(&'a str, bool)], rule: &str) -> Result<Option<&'a st
     }
 }
 
+/// `x` as the user wrote it, short: `-3`, `0.5`, `1e300` (never 300 digits).
 fn show(x: f64) -> String {
     if x.fract() == 0.0 && x.abs() < 1e15 {
         format!("{x}")
@@ -1111,300 +1095,31 @@ impl RawJob {
     }
 
     /// As [`resolve`](RawJob::resolve), with files and font names found
-    /// through `src`.
+    /// through `src`. The tables in the order their checks run: the tool
+    /// first (the letter spacing defaults to its diameter), then the shape,
+    /// the stock, the operation with `[profile]` and `[finish]`, the field,
+    /// the machine and the output.
     pub fn resolve_with(self, name_hint: &str, src: &Sources<'_>) -> Result<Job, JobError> {
-        let name = match self.job.and_then(|j| j.name) {
-            Some(n) => {
-                check_name("job.name", &n)?;
-                n
-            }
-            None => {
-                check_name("job.name", name_hint).map_err(|_| {
-                    invalid(
-                        "job.name",
-                        format!(
-                            "is needed: the file name {name_hint:?} does not make a safe output name"
-                        ),
-                    )
-                })?;
-                name_hint.to_string()
-            }
-        };
-
-        // The tool first: the letter spacing defaults to its diameter.
-        let t = self.tool.unwrap_or_default();
-        let diameter = limits::TOOL_DIAMETER.check(
-            "tool.diameter",
-            t.diameter
-                .ok_or_else(|| invalid("tool.diameter", "is required (mm)"))?,
+        let name = resolve_job_name(self.job.and_then(|j| j.name), name_hint)?;
+        let tool = tool::resolve(self.tool.unwrap_or_default())?;
+        let mut shape = shape::resolve(self.shape.unwrap_or_default(), tool.diameter, src)?;
+        check_height_per_tool(&shape, tool.diameter)?;
+        let stock = stock::resolve(self.stock.unwrap_or_default())?;
+        let operation::Resolved {
+            operation,
+            profile,
+            finish,
+        } = operation::resolve(
+            self.operation.unwrap_or_default(),
+            &tool,
+            &stock,
+            self.profile,
+            self.finish,
         )?;
-        let tool = Tool {
-            shape: CutterShape::Flat,
-            corner: 0.0,
-            diameter,
-            feed: limits::FEED.check("tool.feed", t.feed.unwrap_or(defaults::FEED))?,
-            plunge_feed: limits::FEED.check(
-                "tool.plunge_feed",
-                t.plunge_feed.unwrap_or(defaults::PLUNGE_FEED),
-            )?,
-            spindle: limits::SPINDLE
-                .check("tool.spindle", t.spindle.unwrap_or(defaults::SPINDLE))?,
-            stepdown: limits::STEPDOWN
-                .check("tool.stepdown", t.stepdown.unwrap_or(defaults::STEPDOWN))?,
-            stepover: {
-                let so = limits::STEPOVER.check(
-                    "tool.stepover",
-                    t.stepover.unwrap_or(defaults::STEPOVER_FRACTION * diameter),
-                )?;
-                if so < diameter * limits::MIN_STEPOVER_FRACTION {
-                    return Err(invalid(
-                        "tool.stepover",
-                        format!(
-                            "must be at least {} of tool.diameter ({} mm): finer steps multiply the clearing rings and the run time, got {}",
-                            show(limits::MIN_STEPOVER_FRACTION),
-                            show(diameter * limits::MIN_STEPOVER_FRACTION),
-                            show(so)
-                        ),
-                    ));
-                }
-                if so > diameter / 2.0 {
-                    return Err(invalid(
-                        "tool.stepover",
-                        format!(
-                            "must be at most the tool radius ({} mm) so neighbouring rings overlap, got {}",
-                            show(diameter / 2.0),
-                            show(so)
-                        ),
-                    ));
-                }
-                so
-            },
-            ramp_angle: limits::RAMP_ANGLE.check(
-                "tool.ramp_angle",
-                t.ramp_angle.unwrap_or(defaults::RAMP_ANGLE),
-            )?,
-        };
-
-        let mut shape = resolve_shape(self.shape.unwrap_or_default(), diameter, src)?;
-        check_height_per_tool(&shape, diameter)?;
-
-        let s = self.stock.unwrap_or_default();
-        let top = limits::STOCK_TOP.check("stock.top", s.top.unwrap_or(defaults::STOCK_TOP))?;
-        let safe_z = finite(
-            "stock.safe_z",
-            s.safe_z.unwrap_or(top + defaults::SAFE_CLEARANCE),
-        )?;
-        if safe_z > top && !limits::SAFE_CLEARANCE.contains(safe_z - top) {
-            return Err(invalid(
-                "stock.safe_z",
-                format!(
-                    "must be at most {} mm above stock.top ({}), got {}",
-                    show(limits::SAFE_CLEARANCE.hi),
-                    show(top),
-                    show(safe_z)
-                ),
-            ));
-        }
-        if safe_z <= top {
-            return Err(invalid(
-                "stock.safe_z",
-                format!(
-                    "must be above stock.top ({}), got {}",
-                    show(top),
-                    show(safe_z)
-                ),
-            ));
-        }
-        let retract_z = resolve_retract(s.retract_z, top, safe_z)?;
-        let margin = limits::MARGIN.check("stock.margin", s.margin.unwrap_or(defaults::MARGIN))?;
-        let stock = Stock {
-            top,
-            safe_z,
-            retract_z,
-            margin,
-        };
-
-        let o = self.operation.unwrap_or_default();
-        let kind = o.kind.unwrap_or_else(|| "profile".into());
-        one_of("operation.kind", &kind, OPERATION_KINDS)?;
-        let side = o.side.unwrap_or_else(|| "outside".into());
-        one_of("operation.side", &side, SIDES)?;
-        let direction = o.direction.unwrap_or_else(|| "climb".into());
-        one_of("operation.direction", &direction, DIRECTIONS)?;
-        let depth = o
-            .depth
-            .ok_or_else(|| invalid("operation.depth", "is required (mm below stock.top)"))?;
-        if !(depth.is_finite() && depth > 0.0) {
-            return Err(invalid(
-                "operation.depth",
-                format!("must be > 0 (mm below stock.top), got {}", show(depth)),
-            ));
-        }
-        limits::DEPTH.check("operation.depth", depth)?;
-        if depth / tool.stepdown > limits::MAX_PASSES {
-            return Err(invalid(
-                "operation.depth",
-                format!(
-                    "needs {} passes of tool.stepdown = {} mm; at most {} are allowed (raise tool.stepdown)",
-                    (depth / tool.stepdown).ceil(),
-                    show(tool.stepdown),
-                    limits::MAX_PASSES
-                ),
-            ));
-        }
-        let tolerance = o.tolerance.unwrap_or(defaults::TOLERANCE);
-        if tolerance >= diameter / 2.0 {
-            return Err(invalid(
-                "operation.tolerance",
-                format!(
-                    "must be smaller than the tool radius ({} mm), got {}{}",
-                    show(diameter / 2.0),
-                    show(tolerance),
-                    if o.tolerance.is_none() {
-                        " (the default): set it for so small a tool"
-                    } else {
-                        ""
-                    }
-                ),
-            ));
-        }
-        limits::TOLERANCE.check("operation.tolerance", tolerance)?;
-        if let ShapeSource::SvgFile(f) = &mut shape {
-            f.tolerance = tolerance;
-        }
-        if let ShapeSource::DxfFile(f) = &mut shape {
-            f.tolerance = tolerance;
-        }
-        let max_scallop = limits::MAX_SCALLOP.check(
-            "operation.max_scallop",
-            o.max_scallop.unwrap_or(defaults::MAX_SCALLOP),
-        )?;
-        let op_kind = match kind.as_str() {
-            "boss" => OperationKind::Boss,
-            "cavity" => OperationKind::Cavity,
-            _ => OperationKind::Profile,
-        };
-        let rings = (stock.margin / tool.stepover).ceil();
-        if op_kind == OperationKind::Boss && rings > limits::MAX_MARGIN_RINGS {
-            return Err(invalid(
-                "stock.margin",
-                format!(
-                    "= {} mm is {rings} clearing rings of tool.stepover = {} mm around a boss, at every level; at most {} are allowed (lower the margin or raise tool.stepover)",
-                    show(stock.margin),
-                    show(tool.stepover),
-                    limits::MAX_MARGIN_RINGS
-                ),
-            ));
-        }
-        let levels = (depth / tool.stepdown - 1e-9).ceil();
-        if op_kind != OperationKind::Profile && levels >= limits::MAX_LEVELS as f64 {
-            return Err(invalid(
-                "operation.depth",
-                format!(
-                    "needs {levels} levels of tool.stepdown = {} mm; a boss or cavity has fewer than {} (raise tool.stepdown)",
-                    show(tool.stepdown),
-                    limits::MAX_LEVELS
-                ),
-            ));
-        }
-        let profile = if op_kind == OperationKind::Profile {
-            if self.profile.is_some() {
-                return Err(invalid(
-                    "profile",
-                    "only applies to operation.kind = \"boss\" or \"cavity\"",
-                ));
-            }
-            None
-        } else {
-            Some(resolve_profile(self.profile.unwrap_or_default(), depth)?)
-        };
-        let finish = match self.finish {
-            None => None,
-            Some(_) if op_kind == OperationKind::Profile => {
-                return Err(invalid(
-                    "finish",
-                    "only applies to operation.kind = \"boss\" or \"cavity\" (a profile's walls are the tool's own)",
-                ))
-            }
-            Some(f) => Some(f.resolve(&tool)?),
-        };
-        let stock_to_leave = limits::STOCK_TO_LEAVE.check(
-            "operation.stock_to_leave",
-            o.stock_to_leave.unwrap_or(if finish.is_some() {
-                finish::defaults::STOCK_TO_LEAVE
-            } else {
-                0.0
-            }),
-        )?;
-        if stock_to_leave > 0.0 && op_kind == OperationKind::Profile {
-            return Err(invalid(
-                "operation.stock_to_leave",
-                "only applies to operation.kind = \"boss\" or \"cavity\"",
-            ));
-        }
-        let operation = Operation {
-            stock_to_leave,
-            max_scallop,
-            kind: op_kind,
-            side: Side::Outside,
-            depth,
-            tolerance,
-            direction: if direction == "climb" {
-                Direction::Climb
-            } else {
-                Direction::Conventional
-            },
-        };
-
-        let f = self.field.unwrap_or_default();
-        let singularities = match f.singularities {
-            None => None,
-            Some(AutoOr::Word(w)) => {
-                auto_word("field.singularities", &w, "a whole number of singularities")?;
-                None
-            }
-            Some(AutoOr::Float(x)) => {
-                return Err(invalid(
-                    "field.singularities",
-                    format!("must be \"auto\" or a whole number, got {x:?}"),
-                ))
-            }
-            Some(AutoOr::Int(n)) => Some(limits::count(
-                "field.singularities",
-                n,
-                limits::MAX_SINGULARITIES,
-                "singularities",
-            )?),
-        };
-        let pseudo_boundary = match f.pseudo_boundary {
-            None => None,
-            Some(AutoOr::Word(w)) => {
-                auto_word("field.pseudo_boundary", &w, "a distance in mm")?;
-                None
-            }
-            Some(AutoOr::Int(d)) => {
-                Some(limits::PSEUDO_BOUNDARY.check("field.pseudo_boundary", d as f64)?)
-            }
-            Some(AutoOr::Float(d)) => {
-                Some(limits::PSEUDO_BOUNDARY.check("field.pseudo_boundary", d)?)
-            }
-        };
-        let field = FieldSpec {
-            singularities,
-            pseudo_boundary,
-        };
-
+        set_file_tolerance(&mut shape, operation.tolerance);
+        let field = field::resolve(self.field.unwrap_or_default())?;
         let machine = self.machine.unwrap_or_default().resolve()?;
-
-        let o = self.output.unwrap_or_default();
-        let output = Output {
-            arcs: o.arcs.unwrap_or(defaults::ARCS),
-            max_arc_radius: limits::MAX_ARC_RADIUS.check(
-                "output.max_arc_radius",
-                o.max_arc_radius.unwrap_or(defaults::MAX_ARC_RADIUS),
-            )?,
-        };
-
+        let output = resolve_output(self.output.unwrap_or_default())?;
         Ok(Job {
             name,
             shape,
@@ -1420,118 +1135,46 @@ impl RawJob {
     }
 }
 
-/// `[profile]` into a depth profile; `depth` is `operation.depth`, which spline
-/// and table points must agree with (their lowest z is −depth).
-fn resolve_profile(p: RawProfile, depth: f64) -> Result<crate::levels::DepthProfile, JobError> {
-    use crate::levels::DepthProfile;
-    let kind = p.kind.unwrap_or_else(|| defaults::PROFILE_KIND.into());
-    one_of("profile.kind", &kind, PROFILE_KINDS)?;
-    let unit = |key: &str, v: f64| -> Result<f64, JobError> {
-        if v.is_finite() && v > 0.0 && v < 1.0 {
-            Ok(v)
-        } else {
-            Err(invalid(
-                key,
-                format!("must be an equipotential value in (0, 1), got {}", show(v)),
-            ))
+/// `job.name`, or else the file name `name_hint`: either must make a safe
+/// output file name ([`check_name`]).
+fn resolve_job_name(given: Option<String>, name_hint: &str) -> Result<String, JobError> {
+    match given {
+        Some(n) => {
+            check_name("job.name", &n)?;
+            Ok(n)
         }
-    };
-    let unused = |key: &str, present: bool| -> Result<(), JobError> {
-        if present {
-            Err(invalid(
-                key,
-                format!("does not apply to profile.kind = {kind:?}"),
-            ))
-        } else {
-            Ok(())
-        }
-    };
-    match kind.as_str() {
-        "linear" => {
-            unused("profile.s1", p.s1.is_some())?;
-            unused("profile.s2", p.s2.is_some())?;
-            unused("profile.steepness", p.steepness.is_some())?;
-            unused("profile.exponent", p.exponent.is_some())?;
-            unused("profile.points", p.points.is_some())?;
-            let s_bottom = unit("profile.s_bottom", p.s_bottom.unwrap_or(defaults::S_BOTTOM))?;
-            Ok(DepthProfile::Linear { s_bottom, depth })
-        }
-        "sigmoid" | "power" => {
-            unused("profile.s_bottom", p.s_bottom.is_some())?;
-            unused("profile.points", p.points.is_some())?;
-            let sigmoid = kind == "sigmoid";
-            if sigmoid {
-                unused("profile.exponent", p.exponent.is_some())?;
-            } else {
-                unused("profile.steepness", p.steepness.is_some())?;
-            }
-            let (d1, d2, dk) = if sigmoid {
-                defaults::SIGMOID
-            } else {
-                defaults::POWER
-            };
-            let s1 = unit("profile.s1", p.s1.unwrap_or(d1))?;
-            let s2 = unit("profile.s2", p.s2.unwrap_or(d2))?;
-            if s2 >= s1 {
-                return Err(invalid(
-                    "profile.s2",
-                    format!("must be below profile.s1 ({}), got {}", show(s1), show(s2)),
-                ));
-            }
-            Ok(if sigmoid {
-                let steepness =
-                    limits::STEEPNESS.check("profile.steepness", p.steepness.unwrap_or(dk))?;
-                DepthProfile::Sigmoid {
-                    s1,
-                    s2,
-                    steepness,
-                    depth,
-                }
-            } else {
-                let exponent =
-                    limits::EXPONENT.check("profile.exponent", p.exponent.unwrap_or(dk))?;
-                DepthProfile::Power {
-                    s1,
-                    s2,
-                    exponent,
-                    depth,
-                }
-            })
-        }
-        _ => {
-            unused("profile.s_bottom", p.s_bottom.is_some())?;
-            unused("profile.s1", p.s1.is_some())?;
-            unused("profile.s2", p.s2.is_some())?;
-            unused("profile.steepness", p.steepness.is_some())?;
-            unused("profile.exponent", p.exponent.is_some())?;
-            let points = p
-                .points
-                .ok_or_else(|| invalid("profile.points", "is required for a spline or table: [[s, z], ...] with z in mm relative to stock.top"))?;
-            if points.len() > limits::MAX_PROFILE_POINTS {
-                return Err(invalid(
-                    "profile.points",
+        None => {
+            check_name("job.name", name_hint).map_err(|_| {
+                invalid(
+                    "job.name",
                     format!(
-                        "has {} points; at most {} are allowed",
-                        points.len(),
-                        limits::MAX_PROFILE_POINTS
+                        "is needed: the file name {name_hint:?} does not make a safe output name"
                     ),
-                ));
-            }
-            let prof = DepthProfile::from_points(&points, kind == "spline")
-                .map_err(|e| invalid("profile.points", e.to_string()))?;
-            if (prof.depth() - depth).abs() > 1e-9 {
-                return Err(invalid(
-                    "profile.points",
-                    format!(
-                        "the lowest point is at z = {} but operation.depth is {}: they must agree",
-                        show(-prof.depth()),
-                        show(depth)
-                    ),
-                ));
-            }
-            Ok(prof)
+                )
+            })?;
+            Ok(name_hint.to_string())
         }
     }
+}
+
+/// An SVG or DXF file's curves are flattened to `operation.tolerance` (mm).
+fn set_file_tolerance(shape: &mut ShapeSource, tolerance: f64) {
+    match shape {
+        ShapeSource::SvgFile(f) => f.tolerance = tolerance,
+        ShapeSource::DxfFile(f) => f.tolerance = tolerance,
+        _ => {}
+    }
+}
+
+/// `[output]`: whether arcs are written, and the largest arc radius (mm).
+fn resolve_output(o: RawOutput) -> Result<Output, JobError> {
+    Ok(Output {
+        arcs: o.arcs.unwrap_or(defaults::ARCS),
+        max_arc_radius: limits::MAX_ARC_RADIUS.check(
+            "output.max_arc_radius",
+            o.max_arc_radius.unwrap_or(defaults::MAX_ARC_RADIUS),
+        )?,
+    })
 }
 
 /// The shape's height against the tool: a sign thousands of tool diameters
@@ -1572,548 +1215,10 @@ fn auto_word(key: &str, word: &str, what: &str) -> Result<(), JobError> {
     }
 }
 
-fn resolve_shape(
-    s: RawShape,
-    tool_diameter: f64,
-    src: &Sources<'_>,
-) -> Result<ShapeSource, JobError> {
-    let origin = match s.origin {
-        Some([x, y]) => Vec2::new(
-            limits::ORIGIN.check("shape.origin", x)?,
-            limits::ORIGIN.check("shape.origin", y)?,
-        ),
-        None => Vec2::ZERO,
-    };
-    let height = s
-        .height
-        .map(|h| limits::SHAPE_HEIGHT.check("shape.height", h))
-        .transpose()?;
-    if let Some(parts) = s.part {
-        for (key, given) in [
-            ("shape.text", s.text.is_some()),
-            ("shape.lines", s.lines.is_some()),
-            ("shape.svg_path", s.svg_path.is_some()),
-            ("shape.svg_file", s.svg_file.is_some()),
-            ("shape.dxf_file", s.dxf_file.is_some()),
-        ] {
-            if given {
-                return Err(invalid(
-                    "shape.part",
-                    format!(
-                        "cannot be combined with {key}: a job has one shape source (a part may itself be text or svg: shape.part[i].text, shape.part[i].svg)"
-                    ),
-                ));
-            }
-        }
-        for (key, given) in [
-            ("shape.font", s.font.is_some()),
-            ("shape.letter_spacing", s.letter_spacing.is_some()),
-            ("shape.align", s.align.is_some()),
-            ("shape.line_spacing", s.line_spacing.is_some()),
-        ] {
-            if given {
-                return Err(invalid(
-                    key,
-                    "only applies to shape.text, not to [[shape.part]] (a text part has its own font: shape.part[i].font)",
-                ));
-            }
-        }
-        let composition = resolve_composition(parts, s.result, src)?;
-        return Ok(ShapeSource::Composite(Composition {
-            height,
-            origin,
-            ..composition
-        }));
-    }
-    if s.result.is_some() {
-        return Err(invalid(
-            "shape.result",
-            "only applies to a composition: it names one of the [[shape.part]] tables",
-        ));
-    }
-    at_most_one(
-        &[
-            ("shape.text", s.text.is_some()),
-            ("shape.lines", s.lines.is_some()),
-            ("shape.svg_path", s.svg_path.is_some()),
-            ("shape.svg_file", s.svg_file.is_some()),
-            ("shape.dxf_file", s.dxf_file.is_some()),
-        ],
-        "give exactly one",
-    )?;
-    if s.text.is_none() && s.lines.is_none() {
-        for (key, given) in [
-            ("shape.align", s.align.is_some()),
-            ("shape.line_spacing", s.line_spacing.is_some()),
-        ] {
-            if given {
-                return Err(invalid(key, "only applies to shape.text or shape.lines"));
-            }
-        }
-    }
-    if s.dxf_file.is_none() {
-        for (key, given) in [
-            ("shape.layer", s.layer.is_some()),
-            ("shape.join_tolerance", s.join_tolerance.is_some()),
-        ] {
-            if given {
-                return Err(invalid(key, "only applies to shape.dxf_file"));
-            }
-        }
-    }
-    if let Some(file) = s.dxf_file {
-        let others = [
-            ("shape.font", s.font.is_some()),
-            ("shape.letter_spacing", s.letter_spacing.is_some()),
-            ("shape.height", height.is_some()),
-            ("shape.id", s.id.is_some()),
-            ("shape.scale", s.scale.is_some()),
-            ("shape.width", s.width.is_some()),
-        ];
-        return dxffile::resolve(
-            dxffile::RawDxfFile {
-                file,
-                layer: s.layer,
-                join_tolerance: s.join_tolerance,
-                others: others.iter().filter(|k| k.1).map(|k| k.0).collect(),
-            },
-            origin,
-            tool_diameter,
-            src.base_dir,
-        );
-    }
-    if s.svg_file.is_none() {
-        for (key, given) in [
-            ("shape.id", s.id.is_some()),
-            ("shape.scale", s.scale.is_some()),
-            ("shape.width", s.width.is_some()),
-        ] {
-            if given {
-                return Err(invalid(key, "only applies to shape.svg_file"));
-            }
-        }
-    }
-    if let Some(file) = s.svg_file {
-        return svgfile::resolve(
-            svgfile::RawSvgFile {
-                file,
-                id: s.id,
-                scale: s.scale,
-                width: s.width,
-                height,
-                font: s.font.is_some(),
-                letter_spacing: s.letter_spacing.is_some(),
-            },
-            origin,
-            tool_diameter,
-            src.base_dir,
-        );
-    }
-    // Two sources given were refused above (`at_most_one`).
-    if s.text.is_some() || s.lines.is_some() {
-        let raw = text::RawText {
-            text: s.text,
-            lines: s.lines,
-            font: s.font,
-            letter_spacing: s.letter_spacing,
-            line_spacing: s.line_spacing,
-            align: s.align,
-        };
-        return text::resolve(raw, height, origin, tool_diameter, src);
-    }
-    let Some(d) = s.svg_path else {
-        return Err(invalid(
-            "shape.text",
-            "or shape.lines or shape.svg_path or shape.svg_file or shape.dxf_file or [[shape.part]] is required (exactly one of them)",
-        ));
-    };
-    for (key, given) in [
-        ("shape.font", s.font.is_some()),
-        ("shape.letter_spacing", s.letter_spacing.is_some()),
-    ] {
-        if given {
-            return Err(invalid(
-                key,
-                "only applies to shape.text, not shape.svg_path",
-            ));
-        }
-    }
-    if d.trim().is_empty() {
-        return Err(invalid("shape.svg_path", "must not be empty"));
-    }
-    Ok(ShapeSource::SvgPath { d, height, origin })
-}
-
-/// The accepted values of `shape.part.op`.
-pub const PART_OPS: &[&str] = &["union", "intersect", "subtract", "invert"];
-
-/// `[[shape.part]]` and `shape.result` into a composition (its `height` and
-/// `origin` are left for the caller). Parts are numbered from 1 in messages, in
-/// the order of the file: `shape.part[2].level`.
-fn resolve_composition(
-    raw: Vec<RawPart>,
-    result: Option<String>,
-    src: &Sources<'_>,
-) -> Result<Composition, JobError> {
-    if raw.is_empty() {
-        return Err(invalid(
-            "shape.part",
-            "must have at least one part ([[shape.part]] tables)",
-        ));
-    }
-    if raw.len() > limits::MAX_PARTS {
-        return Err(invalid(
-            "shape.part",
-            format!(
-                "has {} parts; at most {} are allowed (each may need a field solve)",
-                raw.len(),
-                limits::MAX_PARTS
-            ),
-        ));
-    }
-    // Every name first, so that a reference to a later part can say so.
-    let mut names: Vec<String> = Vec::with_capacity(raw.len());
-    for (i, p) in raw.iter().enumerate() {
-        let key = format!("shape.part[{}].name", i + 1);
-        let name = p.name.as_deref().ok_or_else(|| {
-            invalid(
-                &key,
-                "is required: parts refer to each other, and shape.result to a part, by name",
-            )
-        })?;
-        if name.trim().is_empty() {
-            return Err(invalid(&key, format!("must not be empty, got {name:?}")));
-        }
-        if let Some(j) = names.iter().position(|n| n == name) {
-            return Err(invalid(
-                &key,
-                format!("{name:?} is already the name of shape.part[{}]", j + 1),
-            ));
-        }
-        names.push(name.to_string());
-    }
-
-    let mut parts: Vec<Part> = Vec::with_capacity(raw.len());
-    for (i, p) in raw.into_iter().enumerate() {
-        let k = format!("shape.part[{}]", i + 1);
-        let key = |field: &str| format!("{k}.{field}");
-        let source = resolve_part_source(&k, &names[..i], &names[i..], &p, src)?;
-        let level = match p.level {
-            None => None,
-            Some(l) if l.is_finite() && l > 0.0 && l < 1.0 => Some(l),
-            Some(l) => {
-                return Err(invalid(
-                    &key("level"),
-                    format!("must be strictly between 0 and 1, got {}", show(l)),
-                ))
-            }
-        };
-        let singularities = match p.singularities {
-            None => None,
-            Some(AutoOr::Word(w)) => {
-                auto_word(&key("singularities"), &w, "a whole number of singularities")?;
-                None
-            }
-            Some(AutoOr::Float(x)) => {
-                return Err(invalid(
-                    &key("singularities"),
-                    format!("must be \"auto\" or a whole number, got {x:?}"),
-                ))
-            }
-            Some(AutoOr::Int(n)) => Some(limits::count(
-                &key("singularities"),
-                n,
-                limits::MAX_SINGULARITIES,
-                "singularities",
-            )?),
-        };
-        parts.push(Part {
-            name: names[i].clone(),
-            source,
-            level,
-            singularities,
-        });
-    }
-
-    let explicit = result.is_some();
-    let result = match result {
-        None => names[names.len() - 1].clone(),
-        Some(r) => {
-            if !names.contains(&r) {
-                return Err(invalid(
-                    "shape.result",
-                    format!(
-                        "names an unknown part {:?} (the parts: {})",
-                        echo::clip(&r),
-                        names.join(", ")
-                    ),
-                ));
-            }
-            r
-        }
-    };
-    // Bounded or not, part by part: an inversion is the unbounded R² − Ω, and
-    // what is built from one may be too.
-    let mut bounded: Vec<bool> = Vec::with_capacity(parts.len());
-    for p in &parts {
-        let b = |n: &String| bounded[names.iter().position(|m| m == n).unwrap_or(0)];
-        let is_bounded = match &p.source {
-            PartSource::Polygon(_) | PartSource::Svg(_) | PartSource::Text { .. } => true,
-            PartSource::Ref(n) => b(n),
-            PartSource::Op { op, of } => match op {
-                BoolOp::Invert => false,
-                BoolOp::Union => of.iter().all(b),
-                BoolOp::Intersect => of.iter().any(b),
-                BoolOp::Subtract => of.first().is_some_and(b),
-            },
-        };
-        bounded.push(is_bounded);
-    }
-    let r = names.iter().position(|n| *n == result).unwrap_or(0);
-    if !bounded[r] {
-        let why = if matches!(
-            parts[r].source,
-            PartSource::Op {
-                op: BoolOp::Invert,
-                ..
-            }
-        ) {
-            "an invert".to_string()
-        } else {
-            "built from an invert so that it is unbounded too".to_string()
-        };
-        let which = if explicit {
-            format!("shape.part[{}]", r + 1)
-        } else {
-            format!(
-                "shape.part[{}]; without shape.result the last part is the result",
-                r + 1
-            )
-        };
-        return Err(invalid(
-            "shape.result",
-            format!(
-                "names {result:?}, which is {why} ({which}): the void R² − Ω of a part is unbounded and cannot be cut; use an invert only inside another operation, e.g. intersect"
-            ),
-        ));
-    }
-    Ok(Composition {
-        parts,
-        result,
-        height: None,
-        origin: Vec2::ZERO,
-    })
-}
-
-/// What part `k` is made of. `earlier` are the names of the parts before it,
-/// `this_and_later` its own name and those after it.
-fn resolve_part_source(
-    k: &str,
-    earlier: &[String],
-    this_and_later: &[String],
-    p: &RawPart,
-    src: &Sources<'_>,
-) -> Result<PartSource, JobError> {
-    let key = |field: &str| format!("{k}.{field}");
-    let names = [key("polygon"), key("svg"), key("text")];
-    let primitive = at_most_one(
-        &[
-            (&names[0], p.polygon.is_some()),
-            (&names[1], p.svg.is_some()),
-            (&names[2], p.text.is_some()),
-        ],
-        "a primitive part is exactly one of polygon, svg, text",
-    )?;
-    if let Some(prim) = primitive {
-        for (field, given) in [("of", p.of.is_some()), ("op", p.op.is_some())] {
-            if given {
-                return Err(invalid(
-                    &key(field),
-                    format!(
-                        "cannot be combined with {prim}: a part is either a primitive (polygon, svg or text) or derived from earlier parts (of, with op)"
-                    ),
-                ));
-            }
-        }
-    }
-    if p.text.is_none() {
-        for (field, given) in [("font", p.font.is_some()), ("size", p.size.is_some())] {
-            if given {
-                return Err(invalid(
-                    &key(field),
-                    format!("only applies to a text part ({})", key("text")),
-                ));
-            }
-        }
-    }
-    if let Some(points) = &p.polygon {
-        return resolve_polygon(&key("polygon"), points).map(PartSource::Polygon);
-    }
-    if let Some(d) = &p.svg {
-        if d.trim().is_empty() {
-            return Err(invalid(&key("svg"), "must not be empty (SVG path data)"));
-        }
-        return Ok(PartSource::Svg(d.clone()));
-    }
-    if let Some(text) = &p.text {
-        check_line(&key("text"), text, "a text part is one line")?;
-        check_text(&key("text"), text)?;
-        let font = resolve_font(&key("font"), &key("text"), p.font.as_deref(), text, src)?;
-        let size = match p.size {
-            None => defaults::PART_TEXT_SIZE,
-            Some(s) => limits::PART_SIZE.check(&key("size"), s)?,
-        };
-        return Ok(PartSource::Text {
-            text: text.clone(),
-            font,
-            size,
-        });
-    }
-    let Some(of) = &p.of else {
-        if p.op.is_some() {
-            return Err(invalid(
-                &key("op"),
-                format!(
-                    "needs {}: the names of the earlier parts it combines",
-                    key("of")
-                ),
-            ));
-        }
-        return Err(invalid(
-            k,
-            "has no source: a part is a primitive (polygon, svg or text) or is derived from earlier parts (of, with op; or of one part with level)",
-        ));
-    };
-    let of = &of.0;
-    if of.is_empty() {
-        return Err(invalid(
-            &key("of"),
-            "must name at least one earlier part, got []",
-        ));
-    }
-    for (j, name) in of.iter().enumerate() {
-        if earlier.contains(name) {
-            if of[..j].contains(name) {
-                return Err(invalid(&key("of"), format!("names {name:?} twice")));
-            }
-            continue;
-        }
-        let before = if earlier.is_empty() {
-            "no part is defined before it".to_string()
-        } else {
-            format!("defined before it: {}", earlier.join(", "))
-        };
-        let message = match this_and_later.iter().position(|n| n == name) {
-            Some(0) => format!("names the part itself, {name:?} (a part may only use parts defined before it; {before})"),
-            Some(_) => format!("names {name:?}, which is defined after it (a part may only use parts defined before it; {before})"),
-            None => format!("names an unknown part {:?} ({before})", echo::clip(name)),
-        };
-        return Err(invalid(&key("of"), message));
-    }
-    let Some(op) = &p.op else {
-        if of.len() > 1 {
-            return Err(invalid(
-                &key("op"),
-                format!(
-                    "is required when {} names several parts: one of union, intersect, subtract",
-                    key("of")
-                ),
-            ));
-        }
-        if p.level.is_none() {
-            return Err(invalid(
-                &key("level"),
-                format!(
-                    "is required when {} names a single part without op: without it the part is a plain copy of {:?}",
-                    key("of"),
-                    of[0]
-                ),
-            ));
-        }
-        return Ok(PartSource::Ref(of[0].clone()));
-    };
-    one_of(&key("op"), op, PART_OPS)?;
-    let (bool_op, count_ok, needs) = match op.as_str() {
-        "union" => (BoolOp::Union, of.len() >= 2, "at least 2 parts"),
-        "intersect" => (BoolOp::Intersect, of.len() >= 2, "at least 2 parts"),
-        "subtract" => (
-            BoolOp::Subtract,
-            of.len() >= 2,
-            "at least 2 parts (the first minus the others)",
-        ),
-        _ => (BoolOp::Invert, of.len() == 1, "exactly 1 part"),
-    };
-    if !count_ok {
-        return Err(invalid(
-            &key("of"),
-            format!(
-                "must name {needs} for op = {op:?}, got {} ({})",
-                of.len(),
-                of.iter()
-                    .map(|n| format!("{n:?}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        ));
-    }
-    Ok(PartSource::Op {
-        op: bool_op,
-        of: of.clone(),
-    })
-}
-
-/// A polygon: at least 3 finite points, not all on one line.
-fn resolve_polygon(key: &str, points: &[[f64; 2]]) -> Result<Vec<Vec2>, JobError> {
-    if points.len() < 3 || points.len() > limits::MAX_POLYGON_POINTS {
-        return Err(invalid(
-            key,
-            format!(
-                "must have 3 to {} points [x, y], got {}",
-                limits::MAX_POLYGON_POINTS,
-                points.len()
-            ),
-        ));
-    }
-    let mut out = Vec::with_capacity(points.len());
-    for (j, [x, y]) in points.iter().enumerate() {
-        if !(limits::DESIGN.contains(*x) && limits::DESIGN.contains(*y)) {
-            return Err(invalid(
-                key,
-                format!(
-                    "point {} must be finite numbers in {}, got [{}, {}]",
-                    j + 1,
-                    limits::DESIGN.describe(),
-                    show(*x),
-                    show(*y)
-                ),
-            ));
-        }
-        out.push(Vec2::new(*x, *y));
-    }
-    // Not all on one line: some point is off the line from the first point to the
-    // one farthest from it.
-    let p0 = out[0];
-    let far = out
-        .iter()
-        .copied()
-        .max_by(|a, b| (*a - p0).dot(*a - p0).total_cmp(&(*b - p0).dot(*b - p0)))
-        .unwrap_or(p0);
-    let d = far - p0;
-    let len2 = d.dot(d);
-    let flat = len2 == 0.0 || out.iter().all(|&q| (d.cross(q - p0)).abs() <= 1e-12 * len2);
-    if flat {
-        return Err(invalid(
-            key,
-            "has all its points on one line: it encloses no area",
-        ));
-    }
-    Ok(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::FontSource;
+    use crate::geometry::{BoolOp, Composition, FontSource, Part, PartSource, Vec2};
 
     const GOOD: &str = r#"
 [job]

@@ -1,0 +1,214 @@
+//! `[operation]` into an [`Operation`], with the tables that only a boss or
+//! cavity takes: `[profile]` (the depth profile) and `[finish]`.
+
+use super::finish::{self, RawFinish};
+use super::{
+    defaults, invalid, limits, one_of, show, Direction, Finish, JobError, Operation, OperationKind,
+    RawOperation, RawProfile, Side, Stock, Tool, DIRECTIONS, OPERATION_KINDS, SIDES,
+};
+use crate::levels::DepthProfile;
+
+/// The resolved `[operation]` and the tables it governs.
+pub(super) struct Resolved {
+    pub operation: Operation,
+    /// `Some` exactly for a boss or cavity.
+    pub profile: Option<DepthProfile>,
+    pub finish: Option<Finish>,
+}
+
+/// `[operation]`, `[profile]` and `[finish]` against the resolved tool and
+/// stock: the depth (mm below `stock.top`) in passes of `tool.stepdown`, the
+/// tolerance below the tool radius, the clearing rings of a boss's margin.
+pub(super) fn resolve(
+    o: RawOperation,
+    tool: &Tool,
+    stock: &Stock,
+    profile: Option<RawProfile>,
+    finish: Option<RawFinish>,
+) -> Result<Resolved, JobError> {
+    let kind = o.kind.unwrap_or_else(|| "profile".into());
+    one_of("operation.kind", &kind, OPERATION_KINDS)?;
+    let side = o.side.unwrap_or_else(|| "outside".into());
+    one_of("operation.side", &side, SIDES)?;
+    let direction = o.direction.unwrap_or_else(|| "climb".into());
+    one_of("operation.direction", &direction, DIRECTIONS)?;
+    let depth = resolve_depth(o.depth, tool)?;
+    let tolerance = resolve_tolerance(o.tolerance, tool.diameter)?;
+    let max_scallop = limits::MAX_SCALLOP.check(
+        "operation.max_scallop",
+        o.max_scallop.unwrap_or(defaults::MAX_SCALLOP),
+    )?;
+    let op_kind = match kind.as_str() {
+        "boss" => OperationKind::Boss,
+        "cavity" => OperationKind::Cavity,
+        _ => OperationKind::Profile,
+    };
+    check_margin_rings(op_kind, stock, tool)?;
+    check_levels(op_kind, depth, tool)?;
+    let profile = resolve_profile_table(op_kind, profile, depth)?;
+    let finish = resolve_finish_table(op_kind, finish, tool)?;
+    let stock_to_leave = resolve_stock_to_leave(op_kind, o.stock_to_leave, finish.is_some())?;
+    let operation = Operation {
+        stock_to_leave,
+        max_scallop,
+        kind: op_kind,
+        side: Side::Outside,
+        depth,
+        tolerance,
+        direction: if direction == "climb" {
+            Direction::Climb
+        } else {
+            Direction::Conventional
+        },
+    };
+    Ok(Resolved {
+        operation,
+        profile,
+        finish,
+    })
+}
+
+/// `operation.depth` (required, mm below `stock.top`): positive, within
+/// `limits::DEPTH`, and at most `limits::MAX_PASSES` passes of `tool.stepdown`.
+fn resolve_depth(depth: Option<f64>, tool: &Tool) -> Result<f64, JobError> {
+    let depth =
+        depth.ok_or_else(|| invalid("operation.depth", "is required (mm below stock.top)"))?;
+    if !(depth.is_finite() && depth > 0.0) {
+        return Err(invalid(
+            "operation.depth",
+            format!("must be > 0 (mm below stock.top), got {}", show(depth)),
+        ));
+    }
+    limits::DEPTH.check("operation.depth", depth)?;
+    if depth / tool.stepdown > limits::MAX_PASSES {
+        return Err(invalid(
+            "operation.depth",
+            format!(
+                "needs {} passes of tool.stepdown = {} mm; at most {} are allowed (raise tool.stepdown)",
+                (depth / tool.stepdown).ceil(),
+                show(tool.stepdown),
+                limits::MAX_PASSES
+            ),
+        ));
+    }
+    Ok(depth)
+}
+
+/// `operation.tolerance` (mm, default `defaults::TOLERANCE`): smaller than the
+/// tool radius, within `limits::TOLERANCE`.
+fn resolve_tolerance(given: Option<f64>, diameter: f64) -> Result<f64, JobError> {
+    let tolerance = given.unwrap_or(defaults::TOLERANCE);
+    if tolerance >= diameter / 2.0 {
+        return Err(invalid(
+            "operation.tolerance",
+            format!(
+                "must be smaller than the tool radius ({} mm), got {}{}",
+                show(diameter / 2.0),
+                show(tolerance),
+                if given.is_none() {
+                    " (the default): set it for so small a tool"
+                } else {
+                    ""
+                }
+            ),
+        ));
+    }
+    limits::TOLERANCE.check("operation.tolerance", tolerance)
+}
+
+/// A boss clears `⌈margin / stepover⌉` rings around itself at every level:
+/// at most `limits::MAX_MARGIN_RINGS`.
+fn check_margin_rings(kind: OperationKind, stock: &Stock, tool: &Tool) -> Result<(), JobError> {
+    let rings = (stock.margin / tool.stepover).ceil();
+    if kind == OperationKind::Boss && rings > limits::MAX_MARGIN_RINGS {
+        return Err(invalid(
+            "stock.margin",
+            format!(
+                "= {} mm is {rings} clearing rings of tool.stepover = {} mm around a boss, at every level; at most {} are allowed (lower the margin or raise tool.stepover)",
+                show(stock.margin),
+                show(tool.stepover),
+                limits::MAX_MARGIN_RINGS
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A boss or cavity has `⌈depth / stepdown⌉` levels: fewer than
+/// `limits::MAX_LEVELS`.
+fn check_levels(kind: OperationKind, depth: f64, tool: &Tool) -> Result<(), JobError> {
+    let levels = (depth / tool.stepdown - 1e-9).ceil();
+    if kind != OperationKind::Profile && levels >= limits::MAX_LEVELS as f64 {
+        return Err(invalid(
+            "operation.depth",
+            format!(
+                "needs {levels} levels of tool.stepdown = {} mm; a boss or cavity has fewer than {} (raise tool.stepdown)",
+                show(tool.stepdown),
+                limits::MAX_LEVELS
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// `[profile]`: refused for a profile operation, defaulted for a boss or cavity.
+fn resolve_profile_table(
+    kind: OperationKind,
+    profile: Option<RawProfile>,
+    depth: f64,
+) -> Result<Option<DepthProfile>, JobError> {
+    if kind == OperationKind::Profile {
+        if profile.is_some() {
+            return Err(invalid(
+                "profile",
+                "only applies to operation.kind = \"boss\" or \"cavity\"",
+            ));
+        }
+        return Ok(None);
+    }
+    Ok(Some(super::profile::resolve(
+        profile.unwrap_or_default(),
+        depth,
+    )?))
+}
+
+/// `[finish]`, if given: only for a boss or cavity.
+fn resolve_finish_table(
+    kind: OperationKind,
+    finish: Option<RawFinish>,
+    tool: &Tool,
+) -> Result<Option<Finish>, JobError> {
+    match finish {
+        None => Ok(None),
+        Some(_) if kind == OperationKind::Profile => Err(invalid(
+            "finish",
+            "only applies to operation.kind = \"boss\" or \"cavity\" (a profile's walls are the tool's own)",
+        )),
+        Some(f) => Ok(Some(f.resolve(tool)?)),
+    }
+}
+
+/// `operation.stock_to_leave` (mm): defaults to
+/// `finish::defaults::STOCK_TO_LEAVE` with a `[finish]`, else 0; only a boss or
+/// cavity may leave stock.
+fn resolve_stock_to_leave(
+    kind: OperationKind,
+    given: Option<f64>,
+    has_finish: bool,
+) -> Result<f64, JobError> {
+    let stock_to_leave = limits::STOCK_TO_LEAVE.check(
+        "operation.stock_to_leave",
+        given.unwrap_or(if has_finish {
+            finish::defaults::STOCK_TO_LEAVE
+        } else {
+            0.0
+        }),
+    )?;
+    if stock_to_leave > 0.0 && kind == OperationKind::Profile {
+        return Err(invalid(
+            "operation.stock_to_leave",
+            "only applies to operation.kind = \"boss\" or \"cavity\"",
+        ));
+    }
+    Ok(stock_to_leave)
+}
