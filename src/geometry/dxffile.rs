@@ -122,31 +122,9 @@ pub fn dxf_file_shape(src: &DxfFileSource) -> Result<Shape, GeometryError> {
 
 /// The drawing in the file, refused past [`MAX_DXF_BYTES`].
 fn read_drawing(path: &Path) -> Result<dxf::Drawing, GeometryError> {
-    use std::io::Read;
     let shown = path.display();
-    if path.is_dir() {
-        return Err(fail(
-            FILE,
-            format!("is a directory, not a DXF file: {shown}"),
-        ));
-    }
-    let file = std::fs::File::open(path).map_err(|e| {
-        let why = match e.kind() {
-            std::io::ErrorKind::NotFound => "no such file".to_string(),
-            _ => e.to_string(),
-        };
-        fail(FILE, format!("{why}: {shown}"))
-    })?;
-    let mut bytes = Vec::new();
-    file.take(MAX_DXF_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| fail(FILE, format!("cannot be read: {e}: {shown}")))?;
-    if bytes.len() as u64 > MAX_DXF_BYTES {
-        return Err(fail(
-            FILE,
-            format!("is larger than {} MiB: {shown}", MAX_DXF_BYTES >> 20),
-        ));
-    }
+    let bytes =
+        super::capped::read_capped(path, "a DXF", MAX_DXF_BYTES).map_err(|m| fail(FILE, m))?;
     if !looks_like_dxf(&bytes) {
         return Err(fail(
             FILE,

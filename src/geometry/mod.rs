@@ -3,6 +3,7 @@
 
 mod arrangement;
 mod bvh;
+mod capped;
 mod contour;
 mod densify;
 mod distance;

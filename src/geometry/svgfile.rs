@@ -102,31 +102,9 @@ pub fn svg_file_shape(src: &SvgFileSource) -> Result<Shape, GeometryError> {
 
 /// The bytes of the file as UTF-8 text, refused past [`MAX_SVG_BYTES`].
 fn read_document(path: &Path) -> Result<String, GeometryError> {
-    use std::io::Read;
     let shown = path.display();
-    if path.is_dir() {
-        return Err(fail(
-            FILE,
-            format!("is a directory, not an SVG file: {shown}"),
-        ));
-    }
-    let file = std::fs::File::open(path).map_err(|e| {
-        let why = match e.kind() {
-            std::io::ErrorKind::NotFound => "no such file".to_string(),
-            _ => e.to_string(),
-        };
-        fail(FILE, format!("{why}: {shown}"))
-    })?;
-    let mut bytes = Vec::new();
-    file.take(MAX_SVG_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| fail(FILE, format!("cannot be read: {e}: {shown}")))?;
-    if bytes.len() as u64 > MAX_SVG_BYTES {
-        return Err(fail(
-            FILE,
-            format!("is larger than {} MiB: {shown}", MAX_SVG_BYTES >> 20),
-        ));
-    }
+    let bytes =
+        super::capped::read_capped(path, "an SVG", MAX_SVG_BYTES).map_err(|m| fail(FILE, m))?;
     if bytes.starts_with(&[0x1f, 0x8b]) {
         return Err(fail(
             FILE,
