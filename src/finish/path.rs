@@ -236,7 +236,7 @@ fn limit_descent(mut tips: Vec<Vec3>, slope: f64) -> Vec<Vec3> {
     }
     for k in 1..=2 * n {
         let (a, b) = (tips[(k - 1) % n], tips[k % n]);
-        let floor = a.z - slope * ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt();
+        let floor = a.z - slope * run_xy(a, b);
         if b.z < floor {
             tips[k % n].z = floor;
         }
@@ -363,13 +363,18 @@ fn surface_link(a: Vec3, b: Vec3, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec
     out
 }
 
+/// The XY length of the move from `a` to `b`, mm.
+fn run_xy(a: Vec3, b: Vec3) -> f64 {
+    ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt()
+}
+
 /// Whether the polyline from `at` through `pts` descends anywhere steeper
 /// than `slope` (Δz over XY length) by more than a micrometre.
 fn dives(at: Vec3, pts: &[Vec3], slope: f64) -> bool {
-    std::iter::once(&at).chain(pts).zip(pts).any(|(a, b)| {
-        let run = ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt();
-        a.z - b.z > slope * run + 1e-3
-    })
+    std::iter::once(&at)
+        .chain(pts)
+        .zip(pts)
+        .any(|(a, b)| a.z - b.z > slope * run_xy(*a, *b) + 1e-3)
 }
 
 /// The moves of the whole program from the loops in order (see the module docs).
@@ -608,8 +613,10 @@ mod tests {
         }
         for k in 0..out.len() {
             let (a, b) = (out[k], out[(k + 1) % out.len()]);
-            let run = ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt();
-            assert!(a.z - b.z <= slope * run + 1e-12, "{k}: {a:?} -> {b:?}");
+            assert!(
+                a.z - b.z <= slope * run_xy(a, b) + 1e-12,
+                "{k}: {a:?} -> {b:?}"
+            );
         }
         // The pit's far side is not raised: only descents are limited.
         assert_eq!(out[13].z, -2.0);
