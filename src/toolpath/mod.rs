@@ -7,6 +7,7 @@ pub mod band;
 pub mod bays;
 pub mod dropcutter;
 pub mod entry;
+pub mod farthest;
 pub mod gouge;
 pub mod inverse;
 pub mod profile;

@@ -149,37 +149,6 @@ fn signed_area(p: &[Vec2]) -> f64 {
     (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum::<f64>() / 2.0
 }
 
-/// An upper bound of the largest distance from a point of the stock rectangle
-/// outside the part to the part: the largest on a grid of spacing `step / 2`
-/// (points inside the part skipped), plus half the cell's diagonal (the
-/// distance is 1-Lipschitz). Not the corners alone: above a deep bay of the
-/// part (the V of an M) the stock's edge is farther from the part than any
-/// corner, and rings sized by the corners left 3 mm wedges of stock uncut there.
-fn farthest_stock_point(
-    part: &[Vec<Vec2>],
-    index: &DistanceIndex,
-    lo: Vec2,
-    hi: Vec2,
-    step: f64,
-) -> f64 {
-    let size = hi - lo;
-    let h = (0.5 * step).max(size.x.max(size.y) / 2000.0);
-    let (nx, ny) = (
-        (size.x / h).ceil() as usize + 1,
-        (size.y / h).ceil() as usize + 1,
-    );
-    let inside = crate::field::isolines::fill_rows(lo, h, nx, ny, part);
-    let mut far: f64 = 0.0;
-    for j in 0..ny {
-        for i in 0..nx {
-            if !inside[j * nx + i] {
-                far = far.max(index.distance(lo + Vec2::new(i as f64 * h, j as f64 * h)));
-            }
-        }
-    }
-    far + h * std::f64::consts::FRAC_1_SQRT_2
-}
-
 /// The paths of one boss level: around every outer loop of the part, clearing
 /// rings (rolling-disk offsets of radius r + j·stepover) from the outermost that
 /// still reaches into the stock (or, with `reach`, the band of that width) down to
@@ -196,7 +165,8 @@ pub fn boss_paths<N: Navigator + Sync>(
     let index = DistanceIndex::new(part);
     // Rings are offsets of the wall radius; the tool covers its true radius.
     let r = p.wall();
-    let dmax = farthest_stock_point(part, &index, p.stock_lo, p.stock_hi, p.stepover);
+    let dmax =
+        super::farthest::farthest_stock_point(part, &index, p.stock_lo, p.stock_hi, p.stepover);
     let full = ((dmax - r - p.radius) / p.stepover).ceil().max(0.0) as usize;
     // A level added for the scallop bound only clears the band, `reach` wide, out
     // to the contour of the level below, which was cut first: ring j's disk
@@ -1117,32 +1087,5 @@ mod tests {
         assert!((gap - 2.5 * 2f64.sqrt()).abs() < 1e-12, "{gap}");
         inner[1] = Vec2::new(f64::NAN, 3.0);
         assert!(ring_gap(&[square], &[inner]).is_nan());
-    }
-
-    #[test]
-    fn the_farthest_stock_point_can_lie_above_a_bay() {
-        // A U open at the top, 40 × 40, its bay 30 wide and 35 deep, in a
-        // stock 1 mm larger all round. Every corner of the stock is 1.41 from
-        // the U; the bay's points on its axis from (20, 20) up to the stock's
-        // edge at (20, 41) are 15 or more from the arms.
-        let u = vec![
-            Vec2::new(0.0, 0.0),
-            Vec2::new(40.0, 0.0),
-            Vec2::new(40.0, 40.0),
-            Vec2::new(35.0, 40.0),
-            Vec2::new(35.0, 5.0),
-            Vec2::new(5.0, 5.0),
-            Vec2::new(5.0, 40.0),
-            Vec2::new(0.0, 40.0),
-        ];
-        let part = vec![u];
-        let index = DistanceIndex::new(&part);
-        let (lo, hi) = (Vec2::new(-1.0, -1.0), Vec2::new(41.0, 41.0));
-        let exact = index.distance(Vec2::new(20.0, 41.0));
-        assert!((exact - 226.0f64.sqrt()).abs() < 1e-12);
-        let far = farthest_stock_point(&part, &index, lo, hi, 1.27);
-        assert!(far >= exact, "{far} < {exact}");
-        assert!(far <= exact + 0.5, "{far} far above {exact}");
-        assert!(index.distance(lo) < 1.5);
     }
 }
