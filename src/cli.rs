@@ -441,7 +441,7 @@ fn draw_and_verify(
     progress: &mut Reporter,
 ) -> Result<(String, String)> {
     progress.event(Progress::Stage {
-        name: "drawing the preview".into(),
+        name: "drawing the preview and simulating the program".into(),
         total: 1,
     });
     let opts = PreviewOptions {
@@ -449,25 +449,39 @@ fn draw_and_verify(
         field_image,
         ..PreviewOptions::default()
     };
-    let svg = preview_svg(job, output, report, &opts);
-    progress.event(Progress::Step);
-    let gcode = write_gcode_on(&output.toolpath, job, output.stock);
-    // The limits, before the program's own simulation and before any file.
-    if let Ok(g) = &gcode {
-        let time_s = report.programs.first().map_or(0.0, |p| p.time_s);
-        if let Err(e) = pfcam::estimate::check_program(time_s, g.len(), &job.machine) {
+    // The preview and the program's simulation read the same output and are
+    // independent: rayon runs them side by side (a rayon join, not an OS
+    // thread: a worker waiting in it keeps taking work, where a plain thread
+    // join inside a batch's rayon jobs deadlocked the pool).
+    let (svg, (gcode, verdict)) = rayon::join(
+        || preview_svg(job, output, report, &opts),
+        || {
+            let gcode = write_gcode_on(&output.toolpath, job, output.stock);
+            // The limits, before the program's own simulation and before any file.
+            let limits = gcode.as_ref().ok().and_then(|g| {
+                let time_s = report.programs.first().map_or(0.0, |p| p.time_s);
+                pfcam::estimate::check_program(time_s, g.len(), &job.machine).err()
+            });
+            let verdict = match (&gcode, limits) {
+                (Ok(g), None) => Some(Ok(pfcam::simulate::verify_program(
+                    g,
+                    job.tool.diameter,
+                    job.tool.stepdown,
+                ))),
+                (_, Some(e)) => Some(Err(e)),
+                (Err(_), None) => None,
+            };
+            (gcode, verdict)
+        },
+    );
+    let verdict = match verdict {
+        Some(Err(e)) => {
             progress.finish();
             return Err(anyhow!(e)).with_context(|| format!("{}: nothing written", path.display()));
         }
-    }
-    progress.event(Progress::Stage {
-        name: "simulating the program".into(),
-        total: 1,
-    });
-    let verdict = gcode
-        .as_ref()
-        .ok()
-        .map(|g| pfcam::simulate::verify_program(g, job.tool.diameter, job.tool.stepdown));
+        Some(Ok(v)) => Some(v),
+        None => None,
+    };
     progress.event(Progress::Step);
     progress.finish();
     let svg = svg.context("drawing the preview")?;
