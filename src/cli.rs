@@ -149,6 +149,27 @@ pub enum Command {
         #[arg(long, value_name = "MM", default_value_t = pfcam::surface::DEFAULT_RESOLUTION)]
         resolution: f64,
     },
+    /// The part's cross-section at machine height Z: its rings (outlines and
+    /// holes) as text, JSON or an SVG drawing. Boss and cavity jobs solve
+    /// their field as `run` does; a profile's part is its shape at every z.
+    Sections {
+        /// The job file.
+        job: PathBuf,
+        /// The height, mm, machine z (the part spans stock.top − depth to
+        /// stock.top).
+        #[arg(long, allow_hyphen_values = true, value_name = "Z")]
+        z: f64,
+        /// Print the section as JSON (rings as arrays of [x, y] in mm, holes
+        /// marked) instead of text.
+        #[arg(long, conflicts_with = "output")]
+        json: bool,
+        /// Write an SVG drawing of the section instead (mm, y up).
+        #[arg(long, short, value_name = "FILE.svg")]
+        output: Option<PathBuf>,
+        /// Overwrite FILE even if pfcam did not write it.
+        #[arg(long)]
+        force: bool,
+    },
     /// Check a job file and its shape without running it; prints `ok: <name>`.
     Validate {
         /// The job file.
@@ -239,6 +260,13 @@ pub fn run(args: Args) -> Result<ExitCode> {
             quiet,
             resolution,
         } => cmd_surface(&job, output, force, quiet, resolution),
+        Command::Sections {
+            job,
+            z,
+            json,
+            output,
+            force,
+        } => cmd_sections(&job, z, json, output, force),
         Command::Validate { job, quiet } => cmd_validate(&job, quiet),
         Command::Glyphs => cmd_glyphs(),
         Command::Convergence { glyph, n, json } => cmd_convergence(glyph, &n, json),
@@ -303,6 +331,43 @@ fn load(path: &Path) -> Result<Job> {
 fn stdout_line(s: &str) -> Result<()> {
     let mut out = std::io::stdout().lock();
     writeln!(out, "{s}").context("writing to standard output")
+}
+
+/// `pfcam sections`: text or JSON on standard output, or an SVG file
+/// written atomically (a file pfcam did not write only with `--force`).
+fn cmd_sections(
+    path: &Path,
+    z: f64,
+    json: bool,
+    output: Option<PathBuf>,
+    force: bool,
+) -> Result<()> {
+    if let Some(o) = &output {
+        check_output(o, "svg", force)?;
+    }
+    let job = load(path)?;
+    let view = pipeline::section_view(&job, z, &mut |_| {})
+        .map_err(|e| anyhow!("{e}"))
+        .with_context(|| path.display().to_string())?;
+    match output {
+        Some(target) => {
+            write_atomic(&target, view.svg().as_bytes(), force)?;
+            stdout_line(&format!(
+                "wrote {}: {} rings, net area {:.3} mm²",
+                target.display(),
+                view.rings.len(),
+                view.area
+            ))
+        }
+        None if json => write_stdout(&view.json()),
+        None => write_stdout(&view.text()),
+    }
+}
+
+fn write_stdout(s: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(s.as_bytes())
+        .context("writing to standard output")
 }
 
 fn cmd_validate(path: &Path, quiet: bool) -> Result<()> {

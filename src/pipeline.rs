@@ -5,7 +5,10 @@ use crate::field::{self, Boundary, FieldError, Prepared};
 use crate::geometry::{build_shape, DistanceIndex, Shape, ShapeSource};
 use crate::job::extent::check_extent;
 use crate::job::{Direction, Job, OperationKind};
+use crate::levels::mfs_sections::{MfsInput, MfsSections};
 use crate::levels::plan::{plan_levels_reporting, LevelInfo, LevelJob, LevelProgress};
+use crate::levels::prism::PrismSections;
+use crate::levels::sections::Sections;
 use crate::toolpath::arcfit::{self, ArcFitParams};
 use crate::toolpath::gouge::{self, GougeReport};
 use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
@@ -564,28 +567,20 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         .as_ref()
         .ok_or_else(|| PipelineError::Other("a boss or cavity needs a [profile]".into()))?;
     let (solved, shape_report, outer_radius) = solve_shape(&shape, job, flat_tol, progress)?;
-    let glyphs: Vec<Vec<crate::geometry::Vec2>> =
-        shape.contours().map(|c| c.flatten(flat_tol)).collect();
+    set_stage(Stage::LevelGrid);
+    let source = mfs_sections(&shape, job, profile, solved)?;
     let params = level_params(job);
     let lj = LevelJob {
-        field: &solved.solution.field,
-        glyphs: &glyphs,
-        profile,
+        source: &source,
         cavity: job.operation.kind == OperationKind::Cavity,
         top: job.stock.top,
         stepdown: job.tool.stepdown,
         max_scallop: job.operation.max_scallop,
         margin: job.stock.margin,
         outer_radius,
-        field_figures: crate::levels::plan::FieldFigures {
-            m: solved.m,
-            distance: solved.layout.distance,
-            max_error: solved.solution.max_error,
-        },
         params,
         max_hours: job.machine.max_hours,
     };
-    set_stage(Stage::LevelGrid);
     let mut planned = plan_with_progress(&lj, progress)?;
     set_stage(Stage::Other);
     check_coverage(&planned.info, &mut planned.warnings)?;
@@ -600,8 +595,8 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         Some(f) => Some(finish_program(
             job,
             f,
-            &solved.solution.field,
-            &glyphs,
+            source.field(),
+            source.glyphs(),
             (planned.params.stock_lo, planned.params.stock_hi),
             progress,
         )?),
@@ -629,10 +624,94 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         t_schedule: planned.t_schedule,
         levels: planned.info,
         shape,
-        field: solved.solution.field.clone(),
+        field: source.field().clone(),
         lower_bound: planned.bound,
         finish,
     })
+}
+
+/// The shape's field as the level planner's [`Sections`] source: the
+/// glyphs flattened within [`FLATTEN_FRACTION`] of the tolerance, and the
+/// grid of u over them ([`MfsSections::new`]).
+fn mfs_sections(
+    shape: &Shape,
+    job: &Job,
+    profile: &crate::levels::DepthProfile,
+    solved: field::Solved,
+) -> Result<MfsSections, PipelineError> {
+    let tol = job.operation.tolerance;
+    let glyphs: Vec<Vec<crate::geometry::Vec2>> = shape
+        .contours()
+        .map(|c| c.flatten(tol * FLATTEN_FRACTION))
+        .collect();
+    MfsSections::new(MfsInput {
+        figures: crate::levels::plan::FieldFigures {
+            m: solved.m,
+            distance: solved.layout.distance,
+            max_error: solved.solution.max_error,
+        },
+        field: solved.solution.field,
+        glyphs,
+        profile: profile.clone(),
+        cavity: job.operation.kind == OperationKind::Cavity,
+        tol,
+    })
+    .map_err(PipelineError::Plan)
+}
+
+/// The part of a job as [`Sections`], for `pfcam sections`: a boss or
+/// cavity's field (its shape built and solved as `run` does, with the
+/// reports of the solves), a profile's prism (no solve).
+pub fn job_sections(
+    job: &Job,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<(Box<dyn Sections>, Vec<SolveReport>), PipelineError> {
+    let (shape, mut solves) = job_shape(job, progress)?;
+    let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
+    let Some(profile) = job
+        .profile
+        .as_ref()
+        .filter(|_| job.operation.kind != OperationKind::Profile)
+    else {
+        let contours = shape.contours().map(|c| c.flatten(flat_tol)).collect();
+        let prism = PrismSections::new(contours, job.operation.depth);
+        return Ok((Box::new(prism), solves));
+    };
+    let (solved, report, _) = solve_shape(&shape, job, flat_tol, progress)?;
+    solves.push(report);
+    Ok((
+        Box::new(mfs_sections(&shape, job, profile, solved)?),
+        solves,
+    ))
+}
+
+/// The heights a job's part spans, relative to the stock top (what
+/// [`job_sections`]' source gives as its `z_range`, known before any solve):
+/// (−depth of the profile, 0) for a boss or cavity, (−operation.depth, 0) for
+/// a profile.
+pub fn part_z_range(job: &Job) -> (f64, f64) {
+    match job.profile.as_ref() {
+        Some(p) if job.operation.kind != OperationKind::Profile => (-p.depth(), 0.0),
+        _ => (-job.operation.depth, 0.0),
+    }
+}
+
+/// `pfcam sections`: the part's section at machine height `z`. A `z`
+/// outside the part is refused, naming `--z` and the range, before any solve.
+pub fn section_view(
+    job: &Job,
+    z: f64,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<crate::levels::section_view::SectionView, PipelineError> {
+    crate::levels::sections::check_z(z, part_z_range(job), job.stock.top)
+        .map_err(PipelineError::Other)?;
+    let (source, _) = job_sections(job, progress)?;
+    Ok(crate::levels::section_view::SectionView::new(
+        &job.name,
+        source.as_ref(),
+        z,
+        job.stock.top,
+    ))
 }
 
 /// S2's mesh is built this fine (mm) for the finisher's drop-cutter: half the

@@ -5,7 +5,11 @@
 //! φ(s_bottom) = −depth. φ increases strictly with s on [s_bottom, s_top], so it
 //! can be inverted: at every z-level the generating boundary is Γ(s(z)).
 
+pub mod mfs_sections;
 pub mod plan;
+pub mod prism;
+pub mod section_view;
+pub mod sections;
 
 /// A depth profile.
 #[derive(Clone, Debug, PartialEq)]

@@ -3,7 +3,8 @@
 //! paper, Section 7: "The corresponding MFS problem is solved at each level to find
 //! the offset lines"), and the paths of each level traced in that level's field.
 
-use super::{schedule, DepthProfile};
+use super::schedule;
+use super::sections::{LevelField, Sections};
 use crate::estimate::{check_bound, level_area, levels_bound, GuardError, LowerBound};
 use crate::field::isolines::{isolines, polygon_area, Grid};
 use crate::field::{self, Boundary, Field, FieldError, Layout, Prepared};
@@ -11,9 +12,7 @@ use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
 use crate::toolpath::profile::ProfileError;
 use crate::toolpath::zlevel::{boss_paths, LevelCut, LevelParams};
 use rayon::prelude::*;
-use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 /// Grid spacing for sampling u, mm: fine enough that marching squares finds every
 /// component of Γ(s) of the letters; vertices are exact and chords are then refined
@@ -52,12 +51,9 @@ pub struct LevelInfo {
 
 /// Inputs of the level planner.
 pub struct LevelJob<'a> {
-    /// The shape's field (generating boundary: the glyphs).
-    pub field: &'a Field,
-    /// The glyphs, flattened, material on the left.
-    pub glyphs: &'a [Vec<Vec2>],
-    /// φ(s).
-    pub profile: &'a DepthProfile,
+    /// The part: its z range, its sections, the level's parameter and,
+    /// when it knows one, the level's field ([`Sections`]).
+    pub source: &'a dyn Sections,
     /// True for a cavity (the mould), false for a boss.
     pub cavity: bool,
     /// Stock top, mm.
@@ -70,9 +66,6 @@ pub struct LevelJob<'a> {
     pub margin: f64,
     /// Outer radius for the level problems.
     pub outer_radius: f64,
-    /// The shape field's collocation count, pseudo-boundary distance (mm) and
-    /// max boundary error, reported for the boss levels that use it.
-    pub field_figures: FieldFigures,
     /// Path settings (the stock rectangle is filled in by the planner).
     pub params: LevelParams,
     /// `machine.max_hours`: the job stops before any level is traced when its
@@ -179,7 +172,7 @@ fn refine_edge(
 }
 
 /// The box of nothing: every point extends it.
-const EMPTY_BOX: (Vec2, Vec2) = (
+pub(super) const EMPTY_BOX: (Vec2, Vec2) = (
     Vec2 {
         x: f64::MAX,
         y: f64::MAX,
@@ -230,15 +223,9 @@ pub fn plan_levels_reporting(
     job: &LevelJob,
     progress: &LevelProgress,
 ) -> Result<Planned, PlanError> {
-    let (grid, h) = job_grid(job)?;
     let t_start = std::time::Instant::now();
-    let c = LevelCurves {
-        job,
-        grid,
-        h,
-        cache: Mutex::new(HashMap::new()),
-    };
-    let depth = job.profile.depth();
+    let c = LevelCurves { job };
+    let depth = c.depth();
     let zs = level_schedule(job, &c)?;
     // The levels of the plain stepdown schedule clear everything; the ones added
     // for the scallop bound only the band down to the level below them, which is
@@ -251,7 +238,7 @@ pub fn plan_levels_reporting(
     let t_schedule = t_start.elapsed().as_secs_f64();
     let params = with_stock(job, &c);
     let stock = (!job.cavity).then_some((params.stock_lo, params.stock_hi));
-    let area_at = |zrel: f64| level_area(&c.at(c.s_of(zrel)), stock);
+    let area_at = |zrel: f64| level_area(&c.at(zrel), stock);
     let bound = levels_bound(
         &rough_z[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
         &zs[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
@@ -304,83 +291,35 @@ pub fn plan_levels_reporting(
     })
 }
 
-/// One grid of u for the whole job (spacing [`GRID_SPACING`], or finer for a
-/// shape over 800 mm across), grown until Γ(s_bottom) closes inside it.
-fn job_grid(job: &LevelJob) -> Result<(Grid, f64), PlanError> {
-    let (s_lo, _) = job.profile.s_range();
-    let (lo, hi) = polygons_bbox(job.glyphs).unwrap_or(EMPTY_BOX);
-    let diag = (hi - lo).norm();
-    let mut pad = 0.1 * diag;
-    let h = GRID_SPACING.max(diag / 2000.0);
-    let mut grid;
-    let mut tries = 0;
-    loop {
-        let (glo, ghi) = (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad));
-        grid = Grid::sample(job.field, glo, ghi, h, job.glyphs);
-        if grid.border_max() < s_lo || tries >= 5 {
-            break;
-        }
-        pad *= 1.8;
-        tries += 1;
-    }
-    if grid.border_max() >= s_lo {
-        return Err(PlanError::Invalid(format!(
-            "the level s = {s_lo} does not close within {pad:.0} mm of the shape; raise profile.s_bottom / profile.s2"
-        )));
-    }
-    Ok((grid, h))
-}
-
-/// Γ(s) of the job's field from its one grid, each s extracted once (the
-/// schedule, the stock, the bound and the levels ask for the same curves).
+/// The curves the planner cuts along, from the job's [`Sections`].
 struct LevelCurves<'a> {
     job: &'a LevelJob<'a>,
-    grid: Grid,
-    h: f64,
-    cache: Mutex<HashMap<u64, Vec<Vec<Vec2>>>>,
 }
 
 impl LevelCurves<'_> {
-    /// s at the level of `zrel` (relative to the stock top): from the profile,
-    /// mirrored for a cavity.
-    fn s_of(&self, zrel: f64) -> f64 {
-        let p = self.job.profile;
-        if self.job.cavity {
-            p.s_at(-p.depth() - zrel)
-        } else {
-            p.s_at(zrel)
-        }
+    /// The part's depth, mm (top minus bottom of its z range).
+    fn depth(&self) -> f64 {
+        let (bottom, top) = self.job.source.z_range();
+        top - bottom
     }
 
-    /// Γ(s) ([`curves`]).
-    fn at(&self, s: f64) -> Vec<Vec<Vec2>> {
-        if let Some(c) = self
-            .cache
-            .lock()
-            .ok()
-            .and_then(|m| m.get(&s.to_bits()).cloned())
-        {
-            return c;
+    /// The curves at `zrel` (relative to the stock top) with the material of
+    /// a boss on their left: a boss's section, a cavity's section reversed
+    /// (the pocket inside them).
+    fn at(&self, zrel: f64) -> Vec<Vec<Vec2>> {
+        let section = self.job.source.section(zrel);
+        if self.job.cavity {
+            reversed(&section)
+        } else {
+            section
         }
-        let polys = curves(
-            &self.grid,
-            self.job.field,
-            self.job.glyphs,
-            s,
-            self.h,
-            self.job.params.tol,
-        );
-        if let Ok(mut m) = self.cache.lock() {
-            m.insert(s.to_bits(), polys.clone());
-        }
-        polys
     }
 
     /// The horizontal step between the contours of the levels at `za` and
     /// `zb`: the largest distance from the wider contour's points to the
     /// narrower one (NaN if a distance is).
     fn gap(&self, za: f64, zb: f64) -> f64 {
-        let (ca, cb) = (self.at(self.s_of(za)), self.at(self.s_of(zb)));
+        let (ca, cb) = (self.at(za), self.at(zb));
         let (wide, narrow) = if self.job.cavity { (ca, cb) } else { (cb, ca) };
         let idx = DistanceIndex::new(&narrow);
         wide.iter()
@@ -388,6 +327,14 @@ impl LevelCurves<'_> {
             .map(|&p| idx.distance(p))
             .fold(0.0, crate::num::max_or_nan)
     }
+}
+
+/// Every polygon run backwards.
+fn reversed(polys: &[Vec<Vec2>]) -> Vec<Vec<Vec2>> {
+    polys
+        .iter()
+        .map(|p| p.iter().rev().copied().collect())
+        .collect()
 }
 
 /// The z of every level, relative to the stock top, from 0 down
@@ -402,7 +349,7 @@ fn level_schedule(job: &LevelJob, c: &LevelCurves) -> Result<Vec<f64>, PlanError
         g
     };
     let max_levels = crate::job::limits::MAX_LEVELS;
-    let depth = job.profile.depth();
+    let depth = c.depth();
     let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, max_levels, &gap)
         .ok_or_else(|| {
             PlanError::Invalid(format!(
@@ -421,12 +368,7 @@ fn level_schedule(job: &LevelJob, c: &LevelCurves) -> Result<Vec<f64>, PlanError
 /// The job's level settings with the stock: the largest level (a boss's
 /// base, a cavity's rim) plus the margin.
 fn with_stock(job: &LevelJob, c: &LevelCurves) -> LevelParams {
-    let depth = job.profile.depth();
-    let base = c.at(if job.cavity {
-        c.s_of(0.0)
-    } else {
-        c.s_of(-depth)
-    });
+    let base = c.at(if job.cavity { 0.0 } else { -c.depth() });
     let (blo, bhi) = polygons_bbox(&base).unwrap_or(EMPTY_BOX);
     let mut params = job.params;
     params.stock_lo = blo - Vec2::new(job.margin, job.margin);
@@ -451,29 +393,26 @@ fn plan_level(
     use crate::field::count::{set_stage, Stage};
     let job = c.job;
     set_stage(Stage::LevelGrid);
-    let s = c.s_of(z);
-    let polys = c.at(s);
+    let s = job.source.level_value(z);
+    // Material on the left (for a cavity the mould is outside Γ(s): the
+    // section's loops are Γ(s) reversed).
+    let oriented = job.source.section(z);
+    let polys = if job.cavity {
+        reversed(&oriented)
+    } else {
+        oriented.clone()
+    };
     if polys.is_empty() {
         return Err(PlanError::Invalid(format!(
             "level {k} (z {:.3}, s = {s:.4}) has no contour",
             job.top + z
         )));
     }
-    // Material on the left (for a cavity the mould is outside Γ(s), so the
-    // loops are reversed).
-    let oriented: Vec<Vec<Vec2>> = if job.cavity {
-        polys
-            .iter()
-            .map(|p| p.iter().rev().copied().collect())
-            .collect()
-    } else {
-        polys.clone()
-    };
     let t0 = std::time::Instant::now();
     let label = format!("level {k} (z {:.3})", job.top + z);
     let mut warnings = Vec::new();
     set_stage(Stage::LevelSolve);
-    let level = level_field(job, &oriented, s, &label, &mut warnings)?;
+    let level = level_field(job, &oriented, z, s, &label, &mut warnings)?;
     let t_solve = t0.elapsed().as_secs_f64();
     set_stage(Stage::LevelGrid);
     let reach = z_below.map(|zb| c.gap(z, zb));
@@ -525,27 +464,24 @@ fn plan_level(
     Ok((cut, info, warnings))
 }
 
-/// A level's own field: the cavity's MFS problem on Γ(s) (`oriented`), or
-/// the boss's u/s, with a warning when it errs by more than
-/// [`level_error_bound`].
+/// A level's own field: the source's, when it knows one (the MFS boss: u/s),
+/// with its warning under the level's name; else the level's MFS problem
+/// solved on its section `oriented` (the MFS cavity, [`section_field`]).
 fn level_field(
     job: &LevelJob,
     oriented: &[Vec<Vec2>],
+    z: f64,
     s: f64,
     label: &str,
     warnings: &mut Vec<String>,
 ) -> Result<LevelField, PlanError> {
-    if job.cavity {
-        return cavity_level_field(oriented, job.params.tol, job.outer_radius, s, label);
+    match job.source.level_field(z) {
+        Some(l) => {
+            warnings.extend(l.warning.as_ref().map(|w| format!("{label}, {w}")));
+            Ok(l)
+        }
+        None => section_field(oriented, job.params.tol, job.outer_radius, s, label),
     }
-    let l = boss_level_field(job.field, s, &job.field_figures);
-    let (e, bound) = (l.figures.max_error, level_error_bound(s));
-    if e > bound || e.is_nan() {
-        warnings.push(format!(
-            "{label}, s = {s:.6}: its field (the shape's u/s) errs by {e:.2e}, above {bound:.1e} (a hundredth of 1 − s): lower profile.s1 (the top edge)"
-        ));
-    }
-    Ok(l)
 }
 
 /// One line for every cavity level whose field errs above
@@ -576,36 +512,13 @@ fn cavity_error_warning(info: &[LevelInfo]) -> Option<String> {
     ))
 }
 
-/// A level's field and its figures.
-struct LevelField {
-    field: Field,
-    figures: FieldFigures,
-}
-
-/// A boss level's field: u/s, with u the shape's field. Outside Γ(s) it is
-/// harmonic, 1 on Γ(s) and 0 on the outer circle and the sinks, so by
-/// uniqueness it is the solution of the level's own problem (the paper
-/// solves that problem again by MFS; its answer is known exactly), with the
-/// boundary error of the shape's field divided by s
-/// (../shared/design/FIELD-NOTES.md). A fresh MFS solve on Γ(s) near s = 1,
-/// where Γ(s) has near-corners of tiny radius, erred by far more.
-fn boss_level_field(f: &Field, s: f64, shape: &FieldFigures) -> LevelField {
-    LevelField {
-        field: f.scaled(1.0 / s),
-        figures: FieldFigures {
-            max_error: shape.max_error / s,
-            ..*shape
-        },
-    }
-}
-
-/// A cavity level's field: the mould is outside Γ(s), so the level's problem
-/// is not the shape's and is solved by MFS on Γ(s) (the paper's Section 7).
-/// An error above `level_error_bound` is reported once for all levels
-/// ([`cavity_error_warning`]; doubling N twice did not move it: the limit is
-/// the level's polygon, whose vertices are kinks the smooth Γ(s) does not
-/// have); NaN is an error.
-fn cavity_level_field(
+/// A level's field solved by MFS on its section (the paper's Section 7): a
+/// cavity's, the mould being outside Γ(s), so the level's problem is not the
+/// shape's. An error above `level_error_bound` is reported once for all
+/// cavity levels ([`cavity_error_warning`]; doubling N twice did not move it:
+/// the limit is the level's polygon, whose vertices are kinks the smooth Γ(s)
+/// does not have); NaN is an error.
+fn section_field(
     oriented: &[Vec<Vec2>],
     tol: f64,
     outer_radius: f64,
@@ -661,6 +574,7 @@ fn cavity_level_field(
             distance: solved.layout.distance,
             max_error: e,
         },
+        warning: None,
     })
 }
 
