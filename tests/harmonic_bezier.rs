@@ -3,6 +3,8 @@
 //! harmonicity of the patch, exact reproduction of harmonic polynomials, the
 //! even-degree condition and the height range.
 
+mod doc_figures;
+
 use pfcam::sources::harmonic_bezier::polynomials::{self, bernstein_net, harmonic_basis};
 use pfcam::sources::harmonic_bezier::{
     mould, solve_mould, Form, HarmonicError, HarmonicPatch, Mould, MAX_DEGREE, ROW_SUM_LIMIT,
@@ -490,4 +492,38 @@ fn the_cli_prints_the_mould() {
         err.contains("--degree: ") && err.contains("sum to 1 only within"),
         "{err}"
     );
+}
+
+/// docs/method.md §14 quotes the row-sum error per degree: each figure of
+/// 1e-13 or more (below that it is rounding noise that differs between
+/// machines) within a factor 4 of a fresh solve, and the cap it names is
+/// `MAX_DEGREE`.
+#[test]
+fn the_method_doc_quotes_the_measured_row_sums() {
+    let doc = doc_figures::read("docs/method.md");
+    let section = doc_figures::after(&doc, "docs/method.md", "## 14. Harmonic Bézier");
+    let mut checked = 0;
+    for line in section.lines().filter(|l| l.starts_with("| ")) {
+        let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).collect();
+        let (Ok(n), Some(form)) = (cells[0].parse::<usize>(), cells.get(1)) else {
+            continue;
+        };
+        let form = if *form == "raised" {
+            Form::Raised
+        } else {
+            Form::Square
+        };
+        let quoted: f64 = cells[2].parse().unwrap();
+        let now = solve_mould(n, form).unwrap().row_sum_error;
+        if quoted >= 1e-13 {
+            assert!(
+                now <= 4.0 * quoted && now >= quoted / 4.0,
+                "docs/method.md §14, n = {n} {form:?}: the doc says {quoted:e}, now {now:e}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 8, "only {checked} rows checked");
+    let cap = doc_figures::number_after(section, "docs/method.md", "the cap is degree");
+    assert_eq!(cap, MAX_DEGREE.to_string());
 }
