@@ -81,8 +81,9 @@ fn degree_three_matches_the_paper() {
         "{:?}",
         m.point(1, 0)
     );
-    // The other index convention (i along the rows) does not give them: P_01
-    // is a prescribed point there, and the transposed reading of P₁₀ is P₀₁.
+    // Only this convention can give them: with i along the rows (prescribed
+    // P_i0 and P_in) the paper's P₁₀ would be a prescribed point, not a
+    // combination of others.
     assert_eq!(m.inner_index(0), (1, 0));
     assert!(m.point(0, 1).is_none());
 }
@@ -362,6 +363,15 @@ fn bad_rows_and_sizes_name_their_keys() {
         &r
     ))
     .starts_with("shape.size: "));
+    // A degree far out is refused before anything is sized from it.
+    assert!(e(HarmonicPatch::new(
+        usize::MAX,
+        Form::Square,
+        [10.0, 10.0],
+        &r,
+        &r
+    ))
+    .starts_with("shape.degree: "));
     let big = vec![0.0; MAX_DEGREE + 2];
     assert!(e(HarmonicPatch::new(
         MAX_DEGREE + 1,

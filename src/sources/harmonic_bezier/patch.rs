@@ -71,9 +71,10 @@ impl HarmonicPatch {
         if !(x.is_finite() && y.is_finite() && x > 0.0 && y > 0.0) {
             return Err(HarmonicError::Size { x, y });
         }
+        // The degree first: it bounds degree + 1 below.
+        let mould = mould(degree, form)?;
         check_row("shape.row0", degree, row0)?;
         check_row("shape.row1", degree, row1)?;
-        let mould = mould(degree, form)?;
         if form == Form::Square && degree % 2 == 0 {
             check_even_rows(degree, row0, row1)?;
         }
