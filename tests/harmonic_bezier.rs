@@ -537,3 +537,32 @@ fn the_method_doc_quotes_the_measured_row_sums() {
     let cap = doc_figures::number_after(section, "docs/method.md", "the cap is degree");
     assert_eq!(cap, MAX_DEGREE.to_string());
 }
+
+/// A worked example with a closed form (docs/method.md §14): row0 = 0 and
+/// row1 = (0, 10, 10, 0) over 40 × 40 mm give h = 10(u³ − 3uv²) + 30uv − 10u
+/// (harmonic, 0 at u = 0, 30v(1 − v) at u = 1). It dips below both rows on
+/// the edge x = 0, h = 10(u³ − u), to −20/(3√3) at u = 1/√3, and its top is
+/// the row1 curve's 7.5 at v = ½.
+#[test]
+fn the_range_of_the_worked_example_is_its_closed_form() {
+    let p = HarmonicPatch::new(
+        3,
+        Form::Square,
+        [40.0, 40.0],
+        &[0.0; 4],
+        &[0.0, 10.0, 10.0, 0.0],
+    )
+    .unwrap();
+    let mut rng = Rng(5);
+    for _ in 0..20 {
+        let (u, v) = (rng.unit(), rng.unit());
+        let exact = 10.0 * (u * u * u - 3.0 * u * v * v) + 30.0 * u * v - 10.0 * u;
+        assert!((p.height(40.0 * v, 40.0 * u) - exact).abs() < 1e-13);
+    }
+    let r = p.height_range();
+    let s3 = 3f64.sqrt();
+    assert!((r.min + 20.0 / (3.0 * s3)).abs() < 1e-12, "{}", r.min);
+    assert!(r.argmin[0] == 0.0 && (r.argmin[1] - 40.0 / s3).abs() < 1e-6);
+    assert!((r.max - 7.5).abs() < 1e-12 && (r.argmax[0] - 20.0).abs() < 1e-6);
+    assert_eq!(r.argmax[1], 40.0);
+}
