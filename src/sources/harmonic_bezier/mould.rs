@@ -279,3 +279,41 @@ fn elevation_weights(p: usize, k: usize) -> Vec<(usize, f64)> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::polynomials::{bernstein_net, re_im_power};
+    use super::*;
+
+    /// A p for the net p of a polynomial.
+    fn laplacian_coefficients(m: usize, n: usize, poly: &[(usize, usize, f64)]) -> Vec<f64> {
+        let a = laplacian_system(m, n);
+        let p = bernstein_net(poly, m, n);
+        (0..a.nrows())
+            .map(|r| (0..a.ncols()).map(|c| a[(r, c)] * p[c]).sum())
+            .collect()
+    }
+
+    /// E_kl, checked on its own (no solve): the E_kl are the Bernstein
+    /// coefficients of Δx itself, so they vanish on harmonic nets, are 2
+    /// everywhere for u² (Δ = 2), and 2k/m for u v² (Δ = 2u).
+    #[test]
+    fn the_equations_are_the_bernstein_coefficients_of_the_laplacian() {
+        for (m, n) in [(3, 3), (5, 4), (4, 4), (2, 5)] {
+            for k in 0..=m.min(n) {
+                for imag in [false, true] {
+                    let e = laplacian_coefficients(m, n, &re_im_power(k, imag));
+                    assert!(e.iter().all(|x| x.abs() < 1e-12), "{m} {n} {k} {imag}");
+                }
+            }
+            let e = laplacian_coefficients(m, n, &[(2, 0, 1.0)]);
+            assert!(e.iter().all(|x| (x - 2.0).abs() < 1e-12), "{m} {n}: {e:?}");
+            let e = laplacian_coefficients(m, n, &[(1, 2, 1.0)]);
+            // Δ(u v²) = 2u: coefficients 2k/m in the k index.
+            let w = n + 1;
+            for (r, x) in e.iter().enumerate() {
+                assert!((x - 2.0 * (r / w) as f64 / m as f64).abs() < 1e-12);
+            }
+        }
+    }
+}
