@@ -23,9 +23,9 @@ use super::net::Net;
 pub struct ParamDerivatives {
     /// h, mm.
     pub h: f64,
-    /// ∂h/∂u, ∂h/∂v (mm per unit parameter).
+    /// ∂h/∂u (mm per unit parameter; u = y/Y).
     pub h_u: f64,
-    /// ∂h/∂v.
+    /// ∂h/∂v (v = x/X).
     pub h_v: f64,
     /// ∂²h/∂u².
     pub h_uu: f64,
