@@ -28,6 +28,7 @@ macro_rules! note {
 }
 
 mod batch;
+mod harmonic;
 mod simulate;
 mod stream;
 mod stream_args;
@@ -192,6 +193,22 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// The harmonic Bézier mould of a degree (Arnal–Monterde; docs/method.md
+    /// §14): each inner control point P_ij of a harmonic patch as a fixed
+    /// combination of the two boundary rows (P_00…P_0n | P_m0…P_mn).
+    HarmonicMould {
+        /// The degree n along the rows (1 to the cap, 10).
+        #[arg(long)]
+        degree: usize,
+        /// square: n × n (for even n exact only on rows with equal n-th
+        /// differences); raised: (n + 1) × n, even n only. Default: square
+        /// for odd n, raised for even n.
+        #[arg(long, value_parser = ["square", "raised"])]
+        form: Option<String>,
+        /// Print JSON: each inner point's i, j and coefficients.
+        #[arg(long)]
+        json: bool,
+    },
     /// Stream a G-code file to a GRBL 1.1 controller over a serial port
     /// (character counting, status, feed hold on Ctrl-C, resume with --from-line).
     /// Exit codes: docs/grbl.md.
@@ -276,6 +293,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
             json,
             quiet,
         } => cmd_check(&file, machine.as_deref(), json, quiet),
+        Command::HarmonicMould { degree, form, json } => {
+            harmonic::cmd_harmonic_mould(degree, form.as_deref(), json)
+        }
         Command::Simulate(a) => simulate::cmd_simulate(&a),
         Command::Stream(a) => return Ok(stream::stream_command(&a.into())),
     };

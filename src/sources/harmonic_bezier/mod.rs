@@ -1,0 +1,19 @@
+//! Harmonic tensor-product Bézier patches (Arnal and Monterde, "Generating
+//! harmonic surfaces for interactive design", Comput. Math. Appl. 2014; the
+//! seed paper 003, issue 18): a height field whose inner control points are
+//! fixed by two opposite boundary rows through the harmonic condition Δx = 0.
+//! docs/method.md §14 has the equations as implemented and the measured
+//! figures.
+
+mod bernstein;
+mod error;
+pub mod mould;
+mod net;
+mod patch;
+pub mod polynomials;
+mod range;
+
+pub use error::HarmonicError;
+pub use mould::{mould, solve_mould, Form, Mould, MAX_DEGREE, ROW_SUM_LIMIT};
+pub use patch::{HarmonicPatch, ParamDerivatives, EVEN_DIFFERENCE_TOL};
+pub use range::HeightRange;
