@@ -168,52 +168,99 @@ fn drop_tips(
 }
 
 /// The closed tip loop with points added where the straight move between two
-/// tips would pass below the drop-cutter's height at its middle by more than
-/// a quarter of the tolerance (the drop height is not linear between
-/// samples, above all where the cutter turns round a corner); each chord is
-/// halved at most [`CHORD_DEPTH`] times.
+/// tips would pass below the drop-cutter's height by more than a quarter of
+/// the tolerance (the drop height is not linear between samples, above all
+/// where the cutter turns round a corner or rides up a wall). A chord is
+/// tested at its middle, and a steep one at [`chord_fractions`]' points
+/// along it (a ball reaching the top of a wall late in the move passes the
+/// middle in the clear); it is split at its worst point and each half tested
+/// again, at most [`CHORD_DEPTH`] deep.
 fn chord_safe(tips: Vec<Vec3>, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec3> {
     let n = tips.len();
-    let mid = |a: Vec3, b: Vec3| Vec3::new(0.5 * (a.x + b.x), 0.5 * (a.y + b.y), 0.5 * (a.z + b.z));
-    // The first halving of every chord in one parallel batch; the few chords
-    // that need more are split one at a time.
-    let firsts: Vec<(f64, f64)> = (0..n)
-        .map(|i| {
-            let m = mid(tips[i], tips[(i + 1) % n]);
-            (m.x, m.y)
-        })
-        .collect();
-    let drops = p.cutter.drop_many(mesh, &firsts);
+    let chords: Vec<(Vec3, Vec3)> = (0..n).map(|i| (tips[i], tips[(i + 1) % n])).collect();
     let mut out = Vec::with_capacity(n);
-    for i in 0..n {
-        let (a, b) = (tips[i], tips[(i + 1) % n]);
+    for (&(a, _), added) in chords.iter().zip(split_chords(&chords, p, mesh)) {
         out.push(a);
-        let m = mid(a, b);
-        let Some(z) = drops[i].filter(|&z| z > m.z + 0.25 * p.tol) else {
+        out.extend(added);
+    }
+    out
+}
+
+/// For each chord, the points to add between its ends (in order from its
+/// start) so that no straight move passes below the drop-cutter's height
+/// (see [`chord_safe`]).
+fn split_chords(chords: &[(Vec3, Vec3)], p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec<Vec3>> {
+    // The first test of every chord in one parallel batch; the few chords
+    // that need more are split one at a time.
+    let points: Vec<Vec<Vec3>> = chords.iter().map(|&(a, b)| chord_points(a, b)).collect();
+    let flat: Vec<(f64, f64)> = points.iter().flatten().map(|m| (m.x, m.y)).collect();
+    let mut drops = p.cutter.drop_many(mesh, &flat).into_iter();
+    let mut out = Vec::with_capacity(chords.len());
+    for (&(a, b), pts) in chords.iter().zip(&points) {
+        let zs: Vec<Option<f64>> = drops.by_ref().take(pts.len()).collect();
+        let Some(first) = worst_above(pts, &zs, p.tol) else {
+            out.push(Vec::new());
             continue;
         };
-        let first = Vec3::new(m.x, m.y, z);
         let mut mids = vec![(0, first)];
-        // Depth first, the first half first.
+        // Depth first, the first part first.
         let mut stack = vec![(first, b, 1), (a, first, 1)];
         while let Some((a, b, depth)) = stack.pop() {
             if depth >= CHORD_DEPTH {
                 continue;
             }
-            let m = mid(a, b);
-            let Some(z) = p.cutter.drop(mesh, m.x, m.y) else {
-                continue;
-            };
-            if z > m.z + 0.25 * p.tol {
-                let q = Vec3::new(m.x, m.y, z);
+            let pts = chord_points(a, b);
+            let zs: Vec<Option<f64>> = pts.iter().map(|m| p.cutter.drop(mesh, m.x, m.y)).collect();
+            if let Some(q) = worst_above(&pts, &zs, p.tol) {
                 stack.push((q, b, depth + 1));
                 stack.push((a, q, depth + 1));
                 mids.push((depth, q));
             }
         }
-        out.extend(order_between(a, mids));
+        out.push(order_between(a, mids));
     }
     out
+}
+
+/// Rise or fall of a chord (mm) per test point along it: a chord that climbs
+/// more is tested at more points than its middle.
+const CHORD_DZ: f64 = 0.05;
+
+/// Most test points on one chord.
+const CHORD_POINTS: usize = 32;
+
+/// The points of the chord from `a` to `b` at which its height is tested
+/// against the drop-cutter's: its middle, or for a chord that rises or
+/// falls by more than [`CHORD_DZ`], equally spaced points every
+/// [`CHORD_DZ`] of its rise (at most [`CHORD_POINTS`]).
+fn chord_points(a: Vec3, b: Vec3) -> Vec<Vec3> {
+    let dz = (b.z - a.z).abs();
+    let k = if dz > CHORD_DZ {
+        ((dz / CHORD_DZ).ceil() as usize).clamp(1, CHORD_POINTS)
+    } else {
+        1
+    };
+    (1..=k)
+        .map(|i| {
+            let t = i as f64 / (k + 1) as f64;
+            Vec3::new(
+                a.x + t * (b.x - a.x),
+                a.y + t * (b.y - a.y),
+                a.z + t * (b.z - a.z),
+            )
+        })
+        .collect()
+}
+
+/// The test point whose drop height lies farthest above the chord, lifted
+/// to that height, if one lies more than a quarter of `tol` above it.
+fn worst_above(pts: &[Vec3], zs: &[Option<f64>], tol: f64) -> Option<Vec3> {
+    pts.iter()
+        .zip(zs)
+        .filter_map(|(m, z)| z.map(|z| (z - m.z, Vec3::new(m.x, m.y, z))))
+        .filter(|&(over, _)| over > 0.25 * tol)
+        .max_by(|x, y| x.0.total_cmp(&y.0))
+        .map(|(_, q)| q)
 }
 
 /// Points that lie on the segment from `a` (in XY), in order of their
@@ -341,9 +388,10 @@ fn starting_near(l: &Loop, at: Vec3) -> Vec<Vec3> {
     l.tip[k..].iter().chain(&l.tip[..k]).copied().collect()
 }
 
-/// A feed link over the surface from `a` to `b`: straight in XY, each point
-/// at the drop-cutter's height
-/// (the safe height where no triangle lies under it), sampled every [`SAMPLE`].
+/// A feed link over the surface from `a` to `b`: straight in XY, sampled
+/// every [`SAMPLE`], each point at the drop-cutter's height (the safe height
+/// where no triangle lies under it), with points added between samples as
+/// [`chord_safe`] adds them between a loop's tips.
 fn surface_link(a: Vec3, b: Vec3, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec3> {
     let (pa, pb) = (Vec2::new(a.x, a.y), Vec2::new(b.x, b.y));
     let k = (pa.dist(pb) / SAMPLE).ceil().max(1.0) as usize;
@@ -354,12 +402,22 @@ fn surface_link(a: Vec3, b: Vec3, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec
         })
         .collect();
     let zs = p.cutter.drop_many(mesh, &pts);
-    let mut out: Vec<Vec3> = pts
-        .iter()
-        .zip(zs)
-        .map(|(&(x, y), z)| Vec3::new(x, y, z.unwrap_or(p.safe_z)))
+    let mut path: Vec<Vec3> = std::iter::once(a)
+        .chain(
+            pts.iter()
+                .zip(zs)
+                .map(|(&(x, y), z)| Vec3::new(x, y, z.unwrap_or(p.safe_z))),
+        )
         .collect();
-    out.push(b);
+    path.push(b);
+    // Between the samples as between a loop's tips: a link that climbs a
+    // wall passes under the top edge between two samples that clear it.
+    let chords: Vec<(Vec3, Vec3)> = path.windows(2).map(|w| (w[0], w[1])).collect();
+    let mut out = Vec::with_capacity(path.len());
+    for (&(_, b), added) in chords.iter().zip(split_chords(&chords, p, mesh)) {
+        out.extend(added);
+        out.push(b);
+    }
     out
 }
 
@@ -564,6 +622,66 @@ fn seg_dist(q: Vec3, a: Vec3, b: Vec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A link that climbs from the floor to the top edge of a vertical wall:
+    /// between two samples 0.1 mm apart the ball's drop height rises like a
+    /// square root where the ball's side meets the edge, and the straight
+    /// move between them passed up to 0.8 mm under it. Every move of the link
+    /// stays above the drop height at 20 points along it.
+    #[test]
+    fn a_link_climbing_a_wall_stays_above_the_drop_height() {
+        let tri = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| [a, b, c];
+        let mut tris = vec![
+            // Floor at z = −3 for x ≤ 1, the top at z = 0 for x ≥ 1.
+            tri([-10.0, -5.0, -3.0], [1.0, -5.0, -3.0], [1.0, 5.0, -3.0]),
+            tri([-10.0, -5.0, -3.0], [1.0, 5.0, -3.0], [-10.0, 5.0, -3.0]),
+            tri([1.0, -5.0, 0.0], [5.0, -5.0, 0.0], [5.0, 5.0, 0.0]),
+            tri([1.0, -5.0, 0.0], [5.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
+        ];
+        tris.push(tri([1.0, -5.0, 0.0], [1.0, 5.0, 0.0], [1.0, 5.0, 0.0]));
+        let mesh = MeshIndex::new(tris, 0.8);
+        let profile = crate::levels::DepthProfile::Linear {
+            s_bottom: 0.9,
+            depth: 3.0,
+        };
+        let p = FinishParams {
+            cutter: Cutter::ball(1.5875),
+            profile: &profile,
+            cavity: false,
+            climb: true,
+            feed: 1000.0,
+            plunge_feed: 200.0,
+            ramp_angle: 3.0,
+            safe_z: 5.0,
+            retract_z: 1.0,
+            entry: 1.7,
+            tol: 0.01,
+        };
+        let at = |x: f64, y: f64| Vec3::new(x, y, p.cutter.drop(&mesh, x, y).unwrap());
+        let (a, b) = (at(-2.03, 0.0), at(-0.47, 0.2));
+        assert!(b.z > -1.2 && a.z == -3.0, "{a:?} {b:?}");
+        let link = surface_link(a, b, &p, &mesh);
+        let mut worst: f64 = 0.0;
+        for w in std::iter::once(&a)
+            .chain(&link)
+            .collect::<Vec<_>>()
+            .windows(2)
+        {
+            for k in 1..20 {
+                let t = k as f64 / 20.0;
+                let (x, y, z) = (
+                    w[0].x + t * (w[1].x - w[0].x),
+                    w[0].y + t * (w[1].y - w[0].y),
+                    w[0].z + t * (w[1].z - w[0].z),
+                );
+                worst = worst.max(p.cutter.drop(&mesh, x, y).unwrap() - z);
+            }
+        }
+        assert!(
+            worst <= p.tol,
+            "a move passes {worst} mm under the drop height"
+        );
+    }
 
     #[test]
     fn douglas_peucker_keeps_what_bends_and_drops_what_does_not() {
