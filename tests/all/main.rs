@@ -11,9 +11,15 @@
 //! 1. put the file here, as `tests/all/sections.rs` (not in `tests/`, where
 //!    Cargo would build it as a binary of its own);
 //! 2. add `mod sections;` below, in alphabetical order;
-//! 3. in it, replace `mod doc_figures;` with `use crate::doc_figures;`, take
-//!    helpers from `crate::common` instead of copying them (see its list), and
-//!    give scratch directories a name starting with the module's;
+//! 3. in it, replace `mod doc_figures;` with `use crate::doc_figures;` and
+//!    take helpers from `crate::common` instead of copying them (see its
+//!    list: `pfcam`, `scratch`, `shipped_jobs`, `sample_pline`, ...). All
+//!    modules run in one process, in parallel: a scratch directory is
+//!    `common::scratch("sections", name)`, and a file of its own in
+//!    `std::env::temp_dir()` needs the module's name in it (the process id
+//!    no longer tells two modules apart). No test may call
+//!    `std::env::set_var` or `set_current_dir`: they would change every
+//!    module's process (give the `pfcam` child its own with `Command`);
 //! 4. a `#[path = ...]` in it is relative to `tests/all/` (one more `../`), and
 //!    its submodules go in `tests/all/sections/`;
 //! 5. `cargo test --release --test all sections::` runs it; commands in docs
