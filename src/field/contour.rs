@@ -22,7 +22,7 @@
 //! extracted: [`equipotentials`] for one value, [`FieldGrid`] to sample once and
 //! extract several values, [`material_mask`] for the mask of a part.
 //!
-//! Measured (tests/preview.rs): for a single charge, Γ(s) a circle of radius r,
+//! Measured (tests/all/preview.rs): for a single charge, Γ(s) a circle of radius r,
 //! the vertices are on it to 2e-11 and the chords within h²/(4r) (r = 20 mm,
 //! h = 0.5 mm: 2.5e-3 mm); Cassini ovals of two charges change from two loops
 //! to one at the lemniscate, vertices on r₁r₂ = b² to 1e-9 relative. On the

@@ -52,7 +52,7 @@ const SCALE: f64 = 1000.0;
 /// 0.0028 mm; of the 25 grid centres within ±2 units the writer takes the
 /// nearest to the true centre among those whose radii differ by at most
 /// [`RADIUS_SLACK`] units, else the one with the smallest difference. Measured on
-/// every sample in `gcode-samples/`: at most 0.0006 mm (`tests/arcs.rs` asserts
+/// every sample in `gcode-samples/`: at most 0.0006 mm (`tests/all/arcs.rs` asserts
 /// < 0.002 mm on every job).
 const CENTRE_SEARCH: i128 = 2;
 

@@ -29,7 +29,7 @@ pub const MAX_DXF_BYTES: u64 = 64 << 20;
 /// tracer and the arc fitter keep the rest. At the whole tolerance the chords'
 /// kinks cost the arc fitter: jobs/dxf-plate.toml traced 3482 G-code lines and
 /// fitted only 114 arcs (1920 lines); at a quarter 2055 and 49 arcs (983 lines)
-/// (`cargo test --release --test arcs -- --nocapture measure_every_job`).
+/// (`cargo test --release --test all -- --nocapture arcs::measure_every_job`).
 pub const FLATTEN_FRACTION: f64 = 0.25;
 
 /// Most vertices of the flattened contours.

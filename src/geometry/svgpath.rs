@@ -876,7 +876,7 @@ mod tests {
         assert!(svg_shape("M0 0", None, Vec2::ZERO).is_err());
     }
 
-    /// Found by tests/inputs.rs: a subpath drawn forth and back along a line
+    /// Found by tests/all/inputs.rs: a subpath drawn forth and back along a line
     /// encloses nothing and is dropped, but it stretched the box that the height
     /// and origin apply to (the square was placed at x = 7, not 5, and scaled
     /// to 2/3 of the height asked for).

@@ -27,7 +27,7 @@
 //! both ways: every ray from C at an angle of the sweep crosses exactly one
 //! segment (the angle is monotone along a segment whose points all lie within
 //! tol < R of the circle), at a point whose radial distance to the arc is
-//! ≤ tol; every point of the polyline lies on such a ray. `tests/arcs.rs` measures
+//! ≤ tol; every point of the polyline lies on such a ray. `tests/all/arcs.rs` measures
 //! it independently by sampling both curves.
 //!
 //! # Limits (why the values)

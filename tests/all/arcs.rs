@@ -5,34 +5,23 @@
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use pfcam::gcode::write_gcode;
 use pfcam::geometry::{build_shape, DistanceIndex, Vec2};
-use pfcam::job::{load_job, Job};
+use pfcam::job::Job;
 use pfcam::pipeline;
 use pfcam::toolpath::arcfit::{fit_toolpath, legalize, ArcFitParams, MIN_ARC_CHORD};
 use pfcam::toolpath::{gouge, profile};
 use pfcam::toolpath::{Move, Section, Toolpath, Vec3};
 use std::f64::consts::TAU;
-use std::fs;
-use std::path::{Path, PathBuf};
 
-mod doc_figures;
+use crate::common::{sample_pline, seg_dist, shipped_jobs};
+use crate::doc_figures;
 
 /// The profile jobs in `jobs/`. (Boss and cavity jobs are fitted too, but the
 /// traced path these tests compare with is the profile planner's; their arcs are
-/// checked by the gouge check of every level in tests/levels.rs and by
-/// `pfcam check` in tests/check.rs.)
+/// checked by the gouge check of every level in tests/all/levels.rs and by
+/// `pfcam check` in tests/all/check.rs.)
 fn jobs() -> Vec<Job> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs");
-    let mut paths: Vec<PathBuf> = fs::read_dir(dir)
-        .expect("jobs/")
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
-    assert!(!paths.is_empty());
-    let jobs: Vec<Job> = paths
-        .iter()
-        .map(|p| load_job(p).unwrap_or_else(|e| panic!("{e}")))
+    let jobs: Vec<Job> = shipped_jobs()
+        .into_iter()
         .filter(|j| j.operation.kind == pfcam::job::OperationKind::Profile)
         .collect();
     assert!(jobs.len() >= 4, "the profile jobs");
@@ -45,17 +34,6 @@ fn traced_and_fitted(job: &Job) -> (Toolpath, Toolpath) {
     let traced = profile::link(&plan.loops, &plan.params);
     let fitted = fit_toolpath(&traced, &ArcFitParams::for_job(job));
     (traced, fitted)
-}
-
-fn seg_dist(p: Vec2, a: Vec2, b: Vec2) -> f64 {
-    let d = b - a;
-    let l2 = d.norm2();
-    let t = if l2 > 0.0 {
-        ((p - a).dot(d) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.dist(a + d * t)
 }
 
 /// An arc from `a` to `b` about `c`: its sweep (radians) and radius.
@@ -358,41 +336,6 @@ fn same_gcode_on_every_run_and_thread_count() {
     assert_eq!(one, gcode(4));
 }
 
-/// Points every `step` mm along a closed cavalier polyline (lines and arcs), as
-/// in `tests/toolpath.rs`.
-fn sample_pline(pl: &Polyline, step: f64) -> Vec<Vec2> {
-    let n = pl.vertex_count();
-    let mut out = Vec::new();
-    for i in 0..n {
-        let v1 = pl.at(i);
-        let v2 = pl.at((i + 1) % n);
-        let (a, b) = (Vec2::new(v1.x, v1.y), Vec2::new(v2.x, v2.y));
-        if v1.bulge.abs() < 1e-12 {
-            let k = ((a.dist(b) / step).ceil() as usize).max(1);
-            out.extend((0..k).map(|j| a.lerp(b, j as f64 / k as f64)));
-        } else {
-            let theta = 4.0 * v1.bulge.atan();
-            let chord = b - a;
-            let r = chord.norm() / (2.0 * (theta / 2.0).sin()).abs();
-            let mid = a.lerp(b, 0.5);
-            let h = (r * r - chord.norm2() / 4.0).max(0.0).sqrt();
-            let side = if (theta > 0.0) == (theta.abs() < std::f64::consts::PI) {
-                1.0
-            } else {
-                -1.0
-            };
-            let c = mid + chord.perp().normalized() * (h * side);
-            let a0 = (a.y - c.y).atan2(a.x - c.x);
-            let k = (((r * theta.abs()) / step).ceil() as usize).max(1);
-            out.extend((0..k).map(|j| {
-                let t = a0 + theta * j as f64 / k as f64;
-                Vec2::new(c.x + r * t.cos(), c.y + r * t.sin())
-            }));
-        }
-    }
-    out
-}
-
 /// Points every 0.002 mm along the first level pass of every section.
 fn sample_passes(tp: &Toolpath) -> Vec<Vec<Vec2>> {
     let mut out = Vec::new();
@@ -469,7 +412,7 @@ fn hausdorff_to_exact(job: &Job, tp: &Toolpath) -> f64 {
 /// The whole budget: traced (tol/2) plus fitted (tol/2) stays within the job
 /// tolerance of the exact offset, arcs on and off. Prints the table of
 /// `docs/gcode.md` with
-/// `cargo test --release --test arcs -- --nocapture exact_offset`.
+/// `cargo test --release --test all -- --nocapture arcs::fitted_path_is_within_tolerance_of_the_exact_offset`.
 #[test]
 fn fitted_path_is_within_tolerance_of_the_exact_offset() {
     let doc = doc_figures::read("docs/gcode.md");
@@ -503,7 +446,7 @@ fn fitted_path_is_within_tolerance_of_the_exact_offset() {
 /// docs/gcode.md's table of the profile jobs (lines and bytes traced, with
 /// `arcs = false` and with `arcs = true`, arcs, deviation, clearance) and the
 /// ratios and clearance loss it draws from it are what the jobs give now:
-/// `cargo test --release --test arcs -- --nocapture measure_every_job` prints
+/// `cargo test --release --test all -- --nocapture arcs::measure_every_job` prints
 /// the table.
 #[test]
 fn measure_every_job() {

@@ -2,13 +2,14 @@
 //! whose result is known, checked against the exact Boolean of the polygons
 //! computed independently by cavalier_contours, and the paper's letter Q.
 //!
-//! Run with `cargo test --release --test boolean -- --nocapture` to see the figures.
+//! Run with `cargo test --release --test all boolean:: -- --nocapture` to see the figures.
 
 use cavalier_contours::polyline::{BooleanOp as CcOp, PlineSource, PlineSourceMut, Polyline};
 use pfcam::compose::{self, Model};
 use pfcam::geometry::{BoolOp, Composition, Part, PartSource, Vec2};
 
-mod doc_figures;
+use crate::common::seg_dist;
+use crate::doc_figures;
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Vec2> {
     vec![
@@ -92,12 +93,6 @@ fn exact(a: &[Vec2], b: &[Vec2], op: CcOp) -> Vec<Vec<Vec2>> {
                 .collect()
         })
         .collect()
-}
-
-fn seg_dist(p: Vec2, a: Vec2, b: Vec2) -> f64 {
-    let ab = b - a;
-    let t = ((p - a).dot(ab) / ab.norm2().max(1e-300)).clamp(0.0, 1.0);
-    (a + ab * t - p).norm()
 }
 
 fn dist_to(p: Vec2, loops: &[Vec<Vec2>]) -> f64 {

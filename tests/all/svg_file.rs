@@ -5,24 +5,20 @@
 //! its key.
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use pfcam::geometry::svgfile::{svg_file_shape, SvgFileSource, SvgSize};
 use pfcam::geometry::{build_shape, GeometryError, Shape, ShapeSource, Vec2};
 use pfcam::job::parse_job;
 
+use crate::common::{area, holes, perimeter, root, test_data};
+
 /// The job's default tolerance, mm.
 const TOL: f64 = 0.01;
 
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
-        .join(name)
-}
-
 fn source(file: &str, id: Option<&str>, size: SvgSize) -> SvgFileSource {
     SvgFileSource {
-        path: data(file),
+        path: test_data(file),
         id: id.map(str::to_string),
         size,
         origin: Vec2::ZERO,
@@ -34,22 +30,6 @@ fn source(file: &str, id: Option<&str>, size: SvgSize) -> SvgFileSource {
 fn shape(file: &str, id: Option<&str>) -> Shape {
     svg_file_shape(&source(file, id, SvgSize::Natural))
         .unwrap_or_else(|e| panic!("{file} {id:?}: {e}"))
-}
-
-/// Material area: outlines minus counters.
-fn area(s: &Shape) -> f64 {
-    s.regions
-        .iter()
-        .map(|r| r.outline.signed_area() + r.counters.iter().map(|c| c.signed_area()).sum::<f64>())
-        .sum()
-}
-
-fn holes(s: &Shape) -> usize {
-    s.regions.iter().map(|r| r.counters.len()).sum()
-}
-
-fn perimeter(s: &Shape) -> f64 {
-    s.contours().map(|c| c.length()).sum()
 }
 
 fn bbox(s: &Shape) -> (Vec2, Vec2) {
@@ -247,17 +227,17 @@ fn errors_name_the_key() {
     };
     let cases: Vec<(SvgFileSource, &str, &str)> = vec![
         (
-            with(data("absent.svg"), None, SvgSize::Natural),
+            with(test_data("absent.svg"), None, SvgSize::Natural),
             "shape.svg_file",
             "no such file",
         ),
         (
-            with(data("DejaVu-LICENSE.txt"), None, SvgSize::Natural),
+            with(test_data("DejaVu-LICENSE.txt"), None, SvgSize::Natural),
             "shape.svg_file",
             "is not an SVG document",
         ),
         (
-            with(data("DejaVuSerif.ttf"), None, SvgSize::Natural),
+            with(test_data("DejaVuSerif.ttf"), None, SvgSize::Natural),
             "shape.svg_file",
             "not UTF-8",
         ),
@@ -272,22 +252,22 @@ fn errors_name_the_key() {
             "is not an SVG document",
         ),
         (
-            with(data("svg-strokes.svg"), None, SvgSize::Natural),
+            with(test_data("svg-strokes.svg"), None, SvgSize::Natural),
             "shape.svg_file",
             "fills nothing",
         ),
         (
-            with(data("svg-text.svg"), None, SvgSize::Natural),
+            with(test_data("svg-text.svg"), None, SvgSize::Natural),
             "shape.svg_file",
             "has text (<text> at line 3",
         ),
         (
-            with(data("svg-shapes.svg"), Some("nope"), SvgSize::Natural),
+            with(test_data("svg-shapes.svg"), Some("nope"), SvgSize::Natural),
             "shape.id",
             "ids there: tile, circle",
         ),
         (
-            with(data("svg-shapes.svg"), Some("tile"), SvgSize::Natural),
+            with(test_data("svg-shapes.svg"), Some("tile"), SvgSize::Natural),
             "shape.id",
             "draws nothing",
         ),
@@ -297,12 +277,12 @@ fn errors_name_the_key() {
             "5000.0 × 10.0 mm, larger than the 2000 mm",
         ),
         (
-            with(data("svg-shapes.svg"), None, SvgSize::Scale(30.0)),
+            with(test_data("svg-shapes.svg"), None, SvgSize::Scale(30.0)),
             "shape.scale",
             "larger than the 2000 mm",
         ),
         (
-            with(data("svg-shapes.svg"), None, SvgSize::Width(5000.0)),
+            with(test_data("svg-shapes.svg"), None, SvgSize::Width(5000.0)),
             "shape.width",
             "larger than",
         ),
@@ -325,7 +305,7 @@ fn a_job_names_the_file_key_and_resolves_it_beside_the_job() {
     let job = |shape: &str| {
         format!("[shape]\n{shape}\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\n")
     };
-    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let base = root().join("tests");
     let j = parse_job(
         &job("svg_file = \"data/svg-shapes.svg\"\nid = \"circle\"\nwidth = 30.0"),
         "x",

@@ -5,11 +5,13 @@
 //! `$INSUNITS`; then the errors, each naming its key.
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use pfcam::geometry::dxffile::{dxf_file_shape, DxfFileSource, FLATTEN_FRACTION};
 use pfcam::geometry::{build_shape, GeometryError, Shape, ShapeSource, Vec2};
 use pfcam::job::parse_job;
+
+use crate::common::{area, holes, perimeter, root, test_data};
 
 /// The job's default tolerance, mm.
 const TOL: f64 = 0.01;
@@ -26,15 +28,9 @@ const SPLINE_AREA: f64 = 382.621211193;
 /// 437.624999973.
 const SPLINE_OPEN_AREA: f64 = 437.624999973;
 
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
-        .join(name)
-}
-
 fn source(file: &str, layer: Option<&str>) -> DxfFileSource {
     DxfFileSource {
-        path: data(file),
+        path: test_data(file),
         layer: layer.map(str::to_string),
         join_tolerance: 0.01,
         origin: Vec2::ZERO,
@@ -46,22 +42,6 @@ fn source(file: &str, layer: Option<&str>) -> DxfFileSource {
 fn layer(name: &str) -> Shape {
     dxf_file_shape(&source("dxf-entities.dxf", Some(name)))
         .unwrap_or_else(|e| panic!("layer {name}: {e}"))
-}
-
-/// Material area: outlines minus counters.
-fn area(s: &Shape) -> f64 {
-    s.regions
-        .iter()
-        .map(|r| r.outline.signed_area() + r.counters.iter().map(|c| c.signed_area()).sum::<f64>())
-        .sum()
-}
-
-fn holes(s: &Shape) -> usize {
-    s.regions.iter().map(|r| r.counters.len()).sum()
-}
-
-fn perimeter(s: &Shape) -> f64 {
-    s.contours().map(|c| c.length()).sum()
 }
 
 fn size(s: &Shape) -> Vec2 {
@@ -293,33 +273,33 @@ fn errors_name_the_key() {
     let scratch = std::env::temp_dir().join(format!("pfcam-dxf-file-{}", std::process::id()));
     std::fs::create_dir_all(&scratch).expect("scratch dir");
     let half = scratch.join("half.dxf");
-    let text = std::fs::read_to_string(data("dxf-entities.dxf")).expect("read");
+    let text = std::fs::read_to_string(test_data("dxf-entities.dxf")).expect("read");
     std::fs::write(&half, &text[..text.len() / 2]).expect("write");
     let with = |path: PathBuf, layer: Option<&str>| DxfFileSource {
         path,
         ..source("dxf-entities.dxf", layer)
     };
     let cases: Vec<(DxfFileSource, &str, &str)> = vec![
-        (with(data("absent.dxf"), None), "shape.dxf_file", "no such file"),
-        (with(data("."), None), "shape.dxf_file", "is a directory"),
-        (with(data("DejaVu-LICENSE.txt"), None), "shape.dxf_file", "is not a DXF file"),
-        (with(data("DejaVuSerif.ttf"), None), "shape.dxf_file", "is not a DXF file"),
-        (with(data("svg-shapes.svg"), None), "shape.dxf_file", "is not a DXF file"),
+        (with(test_data("absent.dxf"), None), "shape.dxf_file", "no such file"),
+        (with(test_data("."), None), "shape.dxf_file", "is a directory"),
+        (with(test_data("DejaVu-LICENSE.txt"), None), "shape.dxf_file", "is not a DXF file"),
+        (with(test_data("DejaVuSerif.ttf"), None), "shape.dxf_file", "is not a DXF file"),
+        (with(test_data("svg-shapes.svg"), None), "shape.dxf_file", "is not a DXF file"),
         (with(half, None), "shape.dxf_file", "DXF"),
         (
-            with(data("dxf-entities.dxf"), Some("EMPTY")),
+            with(test_data("dxf-entities.dxf"), Some("EMPTY")),
             "shape.layer",
             "\"EMPTY\" has no closed geometry in the drawing (layers with entities pfcam reads: BOWTIE, CIRCLE, ELLIPSE, HALF_ELLIPSE, HOLE, INSERT, LINES, LWPOLY, NESTED, POLYLINE, SLOT, SPLINE and 1 more)",
         ),
-        (with(data("dxf-entities.dxf"), Some("NOTES")), "shape.layer", "has no closed geometry"),
-        (with(data("dxf-entities.dxf"), Some("nope")), "shape.layer", "has no closed geometry"),
+        (with(test_data("dxf-entities.dxf"), Some("NOTES")), "shape.layer", "has no closed geometry"),
+        (with(test_data("dxf-entities.dxf"), Some("nope")), "shape.layer", "has no closed geometry"),
         (
-            with(data("dxf-open.dxf"), None),
+            with(test_data("dxf-open.dxf"), None),
             "shape.dxf_file",
             "has 1 open contour (in the drawing's coordinates, mm): one with its ends at (5, 15) and (0, 0); every contour must close, its pieces' ends meeting within shape.join_tolerance = 0.01 mm",
         ),
         (
-            with(data("dxf-huge.dxf"), None),
+            with(test_data("dxf-huge.dxf"), None),
             "shape.dxf_file",
             "makes the drawing 5000.0 × 5000.0 mm, larger than the 2000 mm",
         ),
@@ -352,7 +332,7 @@ fn errors_name_the_key() {
 /// error, never a panic (a fixed seed, so a failure repeats).
 #[test]
 fn mangled_drawings_never_panic() {
-    let bytes = std::fs::read(data("dxf-entities.dxf")).expect("read");
+    let bytes = std::fs::read(test_data("dxf-entities.dxf")).expect("read");
     let scratch = std::env::temp_dir().join(format!("pfcam-dxf-mangle-{}", std::process::id()));
     std::fs::create_dir_all(&scratch).expect("scratch dir");
     let mut seed: u64 = 0x9E37_79B9_7F4A_7C15;
@@ -403,7 +383,7 @@ fn a_job_names_the_file_key_and_resolves_it_beside_the_job() {
     let job = |shape: &str| {
         format!("[shape]\n{shape}\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 3.0\ntolerance = 0.02\n")
     };
-    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let base = root().join("tests");
     let j = parse_job(
         &job("dxf_file = \"data/dxf-entities.dxf\"\nlayer = \"CIRCLE\"\njoin_tolerance = 0.05"),
         "x",
@@ -451,8 +431,8 @@ fn a_job_names_the_file_key_and_resolves_it_beside_the_job() {
 
 /// docs/shapes.md's figures for the test drawing: each layer's area at the
 /// default tolerance against the analytic (or ezdxf's) area, within the bound
-/// perimeter × tolerance (`cargo test --release --test dxf_file --
-/// --nocapture layer_figures` prints them).
+/// perimeter × tolerance (`cargo test --release --test all --
+/// --nocapture dxf_file::layer_figures` prints them).
 #[test]
 fn layer_figures() {
     let tab = 60.0 - 2.25 * PI;

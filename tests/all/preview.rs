@@ -14,17 +14,10 @@ use pfcam::toolpath::Move;
 use resvg::{tiny_skia, usvg};
 use std::f64::consts::TAU;
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 use std::sync::OnceLock;
 
-const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
-
-fn shipped(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("jobs")
-        .join(name)
-}
+use crate::common::{pfcam, scratch, shipped, test_data, text};
 
 /// The letter-A job, run once for every test that needs it (it has a counter).
 fn letter_a() -> &'static (Job, RunOutput) {
@@ -47,9 +40,7 @@ struct Rendered {
 impl Rendered {
     fn new(svg: &str, px_per_mm: f64) -> Rendered {
         let mut opt = usvg::Options::default();
-        let font =
-            fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/DejaVuSerif.ttf"))
-                .expect("test font");
+        let font = fs::read(test_data("DejaVuSerif.ttf")).expect("test font");
         opt.fontdb_mut().load_font_data(font);
         opt.fontdb_mut().set_sans_serif_family("DejaVu Serif");
         let tree = usvg::Tree::from_str(svg, &opt).expect("usvg parses the preview");
@@ -431,28 +422,9 @@ fn cassini_ovals_change_topology_at_the_lemniscate() {
     }
 }
 
-fn pfcam(args: &[&str], dir: &Path) -> Output {
-    Command::new(PFCAM)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run pfcam")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("preview-{name}"));
-    let _ = fs::remove_dir_all(&d);
-    fs::create_dir_all(&d).expect("scratch dir");
-    d
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
-
 #[test]
 fn run_writes_svg_and_json_beside_the_gcode_and_reruns_replace_them() {
-    let dir = scratch("run");
+    let dir = scratch("preview", "run");
     let job = shipped("letter-i.toml");
     let job = job.to_str().expect("utf-8 path");
     let o = pfcam(&["run", job, "--out", "out"], &dir);
@@ -522,7 +494,7 @@ fn foreign_svg_or_json_blocks_the_run_and_nothing_is_written() {
         ),
         ("letter-i.json", "{\n  \"mine\": true\n}\n"),
     ] {
-        let dir = scratch(&format!("foreign-{name}"));
+        let dir = scratch("preview", &format!("foreign-{name}"));
         fs::create_dir_all(dir.join("out")).expect("mkdir");
         fs::write(dir.join("out").join(name), content).expect("write");
         let job = shipped("letter-i.toml");
@@ -558,7 +530,7 @@ fn foreign_svg_or_json_blocks_the_run_and_nothing_is_written() {
 
 #[test]
 fn preview_and_field_commands_write_one_file_each() {
-    let dir = scratch("commands");
+    let dir = scratch("preview", "commands");
     let job = shipped("letter-a.toml");
     let job = job.to_str().expect("utf-8");
     let o = pfcam(
@@ -611,7 +583,7 @@ fn preview_and_field_commands_write_one_file_each() {
 
 #[test]
 fn quiet_prints_nothing_and_warnings_go_to_the_report_and_the_preview() {
-    let dir = scratch("warn");
+    let dir = scratch("preview", "warn");
     // A 12 mm A: its counter is too small for a 1/8" tool, which is a warning.
     fs::write(
         dir.join("job.toml"),

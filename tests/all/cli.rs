@@ -5,27 +5,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
-
-/// A fresh, empty directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}"));
-    let _ = fs::remove_dir_all(&d);
-    fs::create_dir_all(&d).expect("create scratch dir");
-    d
-}
-
-fn pfcam(args: &[&str], dir: &Path) -> Output {
-    Command::new(PFCAM)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run pfcam")
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
+use crate::common::{pfcam, root, scratch, shipped, test_data, text, PFCAM};
 
 /// Every file under `dir` (recursively), or nothing if it does not exist.
 fn files_in(dir: &Path) -> Vec<PathBuf> {
@@ -57,7 +37,7 @@ fn assert_rejected(case: &str, job: &str, needles: &[&str]) {
 /// of a stage that had begun (modelling a composition), so the checks apply to
 /// stderr's last line.
 fn assert_rejected_in(case: &str, job: &str, needles: &[&str], in_last_line: bool) {
-    let dir = scratch(case);
+    let dir = scratch("cli", case);
     fs::write(dir.join("job.toml"), job).expect("write job");
     for args in [
         &["validate", "job.toml"][..],
@@ -139,7 +119,7 @@ fn a_font_family_not_installed_is_named() {
 
 #[test]
 fn a_glyph_missing_from_a_font_file_is_named() {
-    let font = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/DejaVuSans.ttf");
+    let font = test_data("DejaVuSans.ttf");
     let job = GOOD.replace(
         "text = \"I\"",
         &format!(
@@ -228,7 +208,7 @@ fn a_composition_that_cannot_be_built_names_its_part() {
 
 #[test]
 fn foreign_output_file_is_not_overwritten() {
-    let dir = scratch("foreign");
+    let dir = scratch("cli", "foreign");
     fs::write(dir.join("job.toml"), GOOD).expect("write job");
     fs::create_dir_all(dir.join("out")).expect("mkdir");
     let foreign = dir.join("out/job.nc");
@@ -249,7 +229,7 @@ fn foreign_output_file_is_not_overwritten() {
 
 #[test]
 fn own_output_file_is_not_refused() {
-    let dir = scratch("own");
+    let dir = scratch("cli", "own");
     fs::write(dir.join("job.toml"), GOOD).expect("write job");
     fs::create_dir_all(dir.join("out")).expect("mkdir");
     let own = dir.join("out/job.nc");
@@ -279,7 +259,7 @@ fn own_output_file_is_not_refused() {
 
 #[test]
 fn validate_accepts_every_shipped_job() {
-    let jobs = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs");
+    let jobs = root().join("jobs");
     let mut n = 0;
     for p in files_in(&jobs) {
         if p.extension().is_some_and(|e| e == "toml") {
@@ -328,7 +308,7 @@ fn usage_errors_exit_2() {
 
 #[test]
 fn missing_job_file_is_named() {
-    let dir = scratch("no-job");
+    let dir = scratch("cli", "no-job");
     let o = pfcam(&["run", "nope.toml", "--out", "out"], &dir);
     assert_eq!(o.status.code(), Some(1));
     assert!(text(&o.stderr).contains("nope.toml"), "{}", text(&o.stderr));
@@ -338,16 +318,12 @@ fn missing_job_file_is_named() {
 // ---- These need the real pipeline (pfcam::pipeline::run) or MFS solver. ----
 
 fn shipped_job(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("jobs")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
+    shipped(name).to_string_lossy().into_owned()
 }
 
 #[test]
 fn run_writes_gcode_and_a_rerun_replaces_it_identically() {
-    let dir = scratch("run");
+    let dir = scratch("cli", "run");
     let job = shipped_job("letter-i.toml");
     let o = pfcam(&["run", &job, "--out", "out"], &dir);
     assert!(o.status.success(), "{}", text(&o.stderr));
@@ -381,8 +357,8 @@ fn run_writes_gcode_and_a_rerun_replaces_it_identically() {
 
 #[test]
 fn the_summary_names_the_font_file() {
-    let dir = scratch("font-summary");
-    let font = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/DejaVuSans.ttf");
+    let dir = scratch("cli", "font-summary");
+    let font = test_data("DejaVuSans.ttf");
     let job = GOOD.replace(
         "text = \"I\"",
         &format!("text = \"I\"\nfont = {:?}", font.display().to_string()),
@@ -398,7 +374,7 @@ fn the_summary_names_the_font_file() {
 
 #[test]
 fn force_replaces_a_foreign_file() {
-    let dir = scratch("force");
+    let dir = scratch("cli", "force");
     fs::create_dir_all(dir.join("out")).expect("mkdir");
     let nc = dir.join("out/letter-i.nc");
     fs::write(&nc, "G0 X0\n").expect("write");
@@ -642,7 +618,7 @@ fn values_no_machine_could_use_are_refused_by_key() {
         ),
     ];
     for (case, job, key) in cases {
-        let dir = scratch(case);
+        let dir = scratch("cli", case);
         fs::write(dir.join("job.toml"), job).expect("write job");
         for args in [
             &["validate", "job.toml"][..],
@@ -670,7 +646,7 @@ fn values_no_machine_could_use_are_refused_by_key() {
 
 #[test]
 fn a_job_file_that_is_no_job_file_is_refused_unread() {
-    let dir = scratch("not-a-job");
+    let dir = scratch("cli", "not-a-job");
     let big = dir.join("big.toml");
     fs::write(&big, "# ".repeat(5 << 20)).expect("write");
     for (file, needle) in [
@@ -811,7 +787,7 @@ fn long_values_are_echoed_clipped() {
             "operation.depth: invalid type: string",
         ),
     ] {
-        let dir = scratch(&format!("clip-{case}"));
+        let dir = scratch("cli", &format!("clip-{case}"));
         fs::write(dir.join("job.toml"), job).expect("write job");
         let o = pfcam_bounded(&["validate", "job.toml"], &dir, 60);
         let err = text(&o.stderr);
@@ -832,7 +808,7 @@ fn long_values_are_echoed_clipped() {
 /// panicked with exit 101 at the first line), as does an error message.
 #[test]
 fn a_closed_stderr_is_no_crash() {
-    let dir = scratch("closed-stderr");
+    let dir = scratch("cli", "closed-stderr");
     fs::write(dir.join("job.toml"), GOOD).expect("write job");
     fs::write(dir.join("bad.toml"), GOOD.replace("3.175", "-3")).expect("write job");
     for (job, code) in [("job.toml", 0), ("bad.toml", 1)] {
@@ -855,7 +831,7 @@ fn a_closed_stderr_is_no_crash() {
 /// file named as such, an unwritable directory found before the work.
 #[test]
 fn command_line_consistency() {
-    let dir = scratch("consistency");
+    let dir = scratch("cli", "consistency");
     fs::write(dir.join("job.toml"), GOOD).expect("write job");
     // `run -o DIR` as the other commands' -o.
     let o = pfcam(&["run", "job.toml", "-o", "o1", "-q"], &dir);
@@ -937,7 +913,7 @@ fn command_line_consistency() {
 /// the exit status says a job failed; two jobs with one name are refused.
 #[test]
 fn a_batch_runs_every_job_and_reports_each() {
-    let dir = scratch("batch");
+    let dir = scratch("cli", "batch");
     fs::write(dir.join("a.toml"), GOOD).expect("write");
     fs::write(dir.join("b.toml"), GOOD.replace("\"I\"", "\"H\"")).expect("write");
     fs::write(dir.join("bad.toml"), GOOD.replace("3.175", "-3")).expect("write");
@@ -1019,7 +995,7 @@ fn progress_counts_each_level_and_never_overruns() {
         .expect("a level stage");
     assert!(levels.1 > 1, "levels counted one by one: {levels:?}");
 
-    let dir = scratch("progress");
+    let dir = scratch("cli", "progress");
     fs::write(dir.join("boss.toml"), boss).expect("write");
     let o = pfcam(&["run", "boss.toml"], &dir);
     let err = text(&o.stderr);
@@ -1043,7 +1019,7 @@ fn progress_counts_each_level_and_never_overruns() {
 /// threads and must come out byte for byte the same.
 #[test]
 fn the_program_is_the_same_on_any_number_of_threads() {
-    let dir = scratch("threads");
+    let dir = scratch("cli", "threads");
     fs::write(
         dir.join("a.toml"),
         "[shape]\ntext = \"A\"\nheight = 30.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n\
@@ -1077,7 +1053,7 @@ fn the_program_is_the_same_on_any_number_of_threads() {
 /// no file. A stepover finer than the default is named as the cause instead.
 #[test]
 fn a_job_whose_lower_bound_passes_max_hours_stops_before_the_work() {
-    let dir = scratch("max-hours-bound");
+    let dir = scratch("cli", "max-hours-bound");
     let job = "[shape]\ntext = \"H\"\nheight = 60.0\n[tool]\ndiameter = 0.5\nstepdown = 0.25\n[operation]\nkind = \"cavity\"\ndepth = 10.0\n[profile]\nkind = \"sigmoid\"\ns1 = 0.97\ns2 = 0.9\n";
     let fine = job.replace("diameter = 0.5", "diameter = 1.0\nstepover = 0.1");
     for (name, text_of_job, cause) in [
@@ -1136,7 +1112,7 @@ fn header_figures(gcode: &str) -> (f64, f64, String) {
 /// (a profile and a boss of the shipped jobs).
 #[test]
 fn the_report_gives_each_program_its_header_figures_and_bound() {
-    let dir = scratch("programs-json");
+    let dir = scratch("cli", "programs-json");
     // A profile (one program) and a boss with a finishing ball (two).
     for (name, files) in [
         ("letter-i", vec!["letter-i.nc"]),
@@ -1197,7 +1173,7 @@ fn the_report_gives_each_program_its_header_figures_and_bound() {
 /// are left as they were); a limit equal to the size passes.
 #[test]
 fn a_program_past_max_file_mb_or_max_hours_is_not_written() {
-    let dir = scratch("max-file-mb");
+    let dir = scratch("cli", "max-file-mb");
     let job = fs::read_to_string(shipped_job("letter-i.toml")).expect("job");
     assert!(!job.contains("[machine]"), "the test appends the table");
     fs::write(dir.join("letter-i.toml"), &job).expect("write");

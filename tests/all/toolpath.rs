@@ -7,7 +7,8 @@ use pfcam::job::{parse_job, Direction, Job};
 use pfcam::pipeline::{self, Plan};
 use pfcam::toolpath::{gouge, Move, Section, Toolpath, Vec3};
 
-mod doc_figures;
+use crate::common::sample_pline;
+use crate::doc_figures;
 
 fn job(text: &str, height: f64) -> Job {
     let toml = format!(
@@ -30,41 +31,6 @@ direction = "climb"
 
 fn plan(j: &Job) -> Plan {
     pipeline::plan(j, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// Points every `step` mm along a closed cavalier polyline (lines and arcs).
-fn sample_pline(pl: &Polyline, step: f64) -> Vec<Vec2> {
-    let n = pl.vertex_count();
-    let mut out = Vec::new();
-    for i in 0..n {
-        let v1 = pl.at(i);
-        let v2 = pl.at((i + 1) % n);
-        let (a, b) = (Vec2::new(v1.x, v1.y), Vec2::new(v2.x, v2.y));
-        if v1.bulge.abs() < 1e-12 {
-            let k = ((a.dist(b) / step).ceil() as usize).max(1);
-            out.extend((0..k).map(|j| a.lerp(b, j as f64 / k as f64)));
-        } else {
-            // Arc: sweep θ = 4·atan(bulge), centre from the chord.
-            let theta = 4.0 * v1.bulge.atan();
-            let chord = b - a;
-            let r = chord.norm() / (2.0 * (theta / 2.0).sin()).abs();
-            let mid = a.lerp(b, 0.5);
-            let h = (r * r - chord.norm2() / 4.0).max(0.0).sqrt();
-            let side = if (theta > 0.0) == (theta.abs() < std::f64::consts::PI) {
-                1.0
-            } else {
-                -1.0
-            };
-            let c = mid + chord.perp().normalized() * (h * side);
-            let a0 = (a.y - c.y).atan2(a.x - c.x);
-            let k = (((r * theta.abs()) / step).ceil() as usize).max(1);
-            out.extend((0..k).map(|j| {
-                let t = a0 + theta * j as f64 / k as f64;
-                Vec2::new(c.x + r * t.cos(), c.y + r * t.sin())
-            }));
-        }
-    }
-    out
 }
 
 /// The exact offsets of every contour by r to the tool side (material on the left,

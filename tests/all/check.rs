@@ -4,28 +4,14 @@
 
 use serde_json::Value;
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
-const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
-const ROOT: &str = env!("CARGO_MANIFEST_DIR");
-
-fn pfcam(args: &[&str]) -> Output {
-    Command::new(PFCAM)
-        .args(args)
-        .current_dir(ROOT)
-        .output()
-        .expect("run pfcam")
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
+use crate::common::{files, pfcam, root, text};
 
 fn check_json(file: &str, extra: &[&str]) -> (i32, Value) {
     let mut args = vec!["check", file, "--json"];
     args.extend_from_slice(extra);
-    let o = pfcam(&args);
+    let o = pfcam(&args, root());
     let v: Value = serde_json::from_slice(&o.stdout)
         .unwrap_or_else(|e| panic!("{file}: not JSON ({e}): {}", text(&o.stdout)));
     (o.status.code().unwrap_or(-1), v)
@@ -52,7 +38,7 @@ fn assert_error(name: &str, line: u64, code: Option<u64>) {
     assert_eq!(errors[0]["line"], line, "{name}: {v}");
     assert_eq!(errors[0]["code"].as_u64(), code, "{name}: {v}");
 
-    let o = pfcam(&["check", &file, "--machine", machine]);
+    let o = pfcam(&["check", &file, "--machine", machine], root());
     assert_eq!(o.status.code(), Some(1));
     let want = match code {
         Some(c) => format!("{file}:{line}: error {c}: "),
@@ -123,27 +109,33 @@ fn g0_g1_without_axis_words_are_warnings() {
 
 #[test]
 fn usage_errors_exit_2() {
-    let o = pfcam(&["check", "tests/data/no-such-file.nc"]);
+    let o = pfcam(&["check", "tests/data/no-such-file.nc"], root());
     assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
-    let o = pfcam(&[
-        "check",
-        "tests/data/check-totals.nc",
-        "--machine",
-        "tests/data/no-such.toml",
-    ]);
+    let o = pfcam(
+        &[
+            "check",
+            "tests/data/check-totals.nc",
+            "--machine",
+            "tests/data/no-such.toml",
+        ],
+        root(),
+    );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
-    let o = pfcam(&["check"]);
+    let o = pfcam(&["check"], root());
     assert_eq!(o.status.code(), Some(2));
 }
 
 #[test]
 fn a_job_file_without_travel_says_so() {
-    let o = pfcam(&[
-        "check",
-        "gcode-samples/hand-rounded-rect.nc",
-        "--machine",
-        "jobs/letter-i.toml",
-    ]);
+    let o = pfcam(
+        &[
+            "check",
+            "gcode-samples/hand-rounded-rect.nc",
+            "--machine",
+            "jobs/letter-i.toml",
+        ],
+        root(),
+    );
     assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
     assert!(
         text(&o.stderr).contains("has no machine.travel"),
@@ -198,7 +190,7 @@ fn totals_of_a_small_file_by_hand() {
         assert_eq!(t["lines"], 12);
         assert_eq!(t["blocks"], 11);
     }
-    let o = pfcam(&["check", "tests/data/check-totals.nc"]);
+    let o = pfcam(&["check", "tests/data/check-totals.nc"], root());
     let out = text(&o.stdout);
     assert!(
         out.contains("bounds: X 0 .. 76.2, Y 0 .. 50.8, Z -2.54 .. 5.08 mm"),
@@ -269,17 +261,6 @@ fn assert_passes(file: &Path) {
     }
 }
 
-fn files(dir: &str, ext: &str) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = fs::read_dir(Path::new(ROOT).join(dir))
-        .expect("read dir")
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == ext))
-        .collect();
-    v.sort();
-    v
-}
-
 #[test]
 fn every_gcode_sample_passes() {
     let samples = files("gcode-samples", "nc");
@@ -296,13 +277,16 @@ fn every_job_runs_to_gcode_that_passes() {
     let jobs = files("jobs", "toml");
     assert!(!jobs.is_empty());
     for job in &jobs {
-        let o = pfcam(&[
-            "run",
-            &job.display().to_string(),
-            "--out",
-            &out.display().to_string(),
-            "--quiet",
-        ]);
+        let o = pfcam(
+            &[
+                "run",
+                &job.display().to_string(),
+                "--out",
+                &out.display().to_string(),
+                "--quiet",
+            ],
+            root(),
+        );
         assert_eq!(
             o.status.code(),
             Some(0),
@@ -344,7 +328,7 @@ fn every_job_runs_to_gcode_that_passes() {
 /// on standard output, then the closing error on standard error.
 #[test]
 fn grbl_doc_check_example_is_what_the_command_prints() {
-    let doc = fs::read_to_string(Path::new(ROOT).join("docs/grbl.md")).expect("docs/grbl.md");
+    let doc = fs::read_to_string(root().join("docs/grbl.md")).expect("docs/grbl.md");
     let prompt = "$ pfcam check ";
     let at = doc
         .find(prompt)
@@ -353,7 +337,10 @@ fn grbl_doc_check_example_is_what_the_command_prints() {
     let command = block.next().expect("the command line");
     let shown: Vec<&str> = block.take_while(|l| !l.starts_with("```")).collect();
     let args: Vec<&str> = command[prompt.len()..].split_whitespace().collect();
-    let o = pfcam(&["check"].into_iter().chain(args).collect::<Vec<_>>());
+    let o = pfcam(
+        &["check"].into_iter().chain(args).collect::<Vec<_>>(),
+        root(),
+    );
     let printed = text(&o.stdout) + &text(&o.stderr);
     assert_eq!(
         shown,

@@ -1,13 +1,12 @@
 //! `pfcam stream` against a GRBL 1.1 emulator on a real pseudo-terminal.
 //!
-//! The emulator (`tests/grbl/emulator.rs`, test support only) fails a test when the
+//! The emulator (`tests/all/grbl/emulator.rs`, test support only) fails a test when the
 //! streamer overflows its 128-byte receive buffer. Every wait here is bounded.
 
-mod doc_figures;
-#[path = "grbl/emulator.rs"]
+use crate::doc_figures;
 mod emulator;
 /// `pfcam stream`'s terminal side (exit codes, messages), from the binary.
-#[path = "../src/cli/stream/mod.rs"]
+#[path = "../../src/cli/stream/mod.rs"]
 mod stream;
 
 use std::path::{Path, PathBuf};
@@ -1252,13 +1251,13 @@ fn doc_lines(row: &str) -> Option<usize> {
 /// docs/grbl.md counts the tests of this file.
 #[test]
 fn docs_count_the_tests_of_this_file() {
-    let me = std::fs::read_to_string(file!()).expect("tests/grbl.rs");
+    let me = std::fs::read_to_string(file!()).expect("tests/all/grbl.rs");
     let tests = me.lines().filter(|l| l.trim() == "#[test]").count();
     let doc = doc_figures::read("docs/grbl.md");
     let stated = doc_figures::number_after(
         &doc,
         "docs/grbl.md",
-        "`cargo test --release --test grbl` runs",
+        "`cargo test --release --test all grbl::` runs",
     );
     assert_eq!(
         stated.parse().ok(),

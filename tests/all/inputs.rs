@@ -15,7 +15,8 @@ use pfcam::grbl::protocol::{parse_response, Response, StatusReport, WorkOffset};
 use pfcam::job::{echo, extent, parse_job};
 use std::path::Path;
 
-mod doc_figures;
+use crate::common::{files, root};
+use crate::doc_figures;
 
 /// Marsaglia's xorshift64: small, fast, and the same on every machine.
 struct XorShift(u64);
@@ -64,15 +65,9 @@ const NUMBERS: &[&str] = &[
     "-1e6",
 ];
 
-fn shipped(dir: &str, ext: &str) -> Vec<String> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("read dir")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == ext))
-        .collect();
-    files.sort();
-    files
+/// The texts of the files with extension `ext` in the crate's `dir`.
+fn shipped_texts(dir: &str, ext: &str) -> Vec<String> {
+    files(dir, ext)
         .iter()
         .map(|p| std::fs::read_to_string(p).expect("read"))
         .collect()
@@ -122,7 +117,7 @@ fn mutate(text: &str, rng: &mut XorShift) -> String {
 /// limit or an error, never a panic.
 #[test]
 fn mutated_jobs_resolve_to_bounded_shapes_or_errors() {
-    let jobs = shipped("jobs", "toml");
+    let jobs = shipped_texts("jobs", "toml");
     assert!(jobs.len() >= 5);
     let mut rng = XorShift(0x6a6f_6273);
     let (mut built, mut refused) = (0, 0);
@@ -268,7 +263,7 @@ fn tight_box(shape: &pfcam::geometry::Shape) -> Option<(Vec2, Vec2)> {
 /// order and on lines of the file, and its totals are never NaN.
 #[test]
 fn mutated_gcode_checks_to_ordered_finite_reports() {
-    let samples: Vec<String> = shipped("gcode-samples", "nc")
+    let samples: Vec<String> = shipped_texts("gcode-samples", "nc")
         .into_iter()
         .map(|s| s.lines().take(400).collect::<Vec<_>>().join("\n"))
         .collect();
@@ -376,7 +371,7 @@ fn grbl_responses_parse_the_same_with_blanks() {
 fn shapes_doc_font_figures_are_the_test_fonts() {
     use pfcam::geometry::font::{self, FontFile};
     use pfcam::geometry::shaping::shape_line;
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let data = root().join("tests/data");
     let file = FontFile::open(&data.join("DejaVuSerif.ttf"), 0).expect("DejaVu Serif");
     let face = file.face().expect("face");
     let cap = font::cap_height(&face, "DejaVu Serif").expect("cap height");
@@ -416,7 +411,7 @@ fn shapes_doc_font_figures_are_the_test_fonts() {
 }
 
 #[allow(dead_code)] // its `main` is the example's command line
-#[path = "../examples/segment_errors.rs"]
+#[path = "../../examples/segment_errors.rs"]
 mod segment_errors;
 
 /// docs/shapes.md's table of `Segment`'s measured errors: the first five rows

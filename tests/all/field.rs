@@ -4,7 +4,8 @@
 use pfcam::field::{self, mfs, Boundary, Field, Layout, Prepared};
 use pfcam::geometry::{Contour, Segment, Vec2};
 
-mod doc_figures;
+use crate::common::root;
+use crate::doc_figures;
 
 /// A fixed-seed generator (no rand crate needed).
 struct Lcg(u64);
@@ -244,7 +245,7 @@ fn shape_error(svg_path: &str, origin: [f64; 2]) -> f64 {
 /// `[shape]` table is `shape` (paths relative to the crate root).
 fn profile_field(shape: &str) -> (f64, usize) {
     let text = format!("[shape]\n{shape}\n[tool]\ndiameter = 3.175\n[operation]\ndepth = 1.0\n");
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = root();
     let job = pfcam::job::parse_job(&text, "shape", root).unwrap();
     let (shape_, _) = pfcam::pipeline::job_shape(&job, &mut |_| {}).unwrap();
     let tol = job.operation.tolerance * pfcam::pipeline::FLATTEN_FRACTION;
@@ -387,7 +388,7 @@ fn local_expansions_match_the_direct_sums() {
 }
 
 #[allow(dead_code)] // its `main` is the example's command line
-#[path = "../examples/ring_charges.rs"]
+#[path = "../../examples/ring_charges.rs"]
 mod ring_charges;
 
 /// docs/method.md §3 and §3a say what a ring with fewer charges leaves on its

@@ -4,7 +4,7 @@
 //! version in the first line, labels and estimates may change; code words are
 //! compared token by token, numbers within `GOLDEN_TOLERANCE` (0.001 mm), and X,
 //! Y, Z, F as modal state. Samples are rewritten only on purpose, with
-//! `PFCAM_BLESS=1 cargo test --release --test golden -- --include-ignored`; a
+//! `PFCAM_BLESS=1 cargo test --release --test all golden:: -- --include-ignored`; a
 //! missing sample is a failure, never created silently.
 
 use pfcam::gcode::{compare_gcode, write_gcode, GOLDEN_TOLERANCE};
@@ -13,11 +13,8 @@ use pfcam::toolpath::{Move, Section, Toolpath, Vec3};
 use std::fs;
 use std::path::{Path, PathBuf};
 
-mod doc_figures;
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
+use crate::common::{files, root, shipped};
+use crate::doc_figures;
 
 fn sample_path(name: &str) -> PathBuf {
     root().join("gcode-samples").join(format!("{name}.nc"))
@@ -33,7 +30,7 @@ fn programs(job: &Job) -> Vec<String> {
 
 /// The sample of a shipped job's first (roughing) program, without `.nc`.
 fn first_program(name: &str) -> String {
-    let job = load_job(&root().join(format!("jobs/{name}.toml"))).expect("job");
+    let job = load_job(&shipped(&format!("{name}.toml"))).expect("job");
     programs(&job)[0].clone()
 }
 
@@ -52,7 +49,7 @@ fn check_golden(name: &str, actual: &str) {
     let expected = match fs::read_to_string(&path) {
         Ok(t) => t,
         Err(e) => panic!(
-            "{}: {e}; generate it with PFCAM_BLESS=1 cargo test --release --test golden -- --include-ignored, and review it",
+            "{}: {e}; generate it with PFCAM_BLESS=1 cargo test --release --test all golden:: -- --include-ignored, and review it",
             path.display()
         ),
     };
@@ -151,13 +148,7 @@ fn comparator_catches_a_change_of_the_real_sample() {
 
 #[test]
 fn every_job_matches_its_sample() {
-    let mut jobs: Vec<PathBuf> = fs::read_dir(root().join("jobs"))
-        .expect("jobs/")
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    jobs.sort();
+    let jobs = files("jobs", "toml");
     assert!(!jobs.is_empty());
     let mut quoting = 0;
     for path in jobs {

@@ -9,16 +9,13 @@ use pfcam::simulate::{
     StockBox, ToolShape,
 };
 use std::path::Path;
-use std::process::Command;
 
-mod doc_figures;
-
-const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
+use crate::common::{self, files, root, scratch, seg_dist, test_data, text};
+use crate::doc_figures;
+use pfcam::geometry::Vec2;
 
 fn data(name: &str) -> String {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/simulate")
-        .join(name);
+    let p = test_data("simulate").join(name);
     std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
@@ -242,19 +239,6 @@ fn a_gouge_into_a_wall_is_measured_along_its_normal() {
     assert_eq!(found, vec![(4, Kind::Gouge), (5, Kind::Gouge)]);
 }
 
-/// Distance from (x, y) to the segment a–b: clamp the projection, an oracle
-/// independent of the simulator's quadratic.
-fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a[0] + t * dx - p[0]).hypot(a[1] + t * dy - p[1])
-}
-
 /// A square loop of tool centres 5..15 at z −1, entered by a plunge at (5, 5),
 /// shifted by (ox, oy).
 fn square_loop(ox: f64, oy: f64) -> String {
@@ -285,16 +269,16 @@ fn a_square_loop_gives_exactly_the_expected_heights() {
     let g = s.map.grid;
     assert_eq!((g.nx, g.ny), (200, 200));
     let corners = [
-        [5.0, 5.0],
-        [15.0, 5.0],
-        [15.0, 15.0],
-        [5.0, 15.0],
-        [5.0, 5.0],
+        Vec2::new(5.0, 5.0),
+        Vec2::new(15.0, 5.0),
+        Vec2::new(15.0, 15.0),
+        Vec2::new(5.0, 15.0),
+        Vec2::new(5.0, 5.0),
     ];
     let (mut cut, mut uncut) = (0, 0);
     for j in 0..g.ny {
         for i in 0..g.nx {
-            let c = [g.cx(i), g.cy(j)];
+            let c = Vec2::new(g.cx(i), g.cy(j));
             let d = corners
                 .windows(2)
                 .map(|w| seg_dist(c, w[0], w[1]))
@@ -378,17 +362,6 @@ fn translating_the_program_translates_the_stock() {
     assert_eq!(ra.max_axial.line, rb.max_axial.line);
 }
 
-fn samples() -> Vec<std::path::PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("gcode-samples");
-    let mut v: Vec<_> = std::fs::read_dir(dir)
-        .expect("gcode-samples")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "nc"))
-        .collect();
-    v.sort();
-    v
-}
-
 /// A sample's report; a finishing program (`X.finish.nc`) runs on what its
 /// roughing program (`X.rough.nc`) left, as on the machine.
 fn sample_report(p: &Path, opts: &SimOptions) -> pfcam::simulate::Report {
@@ -412,7 +385,7 @@ fn sample_report(p: &Path, opts: &SimOptions) -> pfcam::simulate::Report {
 fn every_sample_simulates() {
     let doc = doc_figures::read("docs/simulate.md");
     let mut bench_sample = false;
-    for p in samples() {
+    for p in files("gcode-samples", "nc") {
         let text = std::fs::read_to_string(&p).unwrap();
         let report = sample_report(&p, &SimOptions::default());
         let r = &report;
@@ -508,7 +481,7 @@ fn every_sample_simulates() {
 /// `tests/data/simulate/rapid-into-stock.nc`).
 #[test]
 fn every_sample_is_clean() {
-    for p in samples() {
+    for p in files("gcode-samples", "nc") {
         let r = sample_report(&p, &SimOptions::default());
         assert!(r.is_clean(), "{}: {:?}", p.display(), r.findings.first());
     }
@@ -516,16 +489,23 @@ fn every_sample_is_clean() {
 
 #[test]
 fn the_cli_exits_1_on_a_collision_and_writes_the_png() {
-    let dir = std::env::temp_dir().join(format!("pfcam-simulate-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/simulate/rapid-into-stock.nc");
+    let dir = scratch("simulate", "collision");
+    let file = test_data("simulate/rapid-into-stock.nc");
     let png = dir.join("stock.png");
-    let out = Command::new(PFCAM)
-        .args(["simulate", file.to_str().unwrap(), "--tool-diameter", "3"])
-        .args(["--stock", "0,0,30,30,0", "--png", png.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let (file, png_arg) = (file.to_str().unwrap(), png.to_str().unwrap());
+    let out = common::pfcam(
+        &[
+            "simulate",
+            file,
+            "--tool-diameter",
+            "3",
+            "--stock",
+            "0,0,30,30,0",
+            "--png",
+            png_arg,
+        ],
+        root(),
+    );
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(1), "{stdout}");
     assert!(
@@ -538,17 +518,10 @@ fn the_cli_exits_1_on_a_collision_and_writes_the_png() {
     ));
     // A file pfcam did not write is not replaced without --force (exit 3).
     std::fs::write(&png, b"mine").unwrap();
-    let out = Command::new(PFCAM)
-        .args([
-            "simulate",
-            file.to_str().unwrap(),
-            "--tool-diameter",
-            "3",
-            "--png",
-        ])
-        .arg(&png)
-        .output()
-        .unwrap();
+    let out = common::pfcam(
+        &["simulate", file, "--tool-diameter", "3", "--png", png_arg],
+        root(),
+    );
     assert_eq!(out.status.code(), Some(3));
     assert_eq!(std::fs::read(&png).unwrap(), b"mine");
     // A clean program: exit 0, and --json parses.
@@ -558,25 +531,17 @@ fn the_cli_exits_1_on_a_collision_and_writes_the_png() {
         "G21 G90\nG0 Z5\nG0 X10 Y10\nG0 Z0.5\nG1 X20 Z-1 F100\nM2\n",
     )
     .unwrap();
-    let out = Command::new(PFCAM)
-        .args([
-            "simulate",
-            clean.to_str().unwrap(),
-            "--tool-diameter",
-            "3",
-            "--json",
-        ])
-        .output()
-        .unwrap();
+    let clean = clean.to_str().unwrap();
+    let out = common::pfcam(
+        &["simulate", clean, "--tool-diameter", "3", "--json"],
+        root(),
+    );
     assert_eq!(out.status.code(), Some(0));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["clean"], true);
     assert_eq!(v["report"]["straight_plunges"], 0);
     // No tool anywhere: an error naming the flag.
-    let out = Command::new(PFCAM)
-        .args(["simulate", clean.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let out = common::pfcam(&["simulate", clean], root());
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--tool-diameter"));
     let _ = std::fs::remove_dir_all(&dir);
@@ -588,7 +553,7 @@ fn the_cli_exits_1_on_a_collision_and_writes_the_png() {
 /// be millimetres off).
 #[test]
 fn a_job_measures_the_stock_against_its_part() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = root();
     let job = pfcam::job::load_job(&root.join("jobs/q-sign.toml")).unwrap();
     let facts = pfcam::simulate::job_facts(&job, 0.2).unwrap();
     // The job's two programs, rough then finish, as on the machine.
@@ -624,13 +589,8 @@ fn a_job_measures_the_stock_against_its_part() {
 /// stated scallop (plus the tolerance) above it.
 #[test]
 fn every_job_sample_is_within_its_part() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut jobs: Vec<_> = std::fs::read_dir(root.join("jobs"))
-        .unwrap()
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    jobs.sort();
+    let root = root();
+    let jobs = files("jobs", "toml");
     assert!(jobs.len() >= 7, "{jobs:?}");
     let doc = doc_figures::read("docs/simulate.md");
     let mut quoted_runs = 0;
@@ -709,21 +669,10 @@ fn every_job_sample_is_within_its_part() {
     );
 }
 
-/// Runs the pfcam binary; (exit code, stdout, stderr).
+/// Runs the pfcam binary in the crate root; (exit code, stdout, stderr).
 fn pfcam(args: &[&str]) -> (Option<i32>, String, String) {
-    let out = Command::new(PFCAM).args(args).output().unwrap();
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-/// A scratch directory for one test.
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("pfcam-simulate-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    let out = common::pfcam(args, root());
+    (out.status.code(), text(&out.stdout), text(&out.stderr))
 }
 
 /// One straight G1 at depth 1 along y = 10 across the 20 mm stock, the tool
@@ -807,7 +756,7 @@ fn a_ball_cuts_the_round_groove_computed_by_hand() {
 /// stays `end mill`, and `--json` says the shape and corner.
 #[test]
 fn the_cli_reads_the_three_tool_lines_of_a_header() {
-    let dir = scratch("headers");
+    let dir = scratch("simulate", "headers");
     let tail = "feed 800, plunge 200 mm/min, spindle 18000 rpm";
     for (line, shape, d, corner, summary) in [
         (
@@ -1067,8 +1016,8 @@ fn a_finish_program_after_the_rough_leaves_less_than_the_rough_alone() {
 /// the rough, a collision before it).
 #[test]
 fn the_cli_runs_several_files_in_order() {
-    let dir = scratch("several");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/simulate");
+    let dir = scratch("simulate", "several");
+    let root = test_data("simulate");
     let rough = root.join("pocket.rough.nc");
     let finish = root.join("pocket.finish.nc");
     let (rough, finish) = (rough.to_str().unwrap(), finish.to_str().unwrap());
@@ -1260,11 +1209,8 @@ fn the_docs_example_of_two_programs_is_what_the_cli_prints() {
     let quoted = doc_figures::after(&doc, "docs/simulate.md", &format!("$ {command}\n"));
     let quoted = &quoted[quoted.find('\n').unwrap() + 1..];
     let quoted = &quoted[..quoted.find("```").expect("the block's end")];
-    let out = Command::new(PFCAM)
-        .args(command.split(' ').skip(1))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
+    let args: Vec<&str> = command.split(' ').skip(1).collect();
+    let out = common::pfcam(&args, root());
     assert_eq!(out.status.code(), Some(0));
     assert_eq!(
         String::from_utf8_lossy(&out.stdout),
@@ -1332,7 +1278,7 @@ fn skipping_the_start_disk_changes_no_cell() {
 /// linker's `G1 Z` descents into what only a flat end mill cleared).
 #[test]
 fn the_flat_mould_with_curved_ends_reads_the_plunges_the_doc_states() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = root();
     let text = std::fs::read_to_string(root.join("gcode-samples/mfs-mould.rough.nc")).unwrap();
     let doc = doc_figures::read("docs/simulate.md");
     let stated =

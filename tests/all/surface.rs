@@ -6,31 +6,21 @@
 
 use pfcam::field::isolines::Grid;
 use pfcam::geometry::{polygon_winding_number, Vec2};
-use pfcam::job::{load_job, parse_job, Job, OperationKind};
+use pfcam::job::{parse_job, Job, OperationKind};
 use pfcam::surface::{
     edge_use_counts, is_watertight, job_surface, read_stl, stl_bytes, weld, JobSurface, Mesh,
     SurfaceOptions,
 };
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
-mod doc_figures;
-
-const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
+use crate::common::{pfcam, scratch, shipped_jobs};
+use crate::doc_figures;
 
 /// Every job in jobs/ of the given kind (the directory is read, not listed here).
 fn jobs_of(kind: OperationKind) -> Vec<Job> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs");
-    let mut paths: Vec<PathBuf> = fs::read_dir(&dir)
-        .expect("jobs/")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
-    paths
-        .iter()
-        .map(|p| load_job(p).unwrap_or_else(|e| panic!("{}: {e}", p.display())))
+    shipped_jobs()
+        .into_iter()
         .filter(|j| j.operation.kind == kind)
         .collect()
 }
@@ -273,7 +263,7 @@ struct Figures {
 impl Figures {
     /// README.md and docs/method.md §9 ("The modelled surface") quote
     /// mfs-sign's mesh, q-sign's volume and the letter I's: the figures
-    /// there are this job's (`cargo test --release --test surface --
+    /// there are this job's (`cargo test --release --test all surface:: --
     /// --nocapture` prints them).
     fn check_the_docs(&self, name: &str) {
         let method = doc_figures::read("docs/method.md");
@@ -413,25 +403,9 @@ fn the_stock_is_the_one_pfcam_run_cuts() {
     assert_eq!((js.surface.stock_lo, js.surface.stock_hi), (lo, hi));
 }
 
-/// A fresh, empty directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("surface-{name}"));
-    let _ = fs::remove_dir_all(&d);
-    fs::create_dir_all(&d).expect("create scratch dir");
-    d
-}
-
-fn pfcam(args: &[&str], dir: &Path) -> std::process::Output {
-    Command::new(PFCAM)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run pfcam")
-}
-
 #[test]
 fn the_command_writes_its_own_files_and_refuses_foreign_ones() {
-    let dir = scratch("overwrite");
+    let dir = scratch("surface", "overwrite");
     fs::write(dir.join("i.toml"), LETTER_I).expect("job");
     // A new file; the summary line names the counts.
     let o = pfcam(&["surface", "i.toml", "-o", "i.stl", "-q"], &dir);
@@ -474,7 +448,7 @@ fn the_command_writes_its_own_files_and_refuses_foreign_ones() {
 
 #[test]
 fn bad_jobs_write_nothing() {
-    let dir = scratch("bad");
+    let dir = scratch("surface", "bad");
     let cases = [
         (
             "profile.toml",

@@ -7,6 +7,8 @@ use pfcam::pipeline::{self, RunOutput};
 use pfcam::simulate::verify_program;
 use std::path::Path;
 
+use crate::common::shipped;
+
 fn run(job: &Job) -> RunOutput {
     pipeline::run(job, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -48,7 +50,7 @@ fn assert_simulation_clean(job: &Job, out: &RunOutput) {
 
 #[test]
 fn mfs_sign_boss_levels_are_gouge_free_ramped_and_reported() {
-    let job = load_job(Path::new("jobs/mfs-sign.toml")).unwrap();
+    let job = load_job(&shipped("mfs-sign.toml")).unwrap();
     let out = run(&job);
     assert_eq!(out.levels.len(), 55, "the shipped sign has 55 levels");
     assert_eq!(out.toolpath.sections.len(), 55);

@@ -4,13 +4,12 @@
 //! after a marker), computes the value, and asserts that the value written the
 //! way the doc writes it (same decimals, or same digits in e-notation) is the
 //! figure. Nothing here knows an expected value: the doc is the expectation.
-#![allow(dead_code)] // each test binary uses its own part of this module
 
-use std::path::Path;
+use crate::common::root;
 
 /// The text of a doc, `path` relative to the crate root (`docs/method.md`).
 pub fn read(path: &str) -> String {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+    let p = root().join(path);
     std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
