@@ -3,14 +3,14 @@
 //! harmonicity of the patch, exact reproduction of harmonic polynomials, the
 //! even-degree condition and the height range.
 
-mod doc_figures;
+use crate::doc_figures;
 
 use pfcam::sources::harmonic_bezier::polynomials::{self, bernstein_net, harmonic_basis};
 use pfcam::sources::harmonic_bezier::{
     mould, solve_mould, Form, HarmonicError, HarmonicPatch, Mould, MAX_DEGREE, ROW_SUM_LIMIT,
 };
 
-const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
+use crate::common::PFCAM;
 
 /// Every (degree, form) pair the module accepts.
 fn all_moulds() -> Vec<Mould> {

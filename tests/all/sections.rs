@@ -3,13 +3,13 @@
 //! shape's own (analytic) area, a pixel count of {u ≥ s}, and the binary's
 //! files and errors.
 
+use crate::common::pfcam;
 use pfcam::geometry::Vec2;
 use pfcam::job::{parse_job, Job};
 use pfcam::levels::sections::{net_area, Sections};
 use pfcam::pipeline;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 fn job(name: &str, body: &str) -> Job {
     parse_job(body, name, Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
@@ -233,21 +233,8 @@ fn bbox(polys: &[Vec<Vec2>]) -> (Vec2, Vec2) {
     })
 }
 
-const PFCAM: &str = env!("CARGO_BIN_EXE_pfcam");
-
 fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("sections-{name}"));
-    let _ = fs::remove_dir_all(&d);
-    fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn pfcam(args: &[&str], dir: &Path) -> Output {
-    Command::new(PFCAM)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
+    crate::common::scratch("sections", name)
 }
 
 #[test]
