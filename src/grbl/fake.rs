@@ -3,7 +3,7 @@
 //! reports, feed hold, soft reset) and records what pfcam sent. No pty, no thread.
 //!
 //! It answers one line per millisecond at most, so the streamer keeps its receive
-//! buffer full and the character counting is really exercised. `tests/all/grbl.rs`
+//! buffer full and the character counting is really exercised. `tests/grbl/main.rs`
 //! has the full emulator (planner, alarms, overrides) on a pseudo-terminal.
 
 use std::collections::VecDeque;

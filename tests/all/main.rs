@@ -37,7 +37,6 @@ mod field;
 mod field_robust;
 mod finish;
 mod golden;
-mod grbl;
 mod harmonic_bezier;
 mod inputs;
 mod levels;

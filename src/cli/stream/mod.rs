@@ -4,7 +4,7 @@
 //! prints nothing and reports through [`pfcam::grbl::Event`]s and its result.
 //!
 //! This module uses only `pfcam::` and outside crates (no `crate::`), so that
-//! `tests/all/grbl.rs` can include it and check the exit codes and messages.
+//! `tests/grbl/main.rs` can include it and check the exit codes and messages.
 
 mod advice;
 mod exit;
