@@ -19,5 +19,6 @@ pub mod pipeline;
 pub mod preview;
 pub mod report;
 pub mod simulate;
+pub mod sources;
 pub mod surface;
 pub mod toolpath;
