@@ -1,1 +1,2 @@
 pub mod pde;
+pub mod pde6;

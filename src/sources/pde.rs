@@ -174,23 +174,31 @@ fn mode_matrix(lambda: f64) -> Matrix4<f64> {
     ])
 }
 
-/// Fourier coefficients of the four conditions at mode n: rows X(0), X(1), Xᵤ(0),
-/// Xᵤ(1), columns x, y, z, for the cos and the sin part. c = (2/K) Σ fₖ cos nvₖ
-/// (1/K at n = 0 and at the Nyquist mode n = K/2), likewise for sin.
-fn fourier(curves: &[&[[f64; 3]]; 4], n: usize) -> (Matrix4x3<f64>, Matrix4x3<f64>) {
-    let k = curves[0].len();
+/// Fourier coefficients of one sampled curve at mode n, (cos part, sin part):
+/// c = (2/K) Σ fₖ cos nvₖ (1/K at n = 0 and at the Nyquist mode n = K/2), likewise
+/// for sin.
+pub(super) fn fourier_curve(curve: &[[f64; 3]], n: usize) -> (RowVector3<f64>, RowVector3<f64>) {
+    let k = curve.len();
     let scale = if n == 0 || 2 * n == k { 1.0 } else { 2.0 } / k as f64;
-    let mut c = Matrix4x3::zeros();
-    let mut s = Matrix4x3::zeros();
-    for j in 0..k {
+    let (mut c, mut s) = (RowVector3::zeros(), RowVector3::zeros());
+    for (j, p) in curve.iter().enumerate() {
         // n·j mod K keeps the angle in [0, 2π): exact samples for large n·j.
         let t = std::f64::consts::TAU * ((n * j) % k) as f64 / k as f64;
         let (st, ct) = t.sin_cos();
-        for (row, curve) in curves.iter().enumerate() {
-            let f = RowVector3::from(curve[j]);
-            c.set_row(row, &(c.row(row) + f * (scale * ct)));
-            s.set_row(row, &(s.row(row) + f * (scale * st)));
-        }
+        c += RowVector3::from(*p) * (scale * ct);
+        s += RowVector3::from(*p) * (scale * st);
+    }
+    (c, s)
+}
+
+/// The four conditions' coefficients at mode n: rows X(0), X(1), Xᵤ(0), Xᵤ(1),
+/// columns x, y, z, for the cos and the sin part.
+fn fourier(curves: &[&[[f64; 3]]; 4], n: usize) -> (Matrix4x3<f64>, Matrix4x3<f64>) {
+    let (mut c, mut s) = (Matrix4x3::zeros(), Matrix4x3::zeros());
+    for (row, curve) in curves.iter().enumerate() {
+        let (cr, sr) = fourier_curve(curve, n);
+        c.set_row(row, &cr);
+        s.set_row(row, &sr);
     }
     (c, s)
 }
