@@ -2,6 +2,7 @@
 //! `cargo run --release --example pde_figures`.
 
 use pfcam::sources::pde::{BoundaryCurves, PdeSurface};
+use pfcam::sources::pde6::{BoundaryCurves6, PdeSurface6};
 use std::f64::consts::TAU;
 
 fn ring(k: usize, f: impl Fn(f64) -> [f64; 3]) -> Vec<[f64; 3]> {
@@ -73,4 +74,24 @@ fn main() {
         })
         .fold(0.0, f64::max);
     println!("  {e:.2e}");
+    println!("sixth order, same vase, Xuu = 0 at both ends, K = 64:");
+    println!("  a    N   max error X | Xu / w | Xuu / w²  (w = a (N + 1))");
+    let (c4, _) = vase(64);
+    let zero = vec![[0.0; 3]; 64];
+    let c6 = BoundaryCurves6 {
+        curves: [c4.x0, c4.x1, c4.xu0, c4.xu1, zero.clone(), zero],
+    };
+    for (a, n) in [(1.0, 3), (0.5, 6), (5.0, 20)] {
+        let s = PdeSurface6::solve(&c6, a, n).expect("valid curves");
+        let w: f64 = a * (n + 1) as f64;
+        let mut e = [0.0f64; 3];
+        for j in 0..64 {
+            let v = TAU * j as f64 / 64.0;
+            for (row, curve) in c6.curves.iter().enumerate() {
+                let d = dist(s.eval(row / 2, (row % 2) as f64, v), curve[j]);
+                e[row / 2] = e[row / 2].max(d / w.powi((row / 2) as i32));
+            }
+        }
+        println!("  {a:<4} {n:<3} {:.2e} | {:.2e} | {:.2e}", e[0], e[1], e[2]);
+    }
 }
