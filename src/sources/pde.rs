@@ -21,8 +21,9 @@
 //! but every function stays in [−1, 1]·max(1, u) on u ∈ [0, 1] (the paper's form
 //! overflows f64 once a·N passes about 30 and loses the conditions well before).
 //! 004's (7) drops the factor u from the second and fourth remainder terms; 002's
-//! (12) has them, and so does this code. Neither paper gives w; w = a (N + 1), the
-//! first frequency not carried by F, is Bloor and Wilson's choice.
+//! (12) has them, and so does this code. Neither paper gives w; w = a (N + 1) is the
+//! first frequency not carried by F (attributed to Bloor and Wilson's spectral
+//! method, whose paper is not among the seeds: unchecked).
 //!
 //! The remainder rᵢ(v) is solved pointwise in v from the conditions' residual
 //! (given minus what the truncated series F meets). The residual is known at the
