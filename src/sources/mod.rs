@@ -3,3 +3,5 @@
 //! that makes one a job's shape lives elsewhere.
 
 pub mod harmonic_bezier;
+pub mod pde;
+pub mod pde6;

@@ -1,0 +1,97 @@
+//! Measured figures for docs/method.md, "Bloor–Wilson PDE surfaces (Ugail)":
+//! `cargo run --release --example pde_figures`.
+
+use pfcam::sources::pde::{BoundaryCurves, PdeSurface};
+use pfcam::sources::pde6::{BoundaryCurves6, PdeSurface6};
+use std::f64::consts::TAU;
+
+fn ring(k: usize, f: impl Fn(f64) -> [f64; 3]) -> Vec<[f64; 3]> {
+    (0..k).map(|j| f(TAU * j as f64 / k as f64)).collect()
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// A squircle (|x|⁴ + |y|⁴ = 10⁴, not band-limited) at z = 0 to a circle of radius
+/// 6 at z = 15, Xᵤ = (0, 0, 15) at both ends.
+fn vase(k: usize) -> (BoundaryCurves, impl Fn(f64) -> [f64; 3]) {
+    let squircle = |v: f64| {
+        let (s, c) = v.sin_cos();
+        let r = 10.0 / (c.powi(4) + s.powi(4)).powf(0.25);
+        [r * c, r * s, 0.0]
+    };
+    let curves = BoundaryCurves {
+        x0: ring(k, squircle),
+        x1: ring(k, |v| [6.0 * v.cos(), 6.0 * v.sin(), 15.0]),
+        xu0: ring(k, |_| [0.0, 0.0, 15.0]),
+        xu1: ring(k, |_| [0.0, 0.0, 15.0]),
+    };
+    (curves, squircle)
+}
+
+fn main() {
+    println!("squircle→circle vase, a = 1:");
+    println!("  K   N   max|X(0,vk)-x0| max|X(0,v)-x0(v)| (997 v)  |R| at u=0, ½");
+    for (k, n) in [(64, 4), (64, 8), (256, 8), (256, 20)] {
+        let (curves, squircle) = vase(k);
+        let s = PdeSurface::solve(&curves, 1.0, n).expect("valid curves");
+        let f = s.without_remainder();
+        let at_samples = curves
+            .x0
+            .iter()
+            .enumerate()
+            .map(|(j, p)| dist(s.point(0.0, TAU * j as f64 / k as f64), *p));
+        let between = (0..997).map(|i| {
+            let v = TAU * (i as f64 + 0.5) / 997.0;
+            dist(s.point(0.0, v), squircle(v))
+        });
+        let gap = |u: f64| {
+            (0..k)
+                .map(|j| TAU * j as f64 / k as f64)
+                .map(|v| dist(s.point(u, v), f.point(u, v)))
+                .fold(0.0, f64::max)
+        };
+        println!(
+            "  {k:<3} {n:<3} {:<15.2e} {:<23.2e} {:.3} mm, {:.3} mm",
+            at_samples.fold(0.0, f64::max),
+            between.fold(0.0, f64::max),
+            gap(0.0),
+            gap(0.5)
+        );
+    }
+    println!("a = 5, N = 20 (a·N = 100), K = 64: max condition error at the samples");
+    let (curves, _) = vase(64);
+    let s = PdeSurface::solve(&curves, 5.0, 20).expect("valid curves");
+    let e = (0..64)
+        .map(|j| TAU * j as f64 / 64.0)
+        .map(|v| {
+            dist(
+                s.point(0.0, v),
+                curves.x0[(v / TAU * 64.0).round() as usize],
+            )
+            .max(dist(s.du(1.0, v), [0.0, 0.0, 15.0]))
+        })
+        .fold(0.0, f64::max);
+    println!("  {e:.2e}");
+    println!("sixth order, same vase, Xuu = 0 at both ends, K = 64:");
+    println!("  a    N   max error X | Xu / w | Xuu / w²  (w = a (N + 1))");
+    let (c4, _) = vase(64);
+    let zero = vec![[0.0; 3]; 64];
+    let c6 = BoundaryCurves6 {
+        curves: [c4.x0, c4.x1, c4.xu0, c4.xu1, zero.clone(), zero],
+    };
+    for (a, n) in [(1.0, 3), (0.5, 6), (5.0, 20)] {
+        let s = PdeSurface6::solve(&c6, a, n).expect("valid curves");
+        let w: f64 = a * (n + 1) as f64;
+        let mut e = [0.0f64; 3];
+        for j in 0..64 {
+            let v = TAU * j as f64 / 64.0;
+            for (row, curve) in c6.curves.iter().enumerate() {
+                let d = dist(s.eval(row / 2, (row % 2) as f64, v), curve[j]);
+                e[row / 2] = e[row / 2].max(d / w.powi((row / 2) as i32));
+            }
+        }
+        println!("  {a:<4} {n:<3} {:.2e} | {:.2e} | {:.2e}", e[0], e[1], e[2]);
+    }
+}
