@@ -171,7 +171,7 @@ fn drop_tips(
 /// tips would pass below the drop-cutter's height by more than a quarter of
 /// the tolerance (the drop height is not linear between samples, above all
 /// where the cutter turns round a corner or rides up a wall). A chord is
-/// tested at its middle, and a steep one at [`chord_fractions`]' points
+/// tested at its middle, and a steep one at the points of [`chord_points`]
 /// along it (a ball reaching the top of a wall late in the move passes the
 /// middle in the clear); it is split at its worst point and each half tested
 /// again, at most [`CHORD_DEPTH`] deep.
