@@ -538,34 +538,17 @@ fn draw_and_verify(
     // independent: rayon runs them side by side (a rayon join, not an OS
     // thread: a worker waiting in it keeps taking work, where a plain thread
     // join inside a batch's rayon jobs deadlocked the pool).
-    let (svg, (gcode, verdict)) = rayon::join(
+    let (svg, checked) = rayon::join(
         || preview_svg(job, output, report, &opts),
-        || {
-            let gcode = write_gcode_on(&output.toolpath, job, output.stock);
-            // The limits, before the program's own simulation and before any file.
-            let limits = gcode.as_ref().ok().and_then(|g| {
-                let time_s = report.programs.first().map_or(0.0, |p| p.time_s);
-                pfcam::estimate::check_program(time_s, g.len(), &job.machine).err()
-            });
-            let verdict = match (&gcode, limits) {
-                (Ok(g), None) => Some(Ok(pfcam::simulate::verify_program(
-                    g,
-                    job.tool.diameter,
-                    job.tool.stepdown,
-                ))),
-                (_, Some(e)) => Some(Err(e)),
-                (Err(_), None) => None,
-            };
-            (gcode, verdict)
-        },
+        || write_and_simulate(job, output, report),
     );
-    let verdict = match verdict {
-        Some(Err(e)) => {
+    let (gcode, verdict) = match checked {
+        Ok(done) => done,
+        Err(limit) => {
             progress.finish();
-            return Err(anyhow!(e)).with_context(|| format!("{}: nothing written", path.display()));
+            return Err(anyhow!(limit))
+                .with_context(|| format!("{}: nothing written", path.display()));
         }
-        Some(Ok(v)) => Some(v),
-        None => None,
     };
     progress.event(Progress::Step);
     progress.finish();
@@ -577,6 +560,34 @@ fn draw_and_verify(
             .with_context(|| format!("{}: nothing written", path.display()))?;
     }
     Ok((svg, gcode))
+}
+
+/// What a written program's own simulation says: `Ok(Err(_))` names the
+/// unsafe moves, `Err(_)` is a simulation that could not run.
+type Verdict = Result<Result<(), pfcam::simulate::UnsafeProgram>, pfcam::simulate::SimError>;
+
+/// The roughing program's G-code and, once it is written, its simulation;
+/// `Err` when the program passes the machine's limits (checked before the
+/// simulation and before any file).
+fn write_and_simulate(
+    job: &Job,
+    output: &RunOutput,
+    report: &RunReport,
+) -> std::result::Result<
+    (
+        std::result::Result<String, pfcam::gcode::GcodeError>,
+        Option<Verdict>,
+    ),
+    pfcam::estimate::GuardError,
+> {
+    let gcode = write_gcode_on(&output.toolpath, job, output.stock);
+    let Ok(g) = &gcode else {
+        return Ok((gcode, None));
+    };
+    let time_s = report.programs.first().map_or(0.0, |p| p.time_s);
+    pfcam::estimate::check_program(time_s, g.len(), &job.machine)?;
+    let verdict = pfcam::simulate::verify_program(g, job.tool.diameter, job.tool.stepdown);
+    Ok((gcode, Some(verdict)))
 }
 
 /// The finishing program `finish` of `job` (its tool's job `fj`) on the
