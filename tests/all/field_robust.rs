@@ -10,27 +10,13 @@ use pfcam::field::{self, Prepared};
 use pfcam::geometry::{glyphs, regions_from_contours, Contour, Shape, Vec2};
 use pfcam::pipeline::boundary_for;
 
+use crate::common::Rng;
+
 /// Charges per region. At the pipeline's first N (110 per region) the error
 /// depends on where a contour starts: the paper's H errs 9.4e-3 from its own
 /// start and up to 6.5e-2 (6.9×) from another; an L, 3.8×. At 300 per region,
 /// where the pipeline's jobs solve, the worst of the 200 cases is 1.68×.
 const N_PER_REGION: usize = 300;
-
-/// A small deterministic generator (xorshift), so failures reproduce.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
 
 fn polygon(pts: &[(f64, f64)]) -> Contour {
     let pts: Vec<Vec2> = pts.iter().map(|&(x, y)| Vec2::new(x, y)).collect();

@@ -10,7 +10,7 @@ use pfcam::sources::harmonic_bezier::{
     mould, solve_mould, Form, HarmonicError, HarmonicPatch, Mould, MAX_DEGREE, ROW_SUM_LIMIT,
 };
 
-use crate::common::PFCAM;
+use crate::common::{Rng, PFCAM};
 
 /// Every (degree, form) pair the module accepts.
 fn all_moulds() -> Vec<Mould> {
@@ -24,20 +24,6 @@ fn all_moulds() -> Vec<Mould> {
             forms.into_iter().map(move |f| mould(n, f).unwrap())
         })
         .collect()
-}
-
-/// A fixed-seed xorshift in [−1, 1).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-    fn unit(&mut self) -> f64 {
-        0.5 * (self.next() + 1.0)
-    }
 }
 
 fn binomial(n: usize, k: usize) -> f64 {
@@ -176,8 +162,8 @@ fn random_patches(rng: &mut Rng) -> Vec<HarmonicPatch> {
     let mut out = Vec::new();
     for m in all_moulds() {
         let n = m.degree;
-        let row0: Vec<f64> = (0..=n).map(|_| 10.0 * rng.next()).collect();
-        let mut row1: Vec<f64> = (0..=n).map(|_| 10.0 * rng.next()).collect();
+        let row0: Vec<f64> = (0..=n).map(|_| 10.0 * rng.range(-1.0, 1.0)).collect();
+        let mut row1: Vec<f64> = (0..=n).map(|_| 10.0 * rng.range(-1.0, 1.0)).collect();
         if m.form == Form::Square && n % 2 == 0 {
             // Move row1's last point so that Δⁿrow1 = Δⁿrow0.
             let diff = |r: &[f64]| -> f64 {
@@ -200,7 +186,7 @@ fn patches_are_harmonic_and_their_derivatives_are_right() {
     let mut rng = Rng(0x2545_f491_4f6c_dd1d);
     for p in random_patches(&mut rng) {
         for _ in 0..20 {
-            let (u, v) = (rng.unit(), rng.unit());
+            let (u, v) = (rng.next(), rng.next());
             let d = p.param_derivatives(u, v);
             let size = d.h_uu.abs().max(d.h_vv.abs()).max(1.0);
             assert!(
@@ -287,7 +273,7 @@ fn the_cubic_u3_minus_3uv2() {
     .unwrap();
     let mut rng = Rng(7);
     for _ in 0..50 {
-        let (x, y) = (rng.unit(), rng.unit());
+        let (x, y) = (rng.next(), rng.next());
         let (u, v) = (y, x);
         let expect = u * u * u - 3.0 * u * v * v;
         assert!((p.height(x, y) - expect).abs() < 1e-14);
@@ -320,7 +306,7 @@ fn even_square_patches_need_equal_nth_differences() {
     let raised = HarmonicPatch::new(4, Form::Raised, [40.0, 40.0], &row0, &row1).unwrap();
     let mut rng = Rng(11);
     for _ in 0..30 {
-        let (x, y) = (40.0 * rng.unit(), 40.0 * rng.unit());
+        let (x, y) = (40.0 * rng.next(), 40.0 * rng.next());
         assert!((sq.height(x, y) - raised.height(x, y)).abs() < 1e-9);
     }
 }
@@ -559,7 +545,7 @@ fn the_range_of_the_worked_example_is_its_closed_form() {
     .unwrap();
     let mut rng = Rng(5);
     for _ in 0..20 {
-        let (u, v) = (rng.unit(), rng.unit());
+        let (u, v) = (rng.next(), rng.next());
         let exact = 10.0 * (u * u * u - 3.0 * u * v * v) + 30.0 * u * v - 10.0 * u;
         assert!((p.height(40.0 * v, 40.0 * u) - exact).abs() < 1e-13);
     }

@@ -15,31 +15,8 @@ use pfcam::grbl::protocol::{parse_response, Response, StatusReport, WorkOffset};
 use pfcam::job::{echo, extent, parse_job};
 use std::path::Path;
 
-use crate::common::{files, root};
+use crate::common::{files, root, Rng};
 use crate::doc_figures;
-
-/// Marsaglia's xorshift64: small, fast, and the same on every machine.
-struct XorShift(u64);
-
-impl XorShift {
-    fn next(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.0 = x;
-        x
-    }
-
-    /// Uniform in 0..n (n ≥ 1; the modulo bias is irrelevant here).
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-
-    fn pick<T: Copy>(&mut self, items: &[T]) -> T {
-        items[self.below(items.len())]
-    }
-}
 
 /// Numbers a careless or hostile input holds.
 const NUMBERS: &[&str] = &[
@@ -75,7 +52,7 @@ fn shipped_texts(dir: &str, ext: &str) -> Vec<String> {
 
 /// `text` with one random change: a number replaced by an extreme, a byte
 /// range dropped, a line repeated elsewhere, or a junk character inserted.
-fn mutate(text: &str, rng: &mut XorShift) -> String {
+fn mutate(text: &str, rng: &mut Rng) -> String {
     let mut s = text.to_string();
     let boundary = |s: &str, at: usize| (at..=s.len()).find(|&i| s.is_char_boundary(i));
     let Some(at) = boundary(&s, rng.below(s.len() + 1)) else {
@@ -119,7 +96,7 @@ fn mutate(text: &str, rng: &mut XorShift) -> String {
 fn mutated_jobs_resolve_to_bounded_shapes_or_errors() {
     let jobs = shipped_texts("jobs", "toml");
     assert!(jobs.len() >= 5);
-    let mut rng = XorShift(0x6a6f_6273);
+    let mut rng = Rng(0x6a6f_6273);
     let (mut built, mut refused) = (0, 0);
     for case in 0..3000 {
         let mut text = jobs[rng.below(jobs.len())].clone();
@@ -175,7 +152,7 @@ fn mutated_jobs_resolve_to_bounded_shapes_or_errors() {
 /// error is an SVG error at a place inside the data, or a contour error.
 #[test]
 fn random_svg_paths_scale_exactly_or_fail_with_a_place() {
-    let mut rng = XorShift(0x7376_6770);
+    let mut rng = Rng(0x7376_6770);
     let tokens = [
         "M", "m", "L", "l", "H", "h", "V", "v", "C", "c", "S", "s", "Q", "q", "T", "t", "A", "a",
         "Z", "z", " ", ",", "-", ".", "e", "+", "é", "\n",
@@ -267,7 +244,7 @@ fn mutated_gcode_checks_to_ordered_finite_reports() {
         .into_iter()
         .map(|s| s.lines().take(400).collect::<Vec<_>>().join("\n"))
         .collect();
-    let mut rng = XorShift(0x6763_6f64);
+    let mut rng = Rng(0x6763_6f64);
     let mut with_errors = 0;
     for case in 0..2000 {
         let mut text = samples[rng.below(samples.len())].clone();
@@ -321,7 +298,7 @@ fn grbl_responses_parse_the_same_with_blanks() {
         "<Hold:0|WPos:1.000,2.000,3.000|Bf:14,100|FS:0,0|Pn:XZ>",
         "$110=1000.000",
     ];
-    let mut rng = XorShift(0x6772_626c);
+    let mut rng = Rng(0x6772_626c);
     let alphabet: Vec<char> = "<>|:,.-0123456789okerrorALARMIdleRunMPosWPosWCOBfFSOvPn[]$=\r é"
         .chars()
         .collect();

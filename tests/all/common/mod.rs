@@ -11,11 +11,14 @@
 //! - [`oracle`]: geometry measured independently of pfcam, to hold pfcam's to:
 //!   `seg_dist`, `sample_pline` (cavalier_contours' polylines), and a shape's
 //!   `area`, `holes` and `perimeter`.
+//! - [`rng`]: `Rng`, a fixed-seed xorshift (`next`, `range`, `below`, `pick`).
 
 pub mod bin;
 pub mod files;
 pub mod oracle;
+pub mod rng;
 
 pub use bin::{pfcam, scratch, text, PFCAM};
 pub use files::{files, root, shipped, shipped_jobs, test_data};
 pub use oracle::{area, holes, perimeter, sample_pline, seg_dist};
+pub use rng::Rng;
