@@ -89,7 +89,9 @@ impl SectionView {
             .iter()
             .flat_map(|r| r.points.iter().map(|p| Vec2::new(p[0], p[1])))
             .collect();
-        let (lo, hi) = bbox(&pts);
+        // The unit square at the origin when there is nothing to draw.
+        let (lo, hi) = crate::geometry::polygons_bbox(std::slice::from_ref(&pts))
+            .unwrap_or((Vec2::ZERO, Vec2::new(1.0, 1.0)));
         let pad = 5.0;
         let (x0, y0, w, h) = (
             lo.x - pad,
@@ -127,19 +129,6 @@ fn ring_path(points: &[[f64; 2]]) -> String {
         d += "Z ";
     }
     d
-}
-
-/// The bounding box of `pts` (the unit square at the origin when empty).
-fn bbox(pts: &[Vec2]) -> (Vec2, Vec2) {
-    if pts.is_empty() {
-        return (Vec2::ZERO, Vec2::new(1.0, 1.0));
-    }
-    pts.iter().fold((pts[0], pts[0]), |(lo, hi), p| {
-        (
-            Vec2::new(lo.x.min(p.x), lo.y.min(p.y)),
-            Vec2::new(hi.x.max(p.x), hi.y.max(p.y)),
-        )
-    })
 }
 
 /// Text safe inside an XML element.
