@@ -230,16 +230,23 @@ pub struct SurfaceJob<'a> {
     pub tol: f64,
 }
 
+/// z (absolute, mm) of S2 where u = `s`, with the stock top at `top`: a
+/// boss's top + φ(s), a cavity's top − depth − φ(s) (φ clamps s to its
+/// range).
+pub fn surface_z(profile: &DepthProfile, cavity: bool, top: f64, s: f64) -> f64 {
+    let phi = profile.z(s);
+    if cavity {
+        top - profile.depth() - phi
+    } else {
+        top + phi
+    }
+}
+
 impl SurfaceJob<'_> {
     /// z (absolute, mm) of the surface where u = s: boss top + φ(s), cavity
     /// top − depth − φ(s) (φ clamps s to its range).
     pub fn z_of(&self, s: f64) -> f64 {
-        let phi = self.profile.z(s);
-        if self.cavity {
-            self.top - self.profile.depth() - phi
-        } else {
-            self.top + phi
-        }
+        surface_z(self.profile, self.cavity, self.top, s)
     }
 
     /// z of the stock bottom: the deepest cut minus [`BASE_THICKNESS`].

@@ -37,11 +37,20 @@ pub struct FinishParams<'a> {
     pub safe_z: f64,
     /// Z of the rapids between passes (`stock.retract_z`), mm.
     pub retract_z: f64,
+    /// The stock top (`stock.top`), mm: where S2's flat top lies.
+    pub top: f64,
     /// Height above the surface at which an entry's ramp starts, mm: the most
     /// the roughing can have left over S2 (a stepdown and the stock to leave).
     pub entry: f64,
     /// Chord tolerance, mm.
     pub tol: f64,
+}
+
+impl FinishParams<'_> {
+    /// z (absolute, mm) of S2 where u = `s` ([`crate::surface::surface_z`]).
+    pub fn z_of(&self, s: f64) -> f64 {
+        crate::surface::surface_z(self.profile, self.cavity, self.top, s)
+    }
 }
 
 /// The finishing program and what it was planned from.
@@ -156,6 +165,7 @@ pub fn finish(
         ramp_angle: job.tool.ramp_angle,
         safe_z: job.stock.safe_z,
         retract_z: job.stock.retract_z,
+        top: job.stock.top,
         entry: job.tool.stepdown + job.operation.stock_to_leave + 0.5,
         tol: job.operation.tolerance,
     };

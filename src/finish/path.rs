@@ -91,8 +91,8 @@ pub fn tip_loop(
         away.reverse();
         grads.reverse();
     }
-    let (contact, axes) = spread_axes(contact, &away, &grads, dphi, p.cutter, field, sign);
-    let tips = drop_tips(&axes, p, mesh, s)?;
+    let (contact, axes, sags) = spread_axes(contact, &away, &grads, dphi, p.cutter, field, sign);
+    let tips = drop_tips(&axes, &sags, p, mesh, s)?;
     let tip = limit_descent(chord_safe(tips, p, mesh), DESCENT_SLOPE);
     Ok(Loop {
         pass,
@@ -103,18 +103,24 @@ pub fn tip_loop(
 }
 
 /// The cutter's axis for a contact point `q` where ∇u = `g` and the surface
-/// falls away along `d` (see the module docs).
-fn axis_at(q: Vec2, d: Vec2, g: Vec2, dphi: f64, cutter: Cutter) -> Vec2 {
+/// falls away along `d` (see the module docs), and how far its tip then lies
+/// under q: rc·(1 − cos θ), the corner's sag at the slope θ.
+fn axis_at(q: Vec2, d: Vec2, g: Vec2, dphi: f64, cutter: Cutter) -> (Vec2, f64) {
     let t = dphi * g.norm();
-    let sin = t / (1.0 + t * t).sqrt();
-    q + d * (cutter.radius - cutter.corner + cutter.corner * sin)
+    let sec = (1.0 + t * t).sqrt();
+    let (sin, cos) = (t / sec, 1.0 / sec);
+    (
+        q + d * (cutter.radius - cutter.corner + cutter.corner * sin),
+        cutter.corner * (1.0 - cos),
+    )
 }
 
 /// The axes of the contact points, with contact points added (between
 /// neighbours, on their chord) wherever two neighbouring axes lie more than
 /// [`SAMPLE`] apart: round a sharp convex corner of Γ(s) the axes fan out on
 /// a circle of radius r about it, and a chord between axes a radian apart
-/// would cut into the wall. Returns the contact points and their axes.
+/// would cut into the wall. Returns the contact points, their axes and the
+/// sags of [`axis_at`].
 fn spread_axes(
     contact: Vec<Vec2>,
     away: &[Vec2],
@@ -123,37 +129,53 @@ fn spread_axes(
     cutter: Cutter,
     field: &Field,
     sign: f64,
-) -> (Vec<Vec2>, Vec<Vec2>) {
+) -> (Vec<Vec2>, Vec<Vec2>, Vec<f64>) {
     let n = contact.len();
-    let axes: Vec<Vec2> = (0..n)
+    let axes: Vec<(Vec2, f64)> = (0..n)
         .map(|i| axis_at(contact[i], away[i], grads[i], dphi, cutter))
         .collect();
     let (mut cs, mut ax) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    let mut sags = Vec::with_capacity(n);
     for i in 0..n {
         let j = (i + 1) % n;
         cs.push(contact[i]);
-        ax.push(axes[i]);
-        let k = ((axes[i].dist(axes[j]) / SAMPLE).ceil() as usize).clamp(1, MAX_SPLIT);
+        ax.push(axes[i].0);
+        sags.push(axes[i].1);
+        let k = ((axes[i].0.dist(axes[j].0) / SAMPLE).ceil() as usize).clamp(1, MAX_SPLIT);
         for m in 1..k {
             let q = contact[i].lerp(contact[j], m as f64 / k as f64);
             let g = field.grad(q);
             cs.push(q);
-            ax.push(axis_at(q, g.normalized() * sign, g, dphi, cutter));
+            let (a, sag) = axis_at(q, g.normalized() * sign, g, dphi, cutter);
+            ax.push(a);
+            sags.push(sag);
         }
     }
-    (cs, ax)
+    (cs, ax, sags)
 }
+
+/// How far under the tip the contact geometry predicts (the pass's height
+/// less the corner's sag) a drop search first looks, mm: the mesh's
+/// departure from S2 and the lift by other parts of the surface are both
+/// well inside it. Only speed depends on it ([`Cutter::drop_hinted`]).
+const HINT_MARGIN: f64 = 0.05;
 
 /// The drop-cutter's tip at each axis; `Err` names a point no triangle lies
 /// under.
 fn drop_tips(
     axes: &[Vec2],
+    sags: &[f64],
     p: &FinishParams,
     mesh: &MeshIndex,
     s: f64,
 ) -> Result<Vec<Vec3>, String> {
-    let pts: Vec<(f64, f64)> = axes.iter().map(|a| (a.x, a.y)).collect();
-    let zs = p.cutter.drop_many(mesh, &pts);
+    let z = p.z_of(s);
+    let pts: Vec<(f64, f64, f64)> = axes
+        .iter()
+        .zip(sags)
+        .map(|(a, sag)| (a.x, a.y, z - sag - HINT_MARGIN))
+        .collect();
+    let zs = p.cutter.drop_many_hinted(mesh, &pts);
     axes.iter()
         .zip(zs)
         .map(|(a, z)| {
@@ -193,8 +215,14 @@ fn split_chords(chords: &[(Vec3, Vec3)], p: &FinishParams, mesh: &MeshIndex) -> 
     // The first test of every chord in one parallel batch; the few chords
     // that need more are split one at a time.
     let points: Vec<Vec<Vec3>> = chords.iter().map(|&(a, b)| chord_points(a, b)).collect();
-    let flat: Vec<(f64, f64)> = points.iter().flatten().map(|m| (m.x, m.y)).collect();
-    let mut drops = p.cutter.drop_many(mesh, &flat).into_iter();
+    // Only a drop height above a point's own threshold matters to
+    // `worst_above`, so the drop-cutter skips what cannot reach it.
+    let flat: Vec<(f64, f64, f64)> = points
+        .iter()
+        .flatten()
+        .map(|m| (m.x, m.y, chord_threshold(m, p.tol)))
+        .collect();
+    let mut drops = p.cutter.drop_many_above(mesh, &flat).into_iter();
     let mut out = Vec::with_capacity(chords.len());
     for (&(a, b), pts) in chords.iter().zip(&points) {
         let zs: Vec<Option<f64>> = drops.by_ref().take(pts.len()).collect();
@@ -210,7 +238,13 @@ fn split_chords(chords: &[(Vec3, Vec3)], p: &FinishParams, mesh: &MeshIndex) -> 
                 continue;
             }
             let pts = chord_points(a, b);
-            let zs: Vec<Option<f64>> = pts.iter().map(|m| p.cutter.drop(mesh, m.x, m.y)).collect();
+            let zs: Vec<Option<f64>> = pts
+                .iter()
+                .map(|m| {
+                    p.cutter
+                        .drop_above(mesh, m.x, m.y, chord_threshold(m, p.tol))
+                })
+                .collect();
             if let Some(q) = worst_above(&pts, &zs, p.tol) {
                 stack.push((q, b, depth + 1));
                 stack.push((a, q, depth + 1));
@@ -250,6 +284,13 @@ fn chord_points(a: Vec3, b: Vec3) -> Vec<Vec3> {
             )
         })
         .collect()
+}
+
+/// A height a little under the least drop height [`worst_above`] reports at
+/// test point `m` (a quarter of `tol` above it; the nanometre keeps rounding
+/// on the right side), so that drops under it need not be found.
+fn chord_threshold(m: &Vec3, tol: f64) -> f64 {
+    m.z + 0.25 * tol - 1e-6
 }
 
 /// The test point whose drop height lies farthest above the chord, lifted
@@ -654,6 +695,7 @@ mod tests {
             ramp_angle: 3.0,
             safe_z: 5.0,
             retract_z: 1.0,
+            top: 0.0,
             entry: 1.7,
             tol: 0.01,
         };

@@ -129,9 +129,19 @@
 //! their box) still beats it. Within a triangle, a facet contact inside it is
 //! the answer (concavity), and a facet contact outside it that does not beat
 //! the bound ends the triangle (the plane bounds the triangle); each edge is
-//! skipped on its own bound. The bounds only skip what cannot win, so the
+//! skipped on its own bound. Each cell keeps the box round its triangles'
+//! boxes and their highest corner, so a whole cell is skipped on the same
+//! bound. The bounds only skip what cannot win, so the
 //! result is the max over all triangles, to rounding (a shared edge tested
 //! from its two triangles may differ by an ulp).
+//!
+//! A search may start from a level instead of −∞ ([`Cutter::drop_above`]):
+//! everything that cannot lift the cutter above it is skipped from the start,
+//! and what can is tested as before, so the answer, when above the level, is
+//! the same to the last bit. The finisher starts its tip drops a little under
+//! the height the contact geometry predicts ([`Cutter::drop_hinted`], which
+//! searches again from −∞ when nothing lies above) and its chord tests at the
+//! height that matters to them.
 
 use rayon::prelude::*;
 
@@ -296,8 +306,33 @@ impl Cutter {
     /// [`Cutter::drop`] with the part point that sets the tip (one of them
     /// when several touch at once).
     pub fn drop_contact(&self, mesh: &MeshIndex, x: f64, y: f64) -> Option<Contact> {
+        self.contact_above(mesh, x, y, f64::NEG_INFINITY)
+    }
+
+    /// [`Cutter::drop`] when it lies above `level`, else None: the same
+    /// height to the last bit, found faster, because a triangle that cannot
+    /// lift the cutter above `level` is skipped from the start. (Every
+    /// triangle that can is tested exactly as by [`Cutter::drop`], and the
+    /// drop height is their maximum.)
+    pub fn drop_above(&self, mesh: &MeshIndex, x: f64, y: f64, level: f64) -> Option<f64> {
+        self.contact_above(mesh, x, y, level).map(|k| k.tip)
+    }
+
+    /// [`Cutter::drop`], faster when `hint` is a little under the answer: a
+    /// first search above `hint`, and the whole search only when nothing lies
+    /// above it. The result does not depend on `hint`.
+    pub fn drop_hinted(&self, mesh: &MeshIndex, x: f64, y: f64, hint: f64) -> Option<f64> {
+        if !hint.is_finite() {
+            return self.drop(mesh, x, y);
+        }
+        self.drop_above(mesh, x, y, hint)
+            .or_else(|| self.drop(mesh, x, y))
+    }
+
+    /// The contact of the drop when its tip lies above `floor` (−∞: always).
+    fn contact_above(&self, mesh: &MeshIndex, x: f64, y: f64, floor: f64) -> Option<Contact> {
         crate::field::count::drop();
-        if self.validate().is_err() || !(x.is_finite() && y.is_finite()) {
+        if self.validate().is_err() || !(x.is_finite() && y.is_finite()) || floor.is_nan() {
             return None;
         }
         let r = self.radius;
@@ -309,10 +344,20 @@ impl Cutter {
         // (That distance is shrunk by 1e-9·r so that its rounding, p being
         // steep near the rim, cannot skip a triangle that would win.)
         let mut best: Option<Contact> = None;
-        let mut floor = f64::NEG_INFINITY;
+        let floor_cell = std::cell::Cell::new(floor);
         let mut near: Vec<(u32, f64)> = Vec::with_capacity(256);
-        mesh.for_each_near(c, r, range, |ti, b, box_dist| {
+        // The same bound for a cell: its triangles' highest corner less p at
+        // the distance to the box round all of them.
+        let cell_may_win = |b: &Bounds, box_dist: f64| {
+            b.zmax - self.profile(box_dist - 1e-9 * r) > floor_cell.get()
+        };
+        mesh.for_each_near(c, r, range, cell_may_win, |ti, b, box_dist| {
+            let mut floor = floor_cell.get();
             if b.zmax <= floor {
+                return;
+            }
+            let bound = b.zmax - self.profile(box_dist - 1e-9 * r);
+            if bound <= floor {
                 return;
             }
             let t = &mesh.tris[ti as usize];
@@ -324,8 +369,10 @@ impl Cutter {
                     }
                 }
             }
-            near.push((ti, b.zmax - self.profile(box_dist - 1e-9 * r)));
+            floor_cell.set(floor);
+            near.push((ti, bound));
         });
+        let mut floor = floor_cell.get();
         // Pass 2: edges and facets of the triangles that may still beat it.
         for (ti, bound) in near {
             if bound <= floor {
@@ -349,6 +396,22 @@ impl Cutter {
     pub fn drop_many(&self, mesh: &MeshIndex, pts: &[(f64, f64)]) -> Vec<Option<f64>> {
         pts.par_iter()
             .map(|&(x, y)| self.drop(mesh, x, y))
+            .collect()
+    }
+
+    /// [`Cutter::drop_above`] at every point (x, y, level), in parallel, in
+    /// order.
+    pub fn drop_many_above(&self, mesh: &MeshIndex, pts: &[(f64, f64, f64)]) -> Vec<Option<f64>> {
+        pts.par_iter()
+            .map(|&(x, y, level)| self.drop_above(mesh, x, y, level))
+            .collect()
+    }
+
+    /// [`Cutter::drop_hinted`] at every point (x, y, hint), in parallel, in
+    /// order.
+    pub fn drop_many_hinted(&self, mesh: &MeshIndex, pts: &[(f64, f64, f64)]) -> Vec<Option<f64>> {
+        pts.par_iter()
+            .map(|&(x, y, hint)| self.drop_hinted(mesh, x, y, hint))
             .collect()
     }
 
@@ -652,6 +715,21 @@ struct Bounds {
 }
 
 impl Bounds {
+    /// The box round `all` and their highest corner; an empty box (lo = +∞,
+    /// hi = −∞, zmax = −∞) when there are none.
+    fn union<'a>(all: impl Iterator<Item = &'a Bounds>) -> Bounds {
+        let empty = Bounds {
+            lo: [f64::INFINITY; 2],
+            hi: [f64::NEG_INFINITY; 2],
+            zmax: f64::NEG_INFINITY,
+        };
+        all.fold(empty, |u, b| Bounds {
+            lo: [u.lo[0].min(b.lo[0]), u.lo[1].min(b.lo[1])],
+            hi: [u.hi[0].max(b.hi[0]), u.hi[1].max(b.hi[1])],
+            zmax: u.zmax.max(b.zmax),
+        })
+    }
+
     fn new(v: &[[f64; 3]; 3]) -> Bounds {
         Bounds {
             lo: [
@@ -734,6 +812,9 @@ pub struct MeshIndex {
     /// sorted by rank within the cell.
     start: Vec<usize>,
     items: Vec<u32>,
+    /// Cell k's box round the boxes of all its triangles, and their highest
+    /// corner (empty: an inverted box at −∞).
+    cells: Vec<Bounds>,
     skipped: usize,
 }
 
@@ -765,6 +846,7 @@ impl MeshIndex {
             ny: 0,
             start: vec![0],
             items: Vec::new(),
+            cells: Vec::new(),
             skipped,
         };
         if tris.is_empty() {
@@ -850,6 +932,15 @@ impl MeshIndex {
         for k in 0..index.nx * index.ny {
             items[count[k]..count[k + 1]].sort_unstable_by_key(|&it| it & 3);
         }
+        index.cells = (0..index.nx * index.ny)
+            .map(|k| {
+                Bounds::union(
+                    items[count[k]..count[k + 1]]
+                        .iter()
+                        .map(|&it| &bounds[(it >> 2) as usize]),
+                )
+            })
+            .collect();
         index.start = count;
         index.items = items;
         index.tris = tris;
@@ -928,14 +1019,27 @@ impl MeshIndex {
         c: [f64; 2],
         r: f64,
         (i0, i1, j0, j1): (usize, usize, usize, usize),
+        cell_may_win: impl Fn(&Bounds, f64) -> bool,
         mut f: impl FnMut(u32, &Bounds, f64),
     ) {
         // Slack: the tests measure ρ their own way; rounding must not make this
         // filter stricter than they are.
         let r2 = r * r * (1.0 + 1e-9);
+        let box_dist2 = |t: &Bounds| {
+            let dx = (t.lo[0] - c[0]).max(c[0] - t.hi[0]).max(0.0);
+            let dy = (t.lo[1] - c[1]).max(c[1] - t.hi[1]).max(0.0);
+            dx * dx + dy * dy
+        };
         for j in j0..=j1 {
             for i in i0..=i1 {
                 let k = j * self.nx + i;
+                // A cell's box holds every triangle's box listed in it, so a
+                // cell out of reach, or one the caller's bound rules out,
+                // holds nothing to visit, whichever cell would visit them.
+                let d2 = box_dist2(&self.cells[k]);
+                if d2 > r2 || !cell_may_win(&self.cells[k], d2.sqrt()) {
+                    continue;
+                }
                 let cell = &self.items[self.start[k]..self.start[k + 1]];
                 let (lo_rank, hi_rank) = match (i > i0, j > j0) {
                     (true, true) => (1, 1),
@@ -948,9 +1052,7 @@ impl MeshIndex {
                 for &it in &cell[a..b] {
                     let ti = it >> 2;
                     let t = &self.bounds[ti as usize];
-                    let dx = (t.lo[0] - c[0]).max(c[0] - t.hi[0]).max(0.0);
-                    let dy = (t.lo[1] - c[1]).max(c[1] - t.hi[1]).max(0.0);
-                    let d2 = dx * dx + dy * dy;
+                    let d2 = box_dist2(t);
                     if d2 <= r2 {
                         f(ti, t, d2.sqrt());
                     }
@@ -1533,6 +1635,51 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A drop above a level is the drop when it lies above it, to the last
+    /// bit, and nothing otherwise; a hinted drop is the drop whatever the
+    /// hint (under, at, over the answer, or not finite).
+    #[test]
+    fn dropcutter_drop_above_and_hinted_equal_the_plain_drop() {
+        let mut g = Rng(0xab0e);
+        let tris = random_mesh(&mut g, 12);
+        let m = MeshIndex::new(tris, 1.0);
+        let mut above = 0;
+        for shape in 0..3 {
+            let c = random_cutter(&mut g, shape);
+            for _ in 0..300 {
+                let (x, y) = (g.range(-3.0, 15.0), g.range(-3.0, 15.0));
+                let d = c.drop(&m, x, y);
+                let t = d.unwrap_or(0.0);
+                for level in [
+                    t - 0.3,
+                    t - 1e-9,
+                    t,
+                    t + 1e-9,
+                    t + 0.5,
+                    f64::NEG_INFINITY,
+                    f64::INFINITY,
+                ] {
+                    let want = d.filter(|&z| z > level);
+                    above += usize::from(want.is_some());
+                    assert_eq!(
+                        c.drop_above(&m, x, y, level),
+                        want,
+                        "{c:?} ({x}, {y}) {level}"
+                    );
+                    assert_eq!(
+                        c.drop_hinted(&m, x, y, level),
+                        d,
+                        "{c:?} ({x}, {y}) {level}"
+                    );
+                }
+                assert_eq!(c.drop_above(&m, x, y, f64::NAN), None);
+                assert_eq!(c.drop_hinted(&m, x, y, f64::NAN), d);
+            }
+        }
+        // Both answers occur: the test is not all "None" or all "Some".
+        assert!(above > 1000 && above < 5000, "{above}");
     }
 
     #[test]
