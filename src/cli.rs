@@ -373,9 +373,9 @@ fn cmd_sections(
         Some(target) => {
             write_atomic(&target, view.svg().as_bytes(), force)?;
             stdout_line(&format!(
-                "wrote {}: {} rings, net area {:.3} mm²",
+                "wrote {}: {}, net area {:.3} mm²",
                 target.display(),
-                view.rings.len(),
+                view.ring_count(),
                 view.area
             ))
         }

@@ -41,19 +41,24 @@ impl SectionView {
         }
     }
 
+    /// "1 ring", "3 rings".
+    pub fn ring_count(&self) -> String {
+        counted(self.rings.len(), "ring")
+    }
+
     /// Lines for a person: the height, the ring counts, one line per ring.
     pub fn text(&self) -> String {
         let holes = self.rings.iter().filter(|r| r.hole).count();
         let mut s = format!(
-            "section of {} at z {:.3} mm (the part spans z {:.3} to {:.3}; level value {:.6})\n{} rings: {} outlines, {} holes; net area {:.3} mm²\n",
+            "section of {} at z {:.3} mm (the part spans z {:.3} to {:.3}; level value {:.6})\n{}: {}, {}; net area {:.3} mm²\n",
             self.job,
             self.z,
             self.z_range[0],
             self.z_range[1],
             self.level_value,
-            self.rings.len(),
-            self.rings.len() - holes,
-            holes,
+            self.ring_count(),
+            counted(self.rings.len() - holes, "outline"),
+            counted(holes, "hole"),
             self.area
         );
         for (i, r) in self.rings.iter().enumerate() {
@@ -107,12 +112,12 @@ impl SectionView {
             d += &ring_path(&r.points);
         }
         format!(
-            "{}\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.3}mm\" height=\"{h:.3}mm\" viewBox=\"{x0:.4} {:.4} {w:.4} {h:.4}\">\n<title>{} at z {:.3} mm: {} rings, net area {:.3} mm²</title>\n<g transform=\"scale(1,-1)\">\n<path d=\"{}\" fill=\"#c8c8c8\" fill-rule=\"nonzero\" stroke=\"#202020\" stroke-width=\"0.1\"/>\n</g>\n</svg>\n",
+            "{}\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.3}mm\" height=\"{h:.3}mm\" viewBox=\"{x0:.4} {:.4} {w:.4} {h:.4}\">\n<title>{} at z {:.3} mm: {}, net area {:.3} mm²</title>\n<g transform=\"scale(1,-1)\">\n<path d=\"{}\" fill=\"#c8c8c8\" fill-rule=\"nonzero\" stroke=\"#202020\" stroke-width=\"0.1\"/>\n</g>\n</svg>\n",
             crate::preview::svg_marker(&self.job),
             -(y0 + h),
             xml_escape(&self.job),
             self.z,
-            self.rings.len(),
+            self.ring_count(),
             self.area,
             d.trim_end()
         )
@@ -205,5 +210,14 @@ mod tests {
             "{svg}"
         );
         assert_eq!(svg.matches('M').count(), 3, "{svg}");
+    }
+}
+
+/// `n` and `word`, plural unless n = 1 ("1 hole", "0 holes").
+fn counted(n: usize, word: &str) -> String {
+    if n == 1 {
+        format!("1 {word}")
+    } else {
+        format!("{n} {word}s")
     }
 }

@@ -245,7 +245,7 @@ fn the_binary_prints_writes_and_refuses() {
     assert!(text.status.success(), "{text:?}");
     let out = String::from_utf8_lossy(&text.stdout);
     assert!(
-        out.contains("2 rings: 1 outlines, 1 holes; net area 800.000"),
+        out.contains("2 rings: 1 outline, 1 hole; net area 800.000"),
         "{out}"
     );
     let json = pfcam(&["sections", "frame.toml", "--z", "4", "--json"], &dir);
