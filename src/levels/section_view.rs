@@ -143,6 +143,15 @@ fn xml_escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
+/// `n` and `word`, plural unless n = 1 ("1 hole", "0 holes").
+fn counted(n: usize, word: &str) -> String {
+    if n == 1 {
+        format!("1 {word}")
+    } else {
+        format!("{n} {word}s")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -210,14 +219,5 @@ mod tests {
             "{svg}"
         );
         assert_eq!(svg.matches('M').count(), 3, "{svg}");
-    }
-}
-
-/// `n` and `word`, plural unless n = 1 ("1 hole", "0 holes").
-fn counted(n: usize, word: &str) -> String {
-    if n == 1 {
-        format!("1 {word}")
-    } else {
-        format!("{n} {word}s")
     }
 }
