@@ -5,7 +5,7 @@
 //! (`pipeline::run`, as `cargo bench --bench pfcam -- shipped` times it;
 //! `pfcam run` also simulates the program, draws the preview and writes files).
 //! With `--json` one JSON object per job.
-use pfcam::field::count;
+use pfcam::count;
 
 fn main() {
     let mut json = false;

@@ -286,7 +286,7 @@ pub mod defaults {
     pub const ARCS: bool = true;
     /// `output.max_arc_radius`, mm: a 1000 mm arc over a 100 mm chord bulges
     /// 1.25 mm, so anything flatter is a line to the eye and to the machine.
-    pub const MAX_ARC_RADIUS: f64 = crate::toolpath::arcfit::DEFAULT_MAX_RADIUS;
+    pub const MAX_ARC_RADIUS: f64 = 1000.0;
 }
 
 /// The accepted values of `operation.kind`.

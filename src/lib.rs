@@ -5,6 +5,7 @@
 //! and never panics on user input.
 
 pub mod compose;
+pub mod count;
 pub mod estimate;
 pub mod field;
 pub mod finish;

@@ -557,7 +557,7 @@ fn check_levels(
 /// A boss or cavity: the shape's field, the levels (each with its own MFS solve on
 /// Γ(s_k)), linking, and the gouge check of every level against its Γ(s_k).
 fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
-    use crate::field::count::{set_stage, Stage};
+    use crate::count::{set_stage, Stage};
     set_stage(Stage::ShapeSolve);
     let (shape, mut solves) = job_shape(job, progress)?;
     let tol = job.operation.tolerance;

@@ -135,7 +135,7 @@ impl Accel {
     pub fn sums(&self, charges: &[Vec2], coef: &[f64], p: Vec2) -> Option<(f64, Vec2)> {
         let (i, j) = self.leaf_of(p)?;
         let cell = self.cell(self.levels.len() - 1, i, j, charges, coef)?;
-        super::count::eval(cell.near.len(), cell.a.len());
+        crate::count::eval(cell.near.len(), cell.a.len());
         // Far part: Horner on a and on its derivative.
         let t = C::new(p.x - cell.centre.x, p.y - cell.centre.y);
         let n = cell.a.len();

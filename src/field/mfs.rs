@@ -159,7 +159,7 @@ impl Field {
         {
             return r;
         }
-        super::count::eval(self.charges.len(), 0);
+        crate::count::eval(self.charges.len(), 0);
         let (mut s, mut gx, mut gy) = (0.0, 0.0, 0.0);
         for (q, c) in self.charges.iter().zip(&self.coef) {
             let d = p - *q;
@@ -187,7 +187,7 @@ impl Field {
         if self.accel.is_some() {
             return -INV_2PI * self.gain * self.sums(p).0;
         }
-        super::count::eval(self.charges.len(), 0);
+        crate::count::eval(self.charges.len(), 0);
         let mut s = 0.0;
         for (q, c) in self.charges.iter().zip(&self.coef) {
             s += c * (p - *q).norm2().ln();
@@ -201,7 +201,7 @@ impl Field {
         if self.accel.is_some() {
             return self.sums(p).1 * (-INV_2PI * self.gain);
         }
-        super::count::eval(self.charges.len(), 0);
+        crate::count::eval(self.charges.len(), 0);
         let (mut gx, mut gy) = (0.0, 0.0);
         for (q, c) in self.charges.iter().zip(&self.coef) {
             let d = p - *q;
@@ -221,7 +221,7 @@ impl Field {
 
     /// The Hessian [[u_xx, u_xy], [u_xy, u_yy]] (u_yy = −u_xx: u is harmonic).
     pub fn hessian(&self, p: Vec2) -> [[f64; 2]; 2] {
-        super::count::eval(self.charges.len(), 0);
+        crate::count::eval(self.charges.len(), 0);
         let (mut hxx, mut hxy) = (0.0, 0.0);
         for (q, c) in self.charges.iter().zip(&self.coef) {
             let d = p - *q;
@@ -249,7 +249,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
             "an MFS problem needs at least as many collocation points as singularities (M = {m}, N = {n})"
         )));
     }
-    super::count::pairs(m * n);
+    crate::count::pairs(m * n);
     // The kernel matrix column by column in parallel (each entry is the same
     // `kernel` call whichever thread makes it, so the matrix does not depend
     // on the thread count): its M·N logarithms were a third of the shape

@@ -2,7 +2,6 @@
 
 pub mod adaptive;
 pub mod contour;
-pub mod count;
 pub mod fast;
 pub mod inverse;
 pub mod isolines;

@@ -174,7 +174,7 @@ impl DistanceIndex {
 
     /// The search behind both: distance, nearest point and the edge found.
     fn nearest_from(&self, p: Vec2, hint: Option<u32>) -> (f64, Vec2, Option<u32>) {
-        crate::field::count::query();
+        crate::count::query();
         if !(p.x.is_finite() && p.y.is_finite()) {
             return (f64::NAN, p, None);
         }
@@ -191,7 +191,7 @@ impl DistanceIndex {
     /// stops at the first such edge. `hint` is
     /// tried first and updated, as in [`nearest_hinted`](Self::nearest_hinted).
     pub fn closer_than(&self, p: Vec2, r: f64, hint: &std::cell::Cell<u32>) -> bool {
-        crate::field::count::query();
+        crate::count::query();
         // Boxes are pruned with a relative margin far above the rounding of
         // their bound, so no edge that passes the exact test is skipped.
         let reach2 = r * r * (1.0 + 1e-9) + 1e-300;
@@ -227,7 +227,7 @@ impl DistanceIndex {
     /// grown by `reach`, overlaps; edges further than `reach` may be missed, so the
     /// result is exact whenever it is below `reach`).
     pub fn segment_distance(&self, a: Vec2, b: Vec2, reach: f64) -> f64 {
-        crate::field::count::query();
+        crate::count::query();
         if self.edges.is_empty() {
             return f64::INFINITY;
         }

@@ -390,7 +390,7 @@ fn plan_level(
     z: f64,
     z_below: Option<f64>,
 ) -> Result<PlannedLevel, PlanError> {
-    use crate::field::count::{set_stage, Stage};
+    use crate::count::{set_stage, Stage};
     let job = c.job;
     set_stage(Stage::LevelGrid);
     let s = job.source.level_value(z);

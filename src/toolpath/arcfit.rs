@@ -54,8 +54,9 @@ pub const MAX_SWEEP: f64 = PI;
 pub const MIN_ARC_CHORD: f64 = 0.05;
 /// Fewest polyline segments one arc replaces.
 pub const MIN_ARC_SEGMENTS: usize = 3;
-/// Default of `output.max_arc_radius`, mm.
-pub const DEFAULT_MAX_RADIUS: f64 = 1000.0;
+/// Default of `output.max_arc_radius`, mm (the job's default, where the
+/// reason for it is written).
+pub const DEFAULT_MAX_RADIUS: f64 = crate::job::defaults::MAX_ARC_RADIUS;
 /// Golden-section iterations for κ: the bracket [−2/c, 2/c] shrinks by
 /// 0.618^60 ≈ 3e-13, far below any tolerance in mm.
 const GOLDEN_ITERATIONS: usize = 60;

@@ -331,7 +331,7 @@ impl Cutter {
 
     /// The contact of the drop when its tip lies above `floor` (−∞: always).
     fn contact_above(&self, mesh: &MeshIndex, x: f64, y: f64, floor: f64) -> Option<Contact> {
-        crate::field::count::drop();
+        crate::count::drop();
         if self.validate().is_err() || !(x.is_finite() && y.is_finite()) || floor.is_nan() {
             return None;
         }

@@ -19,7 +19,7 @@ use super::zlevel::{
     lowest, orient_v, region_mask, ring_gap, ring_gap_from, ring_index, wall_paths, CutPath,
     LevelParams, Pockets,
 };
-use crate::field::count::{set_stage, Stage};
+use crate::count::{set_stage, Stage};
 use crate::field::isolines::{isolines, isolines_linear, polygon_area, Grid};
 use crate::field::{Field, Sink};
 use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};

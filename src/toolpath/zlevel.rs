@@ -706,7 +706,7 @@ pub fn cavity_paths<N: Navigator + Sync>(
     warnings: &mut Vec<String>,
     band: Option<f64>,
 ) -> Result<(Vec<CutPath>, f64), ProfileError> {
-    use crate::field::count::{set_stage, Stage};
+    use crate::count::{set_stage, Stage};
     let index = DistanceIndex::new(part);
     // The wall loops keep `rw` (radius + stock to leave) from the part; the
     // coverage below is measured with the tool's true radius `r`.
@@ -846,7 +846,7 @@ pub(super) fn cover_left(
     band: Option<f64>,
     label: &str,
 ) -> Result<(Vec<CutPath>, f64), ProfileError> {
-    use crate::field::count::{set_stage, Stage};
+    use crate::count::{set_stage, Stage};
     let vindex = DistanceIndex::new(v);
     let Some((lo, hi)) = polygons_bbox(v) else {
         return Ok((paths, 0.0));
