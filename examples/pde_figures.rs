@@ -31,6 +31,7 @@ fn vase(k: usize) -> (BoundaryCurves, impl Fn(f64) -> [f64; 3]) {
 }
 
 fn main() {
+    four_curve_conditioning();
     println!("squircle→circle vase, a = 1:");
     println!("  K   N   max|X(0,vk)-x0| max|X(0,v)-x0(v)| (997 v)  |R| at u=0, ½");
     for (k, n) in [(64, 4), (64, 8), (256, 8), (256, 20)] {
@@ -93,5 +94,24 @@ fn main() {
             }
         }
         println!("  {a:<4} {n:<3} {:.2e} | {:.2e} | {:.2e}", e[0], e[1], e[2]);
+    }
+}
+
+/// 002's four-curve conditions: the gain and condition number of one mode's
+/// system against λ, for three choices of (s, t).
+fn four_curve_conditioning() {
+    use pfcam::sources::pde::four_curve_conditioning;
+    println!("four-curve conditions (002): gain | cond of the row-equilibrated 4×4, by λ");
+    print!("  (s, t)      ");
+    let lambdas = [0.0, 1.0, 5.0, 10.0, 20.0, 30.0, 40.0, 60.0, 80.0];
+    lambdas.iter().for_each(|l| print!(" λ={l:<10}"));
+    println!();
+    for (s, t) in [(0.3, 0.7), (1.0 / 3.0, 2.0 / 3.0), (0.2, 0.45)] {
+        print!("  ({s:.3}, {t:.3})");
+        for &l in &lambdas {
+            let r = four_curve_conditioning(0, l, s, t);
+            print!(" {:.1e}|{:<4.0}", r.gain, r.cond);
+        }
+        println!();
     }
 }
