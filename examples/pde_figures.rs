@@ -32,6 +32,7 @@ fn vase(k: usize) -> (BoundaryCurves, impl Fn(f64) -> [f64; 3]) {
 
 fn main() {
     four_curve_conditioning();
+    trim_figures();
     println!("squircle→circle vase, a = 1:");
     println!("  K   N   max|X(0,vk)-x0| max|X(0,v)-x0(v)| (997 v)  |R| at u=0, ½");
     for (k, n) in [(64, 4), (64, 8), (256, 8), (256, 20)] {
@@ -113,5 +114,52 @@ fn four_curve_conditioning() {
             print!(" {:.1e}|{:<4.0}", r.gain, r.cond);
         }
         println!();
+    }
+}
+
+/// 002's trimming map: a circle and a kidney (non-convex) trim in a square
+/// border, K = 128 samples, N = 8: the curves met, the Jacobian's minimum on a
+/// 401 × 4096 sample of (ξ, η), and the time of one solve.
+fn trim_figures() {
+    use pfcam::sources::pde_trim::{resample_closed, TrimCurves, TrimMap};
+    use std::f64::consts::PI;
+    let k = 128;
+    let square = [
+        [1.0, PI],
+        [1.0, PI + 0.5],
+        [0.0, PI + 0.5],
+        [0.0, PI - 0.5],
+        [1.0, PI - 0.5],
+    ];
+    let circle = |e: f64| [0.5 + 0.2 * e.cos(), PI + 0.2 * e.sin()];
+    let kidney = |e: f64| {
+        let r = 0.2 * (1.0 + 0.35 * (2.0 * e).cos() - 0.1 * (3.0 * e).sin());
+        [0.5 + r * e.cos(), PI + r * e.sin()]
+    };
+    println!("trimming (002 §3.1), square border v = π ± 0.5, K = {k}, N = 8:");
+    println!("  trim    max|M(0)-C1|,|M(1)-C2| at ηk  min det J (401×4096)  at (ξ, η)   solve");
+    type Curve<'a> = &'a dyn Fn(f64) -> [f64; 2];
+    let shapes: [(&str, Curve); 2] = [("circle", &circle), ("kidney", &kidney)];
+    for (name, f) in shapes {
+        let c = TrimCurves {
+            trim: (0..k).map(|j| f(TAU * j as f64 / k as f64)).collect(),
+            border: resample_closed(&square, k),
+        };
+        let t0 = std::time::Instant::now();
+        let m = TrimMap::solve(&c, 8).expect("valid curves");
+        let dt = t0.elapsed();
+        let e = (0..k)
+            .map(|j| {
+                let eta = TAU * j as f64 / k as f64;
+                let (a, b) = (m.map(0.0, eta), m.map(1.0, eta));
+                let d = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+                d(a, c.trim[j]).max(d(b, c.border[j]))
+            })
+            .fold(0.0, f64::max);
+        let (det, xi, eta) = m.min_jacobian(400, 4096);
+        println!(
+            "  {name:<7} {e:<32.2e} {det:<20.4} ({xi:.4}, {eta:.4})  {:.1} ms",
+            dt.as_secs_f64() * 1e3
+        );
     }
 }
