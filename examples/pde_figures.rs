@@ -33,6 +33,7 @@ fn vase(k: usize) -> (BoundaryCurves, impl Fn(f64) -> [f64; 3]) {
 fn main() {
     four_curve_conditioning();
     trim_figures();
+    tube_figures();
     println!("squircle→circle vase, a = 1:");
     println!("  K   N   max|X(0,vk)-x0| max|X(0,v)-x0(v)| (997 v)  |R| at u=0, ½");
     for (k, n) in [(64, 4), (64, 8), (256, 8), (256, 20)] {
@@ -161,5 +162,56 @@ fn trim_figures() {
             "  {name:<7} {e:<32.2e} {det:<20.4} ({xi:.4}, {eta:.4})  {:.1} ms",
             dt.as_secs_f64() * 1e3
         );
+    }
+}
+
+/// The vase as a part (`sources::pde_tube`): X_z − A₀z, section areas, the time
+/// of the checks, how far a trimmed window's sides overhang, and the refusal of
+/// a bulging cylinder.
+fn tube_figures() {
+    use pfcam::levels::sections::{net_area, Sections};
+    use pfcam::sources::pde_tube::{PdeTube, TubeError, TubeKind};
+    let (curves, _) = vase(128);
+    let t0 = std::time::Instant::now();
+    let boss = PdeTube::new(&curves, 1.0, 8, TubeKind::Boss, vec![], (512, 0.01)).expect("nests");
+    let dt = t0.elapsed().as_secs_f64();
+    let s = boss.surface();
+    let mut ez: f64 = 0.0;
+    for i in 0..=100 {
+        for j in 0..256 {
+            let (u, v) = (i as f64 / 100.0, TAU * j as f64 / 256.0);
+            ez = ez.max((s.point(u, v)[2] - s.spine().point(u)[2]).abs());
+        }
+    }
+    println!(
+        "vase as a boss (K = 128, N = 8, P = 512, tol 0.01 mm): new() {:.0} ms",
+        dt * 1e3
+    );
+    println!("  max |X_z − A₀z| on 101 × 256 (u, v): {ez:.2e} mm");
+    for z in [-15.0, -11.25, -7.5, -3.75, 0.0] {
+        println!(
+            "  z = {z:<6} u = {:.4}  area {:.3} mm²",
+            boss.level_value(z),
+            net_area(&boss.section(z))
+        );
+    }
+    let window = vec![vec![[0.6, 1.0], [1.2, 1.0], [1.2, 2.0], [0.6, 2.0]]];
+    match PdeTube::new(&curves, 1.0, 8, TubeKind::Boss, window.clone(), (512, 1e-9)) {
+        Err(e @ TubeError::Overhang { .. }) => {
+            println!("  window u ≥ 0.6, v ∈ [1, 2], tol 1e-9: {e}")
+        }
+        other => println!("  window, tol 1e-9: {:?}", other.map(|_| ())),
+    }
+    let ok = PdeTube::new(&curves, 1.0, 8, TubeKind::Boss, window, (512, 0.01)).is_ok();
+    println!("  the same window, tol 0.01 mm: accepted = {ok}");
+    let k = 32;
+    let bulge = BoundaryCurves {
+        x0: ring(k, |v| [5.0 * v.cos(), 5.0 * v.sin(), 0.0]),
+        x1: ring(k, |v| [5.0 * v.cos(), 5.0 * v.sin(), 20.0]),
+        xu0: ring(k, |v| [6.0 * v.cos(), 6.0 * v.sin(), 20.0]),
+        xu1: ring(k, |v| [-6.0 * v.cos(), -6.0 * v.sin(), 20.0]),
+    };
+    if let Err(e) = PdeTube::new(&bulge, 1.0, 4, TubeKind::Boss, vec![], (256, 0.01)) {
+        println!("  bulging cylinder (ρ 5, H 20, s 6): {e}");
     }
 }
