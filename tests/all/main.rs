@@ -40,6 +40,7 @@ mod golden;
 mod harmonic_bezier;
 mod inputs;
 mod levels;
+mod pde;
 mod preview;
 mod sections;
 mod simulate;
