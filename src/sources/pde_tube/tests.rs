@@ -387,3 +387,28 @@ fn a_section_area_matches_a_pixel_count() {
         "{pixels} vs {shoelace}"
     );
 }
+
+#[test]
+fn curves_running_clockwise_give_the_same_sections() {
+    // The cylinder mirrored in y: v runs clockwise, so every section and pie
+    // piece is reversed to keep the material on the left; areas unchanged.
+    let c = cylinder(32, 6.0);
+    let mut m = c.clone();
+    for curve in [&mut m.x0, &mut m.x1, &mut m.xu0, &mut m.xu1] {
+        curve.iter_mut().for_each(|p| p[1] = -p[1]);
+    }
+    for trims in [vec![], vec![rect(0.3, 1.1, 1.0, 2.0)]] {
+        let (a, b) = (unchecked(&c, trims.clone(), 400), unchecked(&m, trims, 400));
+        for z in [-16.0, -10.0, -3.0] {
+            let (sa, sb) = (a.section(z), b.section(z));
+            assert_eq!(sa.len(), sb.len());
+            for (pa, pb) in sa.iter().zip(&sb) {
+                let (aa, ab) = (polygon_area(pa), polygon_area(pb));
+                assert!(
+                    aa > 0.0 && (aa - ab).abs() < 1e-9 * aa,
+                    "z = {z}: {aa} vs {ab}"
+                );
+            }
+        }
+    }
+}
