@@ -31,6 +31,9 @@ fn vase(k: usize) -> (BoundaryCurves, impl Fn(f64) -> [f64; 3]) {
 }
 
 fn main() {
+    four_curve_conditioning();
+    trim_figures();
+    tube_figures();
     println!("squircle→circle vase, a = 1:");
     println!("  K   N   max|X(0,vk)-x0| max|X(0,v)-x0(v)| (997 v)  |R| at u=0, ½");
     for (k, n) in [(64, 4), (64, 8), (256, 8), (256, 20)] {
@@ -93,5 +96,122 @@ fn main() {
             }
         }
         println!("  {a:<4} {n:<3} {:.2e} | {:.2e} | {:.2e}", e[0], e[1], e[2]);
+    }
+}
+
+/// 002's four-curve conditions: the gain and condition number of one mode's
+/// system against λ, for three choices of (s, t).
+fn four_curve_conditioning() {
+    use pfcam::sources::pde::four_curve_conditioning;
+    println!("four-curve conditions (002): gain | cond of the row-equilibrated 4×4, by λ");
+    print!("  (s, t)      ");
+    let lambdas = [0.0, 1.0, 5.0, 10.0, 20.0, 30.0, 40.0, 60.0, 80.0];
+    lambdas.iter().for_each(|l| print!(" λ={l:<10}"));
+    println!();
+    for (s, t) in [(0.3, 0.7), (1.0 / 3.0, 2.0 / 3.0), (0.2, 0.45)] {
+        print!("  ({s:.3}, {t:.3})");
+        for &l in &lambdas {
+            let r = four_curve_conditioning(0, l, s, t);
+            print!(" {:.1e}|{:<4.0}", r.gain, r.cond);
+        }
+        println!();
+    }
+}
+
+/// 002's trimming map: a circle and a kidney (non-convex) trim in a square
+/// border, K = 128 samples, N = 8: the curves met, the Jacobian's minimum on a
+/// 401 × 4096 sample of (ξ, η), and the time of one solve.
+fn trim_figures() {
+    use pfcam::sources::pde_trim::{resample_closed, TrimCurves, TrimMap};
+    use std::f64::consts::PI;
+    let k = 128;
+    let square = [
+        [1.0, PI],
+        [1.0, PI + 0.5],
+        [0.0, PI + 0.5],
+        [0.0, PI - 0.5],
+        [1.0, PI - 0.5],
+    ];
+    let circle = |e: f64| [0.5 + 0.2 * e.cos(), PI + 0.2 * e.sin()];
+    let kidney = |e: f64| {
+        let r = 0.2 * (1.0 + 0.35 * (2.0 * e).cos() - 0.1 * (3.0 * e).sin());
+        [0.5 + r * e.cos(), PI + r * e.sin()]
+    };
+    println!("trimming (002 §3.1), square border v = π ± 0.5, K = {k}, N = 8:");
+    println!("  trim    max|M(0)-C1|,|M(1)-C2| at ηk  min det J (401×4096)  at (ξ, η)   solve");
+    type Curve<'a> = &'a dyn Fn(f64) -> [f64; 2];
+    let shapes: [(&str, Curve); 2] = [("circle", &circle), ("kidney", &kidney)];
+    for (name, f) in shapes {
+        let c = TrimCurves {
+            trim: (0..k).map(|j| f(TAU * j as f64 / k as f64)).collect(),
+            border: resample_closed(&square, k),
+        };
+        let t0 = std::time::Instant::now();
+        let m = TrimMap::solve(&c, 8).expect("valid curves");
+        let dt = t0.elapsed();
+        let e = (0..k)
+            .map(|j| {
+                let eta = TAU * j as f64 / k as f64;
+                let (a, b) = (m.map(0.0, eta), m.map(1.0, eta));
+                let d = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+                d(a, c.trim[j]).max(d(b, c.border[j]))
+            })
+            .fold(0.0, f64::max);
+        let (det, xi, eta) = m.min_jacobian(400, 4096);
+        println!(
+            "  {name:<7} {e:<32.2e} {det:<20.4} ({xi:.4}, {eta:.4})  {:.1} ms",
+            dt.as_secs_f64() * 1e3
+        );
+    }
+}
+
+/// The vase as a part (`sources::pde_tube`): X_z − A₀z, section areas, the time
+/// of the checks, how far a trimmed window's sides overhang, and the refusal of
+/// a bulging cylinder.
+fn tube_figures() {
+    use pfcam::levels::sections::{net_area, Sections};
+    use pfcam::sources::pde_tube::{PdeTube, TubeError, TubeKind};
+    let (curves, _) = vase(128);
+    let t0 = std::time::Instant::now();
+    let boss = PdeTube::new(&curves, 1.0, 8, TubeKind::Boss, vec![], (512, 0.01)).expect("nests");
+    let dt = t0.elapsed().as_secs_f64();
+    let s = boss.surface();
+    let mut ez: f64 = 0.0;
+    for i in 0..=100 {
+        for j in 0..256 {
+            let (u, v) = (i as f64 / 100.0, TAU * j as f64 / 256.0);
+            ez = ez.max((s.point(u, v)[2] - s.spine().point(u)[2]).abs());
+        }
+    }
+    println!(
+        "vase as a boss (K = 128, N = 8, P = 512, tol 0.01 mm): new() {:.0} ms",
+        dt * 1e3
+    );
+    println!("  max |X_z − A₀z| on 101 × 256 (u, v): {ez:.2e} mm");
+    for z in [-15.0, -11.25, -7.5, -3.75, 0.0] {
+        println!(
+            "  z = {z:<6} u = {:.4}  area {:.3} mm²",
+            boss.level_value(z),
+            net_area(&boss.section(z))
+        );
+    }
+    let window = vec![vec![[0.6, 1.0], [1.2, 1.0], [1.2, 2.0], [0.6, 2.0]]];
+    match PdeTube::new(&curves, 1.0, 8, TubeKind::Boss, window.clone(), (512, 1e-9)) {
+        Err(e @ TubeError::Overhang { .. }) => {
+            println!("  window u ≥ 0.6, v ∈ [1, 2], tol 1e-9: {e}")
+        }
+        other => println!("  window, tol 1e-9: {:?}", other.map(|_| ())),
+    }
+    let ok = PdeTube::new(&curves, 1.0, 8, TubeKind::Boss, window, (512, 0.01)).is_ok();
+    println!("  the same window, tol 0.01 mm: accepted = {ok}");
+    let k = 32;
+    let bulge = BoundaryCurves {
+        x0: ring(k, |v| [5.0 * v.cos(), 5.0 * v.sin(), 0.0]),
+        x1: ring(k, |v| [5.0 * v.cos(), 5.0 * v.sin(), 20.0]),
+        xu0: ring(k, |v| [6.0 * v.cos(), 6.0 * v.sin(), 20.0]),
+        xu1: ring(k, |v| [-6.0 * v.cos(), -6.0 * v.sin(), 20.0]),
+    };
+    if let Err(e) = PdeTube::new(&bulge, 1.0, 4, TubeKind::Boss, vec![], (256, 0.01)) {
+        println!("  bulging cylinder (ρ 5, H 20, s 6): {e}");
     }
 }

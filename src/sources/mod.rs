@@ -5,3 +5,5 @@
 pub mod harmonic_bezier;
 pub mod pde;
 pub mod pde6;
+pub mod pde_trim;
+pub mod pde_tube;

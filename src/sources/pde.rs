@@ -51,6 +51,22 @@ pub enum PdeError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A mode system of the four-curve conditions (002) amplifies its data
+    /// beyond [`GAIN_LIMIT`]: the surface between the curves would
+    /// be dominated by rounding.
+    #[error("{key}: the mode-{mode} system (λ = {lambda}) amplifies its data {gain:.1e}-fold between the curves (limit {limit:.0e}); lower a or modes, or space the curves more evenly")]
+    IllConditioned {
+        /// The parameter to change (`modes` when the remainder's w = a(N + 1) fails, else `a`).
+        key: &'static str,
+        /// The Fourier mode n (N + 1 for the remainder).
+        mode: usize,
+        /// Its exponent λ.
+        lambda: f64,
+        /// max over u ∈ [0, 1] of |φ(λ, u)ᵀ M⁻¹ eᵢ| over the unit data eᵢ.
+        gain: f64,
+        /// [`GAIN_LIMIT`].
+        limit: f64,
+    },
     /// A 4 × 4 mode system could not be solved to finite coefficients.
     #[error("a: the mode-{mode} system (λ = {lambda}) is singular; use a larger a")]
     Singular {
@@ -365,6 +381,11 @@ impl PdeSurface {
 fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|i| a[i] + b[i])
 }
+
+mod four_curves;
+pub use four_curves::{
+    conditioning as four_curve_conditioning, FourCurves, ModeConditioning, GAIN_LIMIT,
+};
 
 #[cfg(test)]
 mod tests;

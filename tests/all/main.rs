@@ -41,6 +41,7 @@ mod harmonic_bezier;
 mod imports;
 mod inputs;
 mod levels;
+mod pde;
 mod preview;
 mod sections;
 mod simulate;
