@@ -196,7 +196,13 @@ mod tests {
         assert!((v.area - 800.0).abs() < 1e-12);
         assert!(v
             .text()
-            .contains("2 rings: 1 outlines, 1 holes; net area 800.000"));
+            .contains("2 rings: 1 outline, 1 hole; net area 800.000"));
+        let one = SectionView::new("square", &Fixed(vec![square(0.0, 30.0)]), 9.0, 10.0);
+        assert!(
+            one.text().contains("1 ring: 1 outline, 0 holes;"),
+            "{}",
+            one.text()
+        );
         let svg = v.svg();
         assert!(
             svg.starts_with("<!-- pfcam ")
