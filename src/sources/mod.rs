@@ -5,3 +5,4 @@
 pub mod harmonic_bezier;
 pub mod pde;
 pub mod pde6;
+pub mod polyharmonic;
