@@ -5,10 +5,14 @@
 //! equations as implemented, the corrections to the printed ones and the
 //! measured figures.
 
+pub mod elements;
 mod error;
 mod gauss;
 pub mod kernels;
+pub mod quadrature;
 
+pub use elements::{BoxMesh, Element};
 pub use error::PolyError;
 pub use gauss::GaussRule;
 pub use kernels::{Kernel, Radial};
+pub use quadrature::{QuadRule, Quadrature};
