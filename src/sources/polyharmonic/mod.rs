@@ -7,12 +7,15 @@
 
 pub mod elements;
 mod error;
+mod field;
 mod gauss;
 pub mod kernels;
 pub mod quadrature;
+pub mod system;
 
 pub use elements::{BoxMesh, Element};
 pub use error::PolyError;
 pub use gauss::GaussRule;
 pub use kernels::{Kernel, Radial};
 pub use quadrature::{QuadRule, Quadrature};
+pub use system::{solve, solve_dirichlet, GivenPoint, Model, PointKind, Solution};
