@@ -6,6 +6,7 @@
 //! measured figures.
 
 pub mod elements;
+pub mod envelope;
 mod error;
 mod field;
 mod gauss;
@@ -14,6 +15,7 @@ pub mod quadrature;
 pub mod system;
 
 pub use elements::{BoxMesh, Element};
+pub use envelope::Envelope;
 pub use error::PolyError;
 pub use gauss::GaussRule;
 pub use kernels::{Kernel, Radial};

@@ -116,6 +116,11 @@ fn sphere_model(per_edge: usize) -> Model {
     }
 }
 
+/// The sphere of 40 points in the box [−2, 2]³ with 4 elements per edge.
+pub(crate) fn sphere_model_for_envelope() -> Model {
+    sphere_model(4)
+}
+
 #[test]
 fn the_field_interpolates_every_given_point() {
     let mut model = sphere_model(4);
