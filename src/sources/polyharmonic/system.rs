@@ -33,8 +33,12 @@ use super::quadrature::{influence, QuadRule, Quadrature};
 use faer::Mat;
 use nalgebra::Vector3;
 
-/// Most given points: the system is dense, (2N + M)² doubles.
+/// Most given points.
 pub const MAX_POINTS: usize = 4000;
+
+/// Most unknowns 2N + M: the dense matrix is (2N + M)² doubles, held twice
+/// while it is copied into faer (5000 unknowns: 2 × 200 MB).
+pub const MAX_UNKNOWNS: usize = 5000;
 
 /// Largest condition estimate (max |Uᵢᵢ| / min |Uᵢᵢ| of the pivoted LU)
 /// accepted: beyond it the loads carry fewer than ~3 significant digits.
@@ -158,6 +162,16 @@ pub fn solve_dirichlet(
     let loads = load_kernels(kernel)?;
     check_points(&mesh, points)?;
     let n = mesh.elements.len();
+    if 2 * n + points.len() > MAX_UNKNOWNS {
+        return Err(invalid(
+            "elements",
+            format!(
+                "{n} box elements and {} points make {} unknowns, more than {MAX_UNKNOWNS}: use fewer elements per edge",
+                points.len(),
+                2 * n + points.len()
+            ),
+        ));
+    }
     if t1.len() != n || t2.len() != n {
         return Err(invalid(
             "box",

@@ -332,6 +332,18 @@ fn degenerate_input_is_a_typed_error() {
     let mut m = sphere_model(2);
     m.per_edge = 0;
     assert!(key(&m).starts_with("elements:"), "{}", key(&m));
+    // 20 per edge is 2400 elements: with 41 points, 4841 unknowns pass the
+    // cap, with 201 points not (checked before anything is assembled).
+    m.per_edge = 20;
+    m.points.extend((0..160).map(|i| GivenPoint {
+        p: v(-1.5 + 0.01 * i as f64, 0.5, 0.5),
+        kind: PointKind::Surface,
+    }));
+    assert!(
+        key(&m).starts_with("elements: 2400 box elements and 201 points"),
+        "{}",
+        key(&m)
+    );
     // A surface point and an inside point 5e-9 apart (above the coincidence
     // tolerance 4e-9): two near-equal rows and columns asking 0 and −1.
     let mut m = sphere_model(2);
@@ -348,4 +360,38 @@ fn degenerate_input_is_a_typed_error() {
             other.map(|s| s.condition)
         ),
     }
+}
+
+/// ∇T₁ against central differences of T₁, and the normal (28) at the given
+/// surface points of the sphere against the sphere's own normal.
+#[test]
+fn the_gradient_and_the_normal() {
+    let model = sphere_model(4);
+    let sol = solve(&model).unwrap();
+    let eps = 1e-5;
+    for x in [v(0.1, 0.2, -0.3), v(0.9, -0.5, 0.4), v(-1.7, 1.2, 0.3)] {
+        let g = sol.gradient(x).unwrap();
+        for i in 0..3 {
+            let e = Vector3::ith(i, eps);
+            let fd = (sol.value(x + e).unwrap() - sol.value(x - e).unwrap()) / (2.0 * eps);
+            assert!(
+                (fd - g[i]).abs() < 1e-6 * (1.0 + g.norm()),
+                "{x:?} axis {i}: {fd} vs {}",
+                g[i]
+            );
+        }
+    }
+    let mut worst: f64 = 0.0;
+    for gp in model.points.iter().filter(|g| g.kind == PointKind::Surface) {
+        let n = sol.normal(gp.p).unwrap();
+        worst = worst.max(n.angle(&gp.p));
+    }
+    // The zero set is within 0.003 of the sphere; its normal within 0.03 rad
+    // (0.0103 rad measured with 6 elements per edge).
+    assert!(
+        worst < 0.03,
+        "max angle to the radial direction {worst:.4} rad"
+    );
+    assert_eq!(sol.normal(v(3.0, 0.0, 0.0)), None);
+    assert_eq!(sol.value(v(0.0, 0.0, 2.0)), None);
 }
