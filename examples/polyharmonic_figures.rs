@@ -228,6 +228,15 @@ fn main() {
         );
     }
 
+    let model = sphere(6, Kernel::T2A { a: 0.3 });
+    let sol = solve(&model).expect("solve");
+    let worst = model
+        .points
+        .iter()
+        .filter(|g| g.kind == PointKind::Surface)
+        .map(|g| sol.normal(g.p).map_or(f64::INFINITY, |n| n.angle(&g.p)))
+        .fold(0.0, f64::max);
+    println!("  normal (28) at the 40 surface points (T2A, A = 0.3, 6/edge): max angle to radial {worst:.4} rad");
     println!(
         "\nTop envelope of the sphere (T2A, A = 0.3, 6/edge), 33 x 33 rays over [-1.2, 1.2]^2:"
     );
