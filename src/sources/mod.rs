@@ -7,3 +7,4 @@ pub mod pde;
 pub mod pde6;
 pub mod pde_trim;
 pub mod pde_tube;
+pub mod polyharmonic;

@@ -1,0 +1,79 @@
+//! Speed of Ochiai's polyharmonic solid (`sources::polyharmonic`, issue 19):
+//! the l = 2 solve and the top envelope. Run:
+//! `cargo bench --bench polyharmonic`. Figures in docs/method.md §17 are the
+//! medians criterion prints.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use nalgebra::Vector3;
+use pfcam::sources::polyharmonic::{
+    solve, Envelope, GivenPoint, Kernel, Model, PointKind, Quadrature,
+};
+use std::hint::black_box;
+
+/// 40 points on the unit sphere (Fibonacci lattice) + its centre inside,
+/// T2A with A = 0.3, box [−2, 2]³ with `per_edge` elements per face edge.
+fn sphere(per_edge: usize) -> Model {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let mut points: Vec<GivenPoint> = (0..40)
+        .map(|i| {
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / 40.0;
+            let r = (1.0 - z * z).sqrt();
+            let t = golden * i as f64;
+            GivenPoint {
+                p: Vector3::new(r * t.cos(), r * t.sin(), z),
+                kind: PointKind::Surface,
+            }
+        })
+        .collect();
+    points.push(GivenPoint {
+        p: Vector3::zeros(),
+        kind: PointKind::Inside,
+    });
+    Model {
+        lo: Vector3::new(-2.0, -2.0, -2.0),
+        hi: Vector3::new(2.0, 2.0, 2.0),
+        per_edge,
+        kernel: Kernel::T2A { a: 0.3 },
+        points,
+        quadrature: Quadrature::default(),
+    }
+}
+
+fn polyharmonic(c: &mut Criterion) {
+    let mut g = c.benchmark_group("polyharmonic");
+    g.sample_size(10);
+    for per_edge in [6, 10] {
+        let model = sphere(per_edge);
+        let n = 6 * per_edge * per_edge;
+        g.bench_function(
+            format!("sphere of 40 points: solve, N = {n}, M = 41"),
+            |b| b.iter(|| solve(black_box(&model)).unwrap()),
+        );
+    }
+    let sol = solve(&sphere(6)).unwrap();
+    let env = Envelope {
+        step: 0.05,
+        tol: 1e-4,
+    }
+    .validated(&sol)
+    .unwrap();
+    g.bench_function(
+        "sphere of 40 points: envelope, 10 x 10 rays, N = 216",
+        |b| {
+            b.iter(|| {
+                let mut hits = 0;
+                for i in 0..10 {
+                    for j in 0..10 {
+                        let (x, y) = (-1.2 + 0.24 * i as f64, -1.2 + 0.24 * j as f64);
+                        hits += usize::from(env.height(black_box(&sol), x, y).is_some());
+                    }
+                }
+                hits
+            })
+        },
+    );
+    g.finish();
+}
+
+criterion_group!(benches, polyharmonic);
+criterion_main!(benches);
