@@ -12,6 +12,36 @@ pub fn max_or_nan(a: f64, b: f64) -> f64 {
     }
 }
 
+/// Fixed-seed random numbers for the unit tests (no rand dependency): a
+/// 64-bit LCG (Knuth's MMIX constants), each draw its top 53 bits.
+#[cfg(test)]
+pub(crate) mod testing {
+    /// The generator; its state is the seed.
+    pub(crate) struct Lcg(pub(crate) u64);
+
+    impl Lcg {
+        /// Uniform in [0, 1).
+        pub(crate) fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        /// Uniform in [a, b).
+        pub(crate) fn range(&mut self, a: f64, b: f64) -> f64 {
+            a + (b - a) * self.next()
+        }
+    }
+
+    /// `count` draws of [`Lcg`] from `seed`.
+    pub(crate) fn uniforms(seed: u64, count: usize) -> Vec<f64> {
+        let mut g = Lcg(seed);
+        (0..count).map(|_| g.next()).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

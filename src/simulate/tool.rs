@@ -542,22 +542,7 @@ mod tests {
     }
 
     /// A fixed-seed generator (the simulator's tests use no crate for it).
-    struct Lcg(u64);
-
-    impl Lcg {
-        /// Uniform in [0, 1).
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-
-        fn range(&mut self, a: f64, b: f64) -> f64 {
-            a + (b - a) * self.next()
-        }
-    }
+    use crate::num::testing::Lcg;
 
     /// The flat rule as it was before the tool learned other shapes, kept
     /// verbatim: `bottom_over` must give the same bits.

@@ -1,4 +1,5 @@
 use super::*;
+use crate::num::testing::uniforms;
 use std::f64::consts::TAU;
 
 type Curve = fn(f64) -> [f64; 3];
@@ -9,19 +10,6 @@ fn sample(f: Curve, k: usize) -> Vec<[f64; 3]> {
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
-}
-
-/// Fixed-seed uniform numbers in [0, 1) (a 64-bit LCG; no rand dependency).
-fn uniforms(seed: u64, count: usize) -> Vec<f64> {
-    let mut s = seed;
-    (0..count)
-        .map(|_| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        })
-        .collect()
 }
 
 // A wobbly tube: trigonometric polynomials of degree ≤ 12 (r(v) cos v with

@@ -1,4 +1,5 @@
 use super::*;
+use crate::num::testing::uniforms;
 use crate::sources::pde::BoundaryCurves;
 use std::f64::consts::PI;
 
@@ -8,19 +9,6 @@ fn ring(k: usize, f: impl Fn(f64) -> [f64; 2]) -> Vec<[f64; 2]> {
 
 fn d2(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
-/// Fixed-seed uniforms in [0, 1) (the LCG of the PDE tests).
-fn uniforms(seed: u64, count: usize) -> Vec<f64> {
-    let mut s = seed;
-    (0..count)
-        .map(|_| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        })
-        .collect()
 }
 
 /// 002's Figure 3: a circle trim in a square border, v = π ± 0.5, u ∈ [0, 1];

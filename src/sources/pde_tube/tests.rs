@@ -1,24 +1,12 @@
 use super::*;
 use crate::levels::sections::net_area;
+use crate::num::testing::uniforms;
 
 /// The nesting tolerance of the tests (mm): a job's `tol`.
 const TOL: f64 = 1e-3;
 
 fn ring(k: usize, f: impl Fn(f64) -> [f64; 3]) -> Vec<[f64; 3]> {
     (0..k).map(|j| f(TAU * j as f64 / k as f64)).collect()
-}
-
-/// Fixed-seed uniforms in [0, 1) (the LCG of the PDE tests).
-fn uniforms(seed: u64, count: usize) -> Vec<f64> {
-    let mut s = seed;
-    (0..count)
-        .map(|_| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        })
-        .collect()
 }
 
 fn squircle(v: f64) -> [f64; 3] {
