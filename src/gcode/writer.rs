@@ -170,12 +170,14 @@ pub fn cut_bounds(tp: &Toolpath) -> Option<(Vec3, Vec3)> {
                 any = true;
                 let r = (at.x - cx).hypot(at.y - cy);
                 let a0 = (at.y - cy).atan2(at.x - cx);
-                let a1 = (to.y - cy).atan2(to.x - cx);
                 let tau = std::f64::consts::TAU;
-                let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
-                if sweep <= 1e-12 {
-                    sweep += tau;
-                }
+                let c = crate::geometry::Vec2::new(cx, cy);
+                let sweep = crate::geometry::arc::sweep(
+                    crate::geometry::Vec2::new(at.x, at.y),
+                    crate::geometry::Vec2::new(to.x, to.y),
+                    c,
+                    ccw,
+                );
                 for k in 0..4 {
                     let a = k as f64 * std::f64::consts::FRAC_PI_2;
                     // Angle travelled from the start to reach `a`, in [0, 2π).

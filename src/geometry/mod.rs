@@ -1,6 +1,7 @@
 //! Shapes: lines and cubic Béziers, closed contours, regions (an outline and its
 //! counters), built-in glyphs, fonts and SVG path data. Knows nothing of fields.
 
+pub mod arc;
 mod arrangement;
 mod bvh;
 mod capped;

@@ -45,11 +45,7 @@ pub(super) fn level_polylines(moves: &[(Vec3, Move)], tol: f64) -> Vec<Vec<Vec2>
 pub(super) fn flatten_arc(a: Vec2, b: Vec2, c: Vec2, ccw: bool, tol: f64) -> Vec<Vec2> {
     let r = a.dist(c);
     let a0 = (a.y - c.y).atan2(a.x - c.x);
-    let a1 = (b.y - c.y).atan2(b.x - c.x);
-    let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
-    if sweep <= 1e-12 {
-        sweep += std::f64::consts::TAU;
-    }
+    let sweep = crate::geometry::arc::sweep(a, b, c, ccw);
     let max_step = if r > tol {
         2.0 * (1.0 - tol / r).acos()
     } else {

@@ -441,15 +441,10 @@ pub struct ArcLimits {
     pub tol: f64,
 }
 
-/// Sweep of the arc from `a` to `b` about `c` (in (0, 2π]; equal ends: 2π).
+/// Sweep of the arc from `a` to `b` about `c` (in (0, 2π]; equal ends: 2π):
+/// [`crate::geometry::arc::sweep`] of the XY parts.
 pub fn sweep(a: Vec3, b: Vec3, c: Vec2, ccw: bool) -> f64 {
-    let a0 = (a.y - c.y).atan2(a.x - c.x);
-    let a1 = (b.y - c.y).atan2(b.x - c.x);
-    let mut s = if ccw { a1 - a0 } else { a0 - a1 };
-    if s <= 1e-12 {
-        s += TAU;
-    }
-    s
+    crate::geometry::arc::sweep(Vec2::new(a.x, a.y), Vec2::new(b.x, b.y), c, ccw)
 }
 
 /// The tool path as the writer may emit it: with `!limits.arcs`, or for an arc

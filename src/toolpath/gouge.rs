@@ -80,11 +80,7 @@ pub(crate) fn flatten_arc(
 ) -> Vec<(Vec2, Vec2)> {
     let r = (a.x - cx).hypot(a.y - cy);
     let a0 = (a.y - cy).atan2(a.x - cx);
-    let a1 = (b.y - cy).atan2(b.x - cx);
-    let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
-    if sweep <= 1e-12 {
-        sweep += std::f64::consts::TAU;
-    }
+    let sweep = super::arcfit::sweep(a, b, Vec2::new(cx, cy), ccw);
     let dth = 2.0
         * (1.0 - tol / r.max(tol * 2.0))
             .clamp(-1.0, 1.0)

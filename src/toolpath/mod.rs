@@ -165,11 +165,6 @@ pub fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
 /// Length of a helical arc from `a` to `b` about (`cx`, `cy`).
 pub fn arc_length(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool) -> f64 {
     let r = (a.x - cx).hypot(a.y - cy);
-    let a0 = (a.y - cy).atan2(a.x - cx);
-    let a1 = (b.y - cy).atan2(b.x - cx);
-    let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
-    if sweep <= 1e-12 {
-        sweep += std::f64::consts::TAU;
-    }
+    let sweep = arcfit::sweep(a, b, crate::geometry::Vec2::new(cx, cy), ccw);
     (r * sweep).hypot(b.z - a.z)
 }
