@@ -1,7 +1,11 @@
-//! A harmonic patch as a job's part (`shape.kind = "harmonic-bezier"`): the
-//! job's errors naming keys.
+//! A harmonic patch as a job's part (`shape.kind = "harmonic-bezier"`): its
+//! sections against analytic areas and an independent pixel count, their
+//! orientation and their vertices on {h = z}; the job's errors naming keys.
 
+use pfcam::geometry::Vec2;
 use pfcam::job::{parse_job, Job};
+use pfcam::levels::sections::{net_area, Sections};
+use pfcam::pipeline;
 use std::path::Path;
 
 fn job(body: &str) -> Result<Job, String> {
@@ -14,6 +18,120 @@ fn patch_job(shape: &str) -> String {
         "[shape]\nkind = \"harmonic-bezier\"\n{shape}\n[tool]\ndiameter = 6.0\nstepdown = 1.5\n\
          [operation]\ntolerance = 0.01\nmax_scallop = 50.0\n"
     )
+}
+
+fn sections(j: &Job) -> Box<dyn Sections> {
+    pipeline::job_sections(j, &mut |_| {})
+        .unwrap_or_else(|e| panic!("{e}"))
+        .0
+}
+
+/// h = 10 (x/X)(y/Y) (degree 1: row0 = [0, 0], row1 = [0, 10]) is harmonic
+/// in the parameters; {h ≥ 10t} has area XY (1 − t + t ln t) (the region
+/// above the hyperbola uv = t in the unit square).
+#[test]
+fn a_bilinear_saddle_has_the_analytic_area() {
+    let j = job(&patch_job(
+        "degree = 1\nsize = [80.0, 60.0]\nrow0 = [0.0, 0.0]\nrow1 = [0.0, 10.0]\norigin = [5.0, -3.0]",
+    ))
+    .unwrap();
+    assert!(
+        (j.operation.depth - 10.0).abs() < 1e-12,
+        "{}",
+        j.operation.depth
+    );
+    let s = sections(&j);
+    assert_eq!(s.z_range(), (-10.0, 0.0));
+    for t in [0.05, 0.2, 0.5, 0.8, 0.95] {
+        let sec = s.section(10.0 * t - 10.0);
+        let exact = 4800.0 * (1.0 - t + t * f64::ln(t));
+        let area = net_area(&sec);
+        assert!(
+            (area - exact).abs() < 1e-4 * 4800.0,
+            "t {t}: {area} against {exact}"
+        );
+        assert_eq!(sec.len(), 1, "t {t}: one region");
+        // The corner (X, Y) is in it, and the region is to the left.
+        assert!(sec[0].iter().any(|p| p.dist(Vec2::new(85.0, 57.0)) < 1e-9));
+        assert!(area > 0.0);
+    }
+    // The bottom is the whole rectangle, the top the corner.
+    assert!((net_area(&s.section(-10.0)) - 4800.0).abs() < 1e-9);
+    let top = s.section(0.0);
+    assert!(top[0][0].dist(Vec2::new(85.0, 57.0)) < 1e-9, "{top:?}");
+}
+
+/// Re (u + iv)³ = u³ − 3uv², scaled to 12 mm, degree 3: its sections'
+/// areas against a pixel count of {h ≥ z} on a 0.05 mm grid (h evaluated by
+/// the polynomial itself, not the patch), and every vertex on {h = z} or on
+/// the border with h ≥ z.
+#[test]
+fn sections_of_a_cubic_match_a_pixel_count() {
+    use pfcam::sources::harmonic_bezier::polynomials::{bernstein_net, eval, re_im_power};
+    let p: Vec<(usize, usize, f64)> = re_im_power(3, false)
+        .into_iter()
+        .map(|(a, b, c)| (a, b, 6.0 * c))
+        .collect();
+    let net = bernstein_net(&p, 3, 3);
+    let row = |i: usize| -> String {
+        let r: Vec<String> = net[i * 4..i * 4 + 4]
+            .iter()
+            .map(|h| format!("{h:?}"))
+            .collect();
+        format!("[{}]", r.join(", "))
+    };
+    let (sx, sy) = (40.0, 30.0);
+    let j = job(&patch_job(&format!(
+        "degree = 3\nsize = [{sx}, {sy}]\nrow0 = {}\nrow1 = {}",
+        row(0),
+        row(3)
+    )))
+    .unwrap();
+    // u = y / Y across the rows, v = x / X along them.
+    let h = |x: f64, y: f64| eval(&p, y / sy, x / sx);
+    let s = sections(&j);
+    let (bottom, top) = s.z_range();
+    let (hmin, hmax) = (-12.0, 6.0);
+    assert!(
+        (top - bottom - (hmax - hmin)).abs() < 1e-9,
+        "{bottom} {top}"
+    );
+    let px = 0.05;
+    let (nx, ny) = ((sx / px) as usize, (sy / px) as usize);
+    for frac in [0.1, 0.3, 0.5, 0.7, 0.9] {
+        let z = bottom + frac * (top - bottom);
+        let level = hmax + z;
+        let sec = s.section(z);
+        let count = (0..nx * ny)
+            .filter(|k| {
+                let (x, y) = ((k % nx) as f64 + 0.5, (k / nx) as f64 + 0.5);
+                h(x * px, y * px) >= level
+            })
+            .count();
+        let pixels = count as f64 * px * px;
+        let area = net_area(&sec);
+        assert!(
+            (area - pixels).abs() < 2e-3 * sx * sy,
+            "z {z}: {area} against {pixels} by pixels"
+        );
+        for poly in &sec {
+            assert!(
+                pfcam::field::isolines::polygon_area(poly) > 0.0,
+                "outlines run CCW"
+            );
+            for q in poly {
+                let on_border = q.x.abs() < 1e-9
+                    || q.y.abs() < 1e-9
+                    || (q.x - sx).abs() < 1e-9
+                    || (q.y - sy).abs() < 1e-9;
+                let e = h(q.x, q.y) - level;
+                assert!(
+                    e.abs() < 1e-7 || (on_border && e > -1e-7),
+                    "z {z}: vertex {q:?} has h − z = {e}"
+                );
+            }
+        }
+    }
 }
 
 #[test]

@@ -1,0 +1,96 @@
+//! A harmonic patch job (`shape.kind = "harmonic-bezier"`) through the
+//! pipeline: the patch's sections ([`HeightFieldSections`]) go through the
+//! level planner unchanged (the schedule, each level's MFS solve on its
+//! section and rolling-disk rings, linking, arcs and the gouge check of every
+//! level against its section), as a boss's. The stock top is max h; the
+//! part's foot, min h, is `operation.depth` below it.
+
+use crate::field::count::{set_stage, Stage};
+use crate::job::Job;
+use crate::levels::height_field::HeightFieldSections;
+use crate::levels::plan::LevelJob;
+use crate::pipeline::{
+    check_coverage, check_levels, job_shape, level_params, plan_with_progress, solve_shape,
+    PipelineError, Progress, RunOutput, SolveReport, FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
+};
+use crate::sources::harmonic_bezier::PatchSpec;
+use crate::toolpath::arcfit::{self, ArcFitParams};
+use crate::toolpath::zlevel::{link_levels, LevelCut};
+
+/// The patch's sections for a job (chords within the job's tolerance).
+pub fn patch_sections(job: &Job, spec: &PatchSpec) -> Result<HeightFieldSections, PipelineError> {
+    HeightFieldSections::new(spec, job.operation.tolerance).map_err(PipelineError::Other)
+}
+
+/// Rough a patch by levels (and finish it, with `[finish]`).
+pub fn run_patch(
+    job: &Job,
+    spec: &PatchSpec,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<RunOutput, PipelineError> {
+    set_stage(Stage::ShapeSolve);
+    // The rectangle: the part seen from above, for the preview and report.
+    let (shape, mut solves) = job_shape(job, progress)?;
+    let source = patch_sections(job, spec)?;
+    let [sx, sy] = spec.size;
+    let lj = LevelJob {
+        source: &source,
+        cavity: false,
+        top: job.stock.top,
+        stepdown: job.tool.stepdown,
+        max_scallop: job.operation.max_scallop,
+        margin: job.stock.margin,
+        outer_radius: OUTER_RADIUS_FACTOR * sx.hypot(sy),
+        params: level_params(job),
+        max_hours: job.machine.max_hours,
+    };
+    set_stage(Stage::LevelGrid);
+    let mut planned = plan_with_progress(&lj, progress)?;
+    set_stage(Stage::Other);
+    check_coverage(&planned.info, &mut planned.warnings)?;
+    let in_order: Vec<&LevelCut> = planned.order.iter().map(|&k| &planned.cuts[k]).collect();
+    let linked = link_levels(&in_order, &planned.params);
+    let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
+    let min_clearance = check_levels(&toolpath, &in_order, &planned.order, &mut planned.info, job)?;
+    let stock = (planned.params.stock_lo, planned.params.stock_hi);
+    set_stage(Stage::Finishing);
+    let finish = match &job.finish {
+        Some(_) => {
+            return Err(PipelineError::Other(
+                "finish: a harmonic patch is not finished yet (its drop-cutter raster is the next step); remove [finish]".into(),
+            ))
+        }
+        None => None,
+    };
+    set_stage(Stage::Other);
+    // The rectangle's own field, for the preview's colour map only (the
+    // levels were traced in their sections' fields).
+    let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
+    let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
+    report.label = "patch outline (preview)".into();
+    solves.push(report);
+    for (k, li) in planned.info.iter().enumerate() {
+        solves.push(SolveReport {
+            label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),
+            n: li.n,
+            m: li.m,
+            distance: li.distance,
+            max_error: li.max_error,
+        });
+    }
+    Ok(RunOutput {
+        toolpath,
+        solves,
+        min_clearance,
+        warnings: planned.warnings,
+        glyphs: vec!["patch".into()],
+        fallbacks: 0,
+        stock: Some(stock),
+        t_schedule: planned.t_schedule,
+        levels: planned.info,
+        shape,
+        field: solved.solution.field,
+        lower_bound: planned.bound,
+        finish,
+    })
+}
