@@ -106,6 +106,27 @@ impl HeightFieldSections {
         &self.patch
     }
 
+    /// The rectangle's lower-left corner and its size (job coordinates, mm).
+    pub fn rectangle_box(&self) -> (Vec2, Vec2) {
+        (self.origin, Vec2::new(self.size[0], self.size[1]))
+    }
+
+    /// The largest |∂h/∂y| on the sampling grid (central differences of the
+    /// exact gradient are not needed: ∇h is evaluated at every grid point).
+    pub fn max_slope_y(&self) -> f64 {
+        use rayon::prelude::*;
+        (0..self.nx * self.ny)
+            .into_par_iter()
+            .map(|k| {
+                let (x, y) = (
+                    (k % self.nx) as f64 * self.hx,
+                    (k / self.nx) as f64 * self.hy,
+                );
+                self.patch.gradient(x, y)[1].abs()
+            })
+            .reduce(|| 0.0, f64::max)
+    }
+
     /// Grid point (i, j) in job coordinates.
     fn point(&self, i: usize, j: usize) -> Vec2 {
         self.origin + Vec2::new(i as f64 * self.hx, j as f64 * self.hy)

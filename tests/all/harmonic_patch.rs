@@ -212,3 +212,57 @@ fn patch_errors_name_their_keys() {
     let e = job(&patch_job(base).replace("harmonic-bezier", "coons")).unwrap_err();
     assert!(e.contains("shape.kind"), "{e}");
 }
+
+/// The part's closed mesh: watertight, and its volume that of the block
+/// under the surface. For the ramp h = 10 x / X (degree 1), with the top at
+/// max h = 10 and the bottom `BASE_THICKNESS` below min h, the block is
+/// X Y (mean h − max h + depth + base) = 4800 × (5 − 10 + 10 + 2) exactly (a
+/// plane is triangulated exactly); the cubic's against a midpoint-rule mean.
+#[test]
+fn the_part_mesh_is_closed_and_has_the_blocks_volume() {
+    use pfcam::surface::{job_part_surface, SurfaceOptions, BASE_THICKNESS};
+    let opts = SurfaceOptions { resolution: 0.5 };
+    let ramp = job(&patch_job(
+        "degree = 1\nsize = [80.0, 60.0]\nrow0 = [0.0, 10.0]\nrow1 = [0.0, 10.0]",
+    ))
+    .unwrap();
+    let s = job_part_surface(&ramp, &opts, &mut |_| {}).unwrap();
+    s.mesh.check().unwrap();
+    let v = s.mesh.volume();
+    let exact = 4800.0 * (5.0 - 10.0 + 10.0 + BASE_THICKNESS);
+    assert!((v - exact).abs() < 1e-6 * exact, "{v} against {exact}");
+    let cubic = job(&patch_job(
+        "degree = 3\nsize = [80.0, 60.0]\nrow0 = [0.0, 14.0, 2.0, 10.0]\nrow1 = [8.0, -2.0, 12.0, 4.0]\n\
+         origin = [10.0, 20.0]",
+    ))
+    .unwrap();
+    let s = job_part_surface(&cubic, &opts, &mut |_| {}).unwrap();
+    s.mesh.check().unwrap();
+    let sec = sections(&cubic);
+    let (bottom, _) = sec.z_range();
+    let pfcam::geometry::ShapeSource::HarmonicBezier(spec) = &cubic.shape else {
+        panic!("a patch");
+    };
+    let patch = spec.patch().unwrap();
+    let hmax = patch.height_range().max;
+    let n = 400;
+    let mean: f64 = (0..n * n)
+        .map(|k| {
+            let (x, y) = (
+                ((k % n) as f64 + 0.5) / n as f64,
+                ((k / n) as f64 + 0.5) / n as f64,
+            );
+            patch.height(80.0 * x, 60.0 * y)
+        })
+        .sum::<f64>()
+        / (n * n) as f64;
+    let exact = 4800.0 * (mean - hmax - bottom + BASE_THICKNESS);
+    let v = s.mesh.volume();
+    assert!((v - exact).abs() < 1e-3 * exact, "{v} against {exact}");
+    let (lo, hi) = s.mesh.bbox().unwrap();
+    assert_eq!((lo[0], lo[1], hi[0], hi[1]), (10.0, 20.0, 90.0, 80.0));
+    // The top is max h at the stock top (0), which a grid vertex meets only
+    // where the maximum falls on one: within what h changes over a cell.
+    assert!(hi[2] <= 1e-9 && hi[2] > -0.05, "{}", hi[2]);
+    assert!((lo[2] - (bottom - BASE_THICKNESS)).abs() < 1e-9);
+}

@@ -5,7 +5,10 @@
 //! level against its section), as a boss's. The stock top is max h; the
 //! part's foot, min h, is `operation.depth` below it.
 
+pub mod mesh;
+
 use crate::field::count::{set_stage, Stage};
+use crate::geometry::Vec2;
 use crate::job::Job;
 use crate::levels::height_field::HeightFieldSections;
 use crate::levels::plan::LevelJob;
@@ -93,4 +96,61 @@ pub fn run_patch(
         lower_bound: planned.bound,
         finish,
     })
+}
+
+/// The stock rectangle of a patch job: the rectangle grown by `stock.margin`
+/// (what the level planner computes from the bottom section, which is the
+/// rectangle).
+pub fn patch_stock(job: &Job, spec: &PatchSpec) -> (Vec2, Vec2) {
+    let m = Vec2::new(job.stock.margin, job.stock.margin);
+    let size = Vec2::new(spec.size[0], spec.size[1]);
+    (spec.origin - m, spec.origin + size + m)
+}
+
+/// Where the part's heights go: max h at `stock.top`, `operation.depth`
+/// (max h − min h) deep.
+pub fn placement(job: &Job) -> mesh::Placement {
+    mesh::Placement {
+        top: job.stock.top,
+        depth: job.operation.depth,
+    }
+}
+
+/// The patch block as a closed mesh at `resolution` mm (`pfcam surface`).
+pub fn patch_surface(
+    job: &Job,
+    spec: &PatchSpec,
+    resolution: f64,
+) -> Result<crate::surface::Surface, PipelineError> {
+    let sections = patch_sections(job, spec)?;
+    let stock = patch_stock(job, spec);
+    Ok(mesh::patch_mesh(
+        &sections,
+        placement(job),
+        resolution,
+        stock,
+    ))
+}
+
+/// The part for `simulate` and the finisher: the block's up-facing
+/// triangles (its top surface) and the floor around it at min h, over the
+/// stock rectangle.
+pub fn patch_part_triangles(
+    job: &Job,
+    spec: &PatchSpec,
+    resolution: f64,
+) -> Result<Vec<[[f64; 3]; 3]>, PipelineError> {
+    let s = patch_surface(job, spec, resolution)?;
+    let m = &s.mesh;
+    let mut tris: Vec<[[f64; 3]; 3]> = (0..m.triangles.len())
+        .map(|t| m.corners(t))
+        .filter(|c| crate::surface::up_area(c) > 1e-12)
+        .collect();
+    let size = Vec2::new(spec.size[0], spec.size[1]);
+    tris.extend(mesh::floor_triangles(
+        (spec.origin, spec.origin + size),
+        (s.stock_lo, s.stock_hi),
+        placement(job).z_floor(),
+    ));
+    Ok(tris)
 }
