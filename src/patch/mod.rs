@@ -6,6 +6,7 @@
 //! part's foot, min h, is `operation.depth` below it.
 
 pub mod mesh;
+pub mod raster;
 
 use crate::field::count::{set_stage, Stage};
 use crate::geometry::Vec2;
@@ -58,11 +59,7 @@ pub fn run_patch(
     let stock = (planned.params.stock_lo, planned.params.stock_hi);
     set_stage(Stage::Finishing);
     let finish = match &job.finish {
-        Some(_) => {
-            return Err(PipelineError::Other(
-                "finish: a harmonic patch is not finished yet (its drop-cutter raster is the next step); remove [finish]".into(),
-            ))
-        }
+        Some(f) => Some(finish_patch(job, spec, f, &source, progress)?),
         None => None,
     };
     set_stage(Stage::Other);
@@ -96,6 +93,51 @@ pub fn run_patch(
         lower_bound: planned.bound,
         finish,
     })
+}
+
+/// The finishing program: the raster of [`raster`] against the part's
+/// mesh at `pipeline::FINISH_MESH` (its top surface and the floor round it).
+fn finish_patch(
+    job: &Job,
+    spec: &PatchSpec,
+    f: &crate::job::Finish,
+    source: &HeightFieldSections,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<crate::finish::Finished, PipelineError> {
+    progress(Progress::Stage {
+        name: "finishing passes".into(),
+        total: 1,
+    });
+    let fine = crate::pipeline::FINISH_MESH;
+    let tris = patch_part_triangles(job, spec, fine)?;
+    let z_floor = placement(job).z_floor();
+    // The top surface's area (the floor is flat and finished by the roughing).
+    let area = tris
+        .iter()
+        .filter(|c| c.iter().any(|v| v[2] > z_floor + 1e-9))
+        .map(|c| {
+            let u = [c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]];
+            let v = [c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]];
+            let n = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+        })
+        .sum();
+    let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
+    let part = raster::RasterPart {
+        rect: source.rectangle_box(),
+        max_slope_y: source.max_slope_y(),
+        mesh: &index,
+        z_floor,
+        area,
+    };
+    let done = raster::raster_finish(job, f, &part)
+        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
+    progress(Progress::Step);
+    Ok(done)
 }
 
 /// The stock rectangle of a patch job: the rectangle grown by `stock.margin`
