@@ -266,3 +266,49 @@ fn the_part_mesh_is_closed_and_has_the_blocks_volume() {
     assert!(hi[2] <= 1e-9 && hi[2] > -0.05, "{}", hi[2]);
     assert!((lo[2] - (bottom - BASE_THICKNESS)).abs() < 1e-9);
 }
+
+/// jobs/harmonic-patch.toml, roughed then finished, simulated by the binary
+/// against the patch: no finding, the largest gouge within the tolerance,
+/// and the material the ball can reach left within the scallop + 0.01 mm.
+#[test]
+fn the_shipped_patch_simulates_clean() {
+    use crate::common::{pfcam as bin, scratch, shipped, text};
+    let dir = scratch("harmonic_patch", "shipped");
+    let job = shipped("harmonic-patch.toml");
+    let job = job.to_str().unwrap();
+    let out = bin(&["run", job, "-o", ".", "-q"], &dir);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let out = bin(
+        &[
+            "simulate",
+            "harmonic-patch.rough.nc",
+            "harmonic-patch.finish.nc",
+            "--job",
+            job,
+            "--json",
+        ],
+        &dir,
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["clean"], true, "{v}");
+    let part = &v["part"];
+    assert_eq!(part["model"], "harmonic patch");
+    let gouge = part["max_gouge"]["value"].as_f64().unwrap();
+    let left = part["max_left_reachable"]["value"].as_f64().unwrap();
+    assert!(gouge <= 0.01, "max gouge {gouge}");
+    assert!(left <= 0.01 + 0.01, "material left {left}");
+    assert_eq!(part["gouged_cells"], 0);
+}
+
+/// A flat finisher is refused: its edge leaves a stair on a curved surface.
+#[test]
+fn a_flat_finisher_is_refused_for_a_patch() {
+    let body = format!(
+        "{}[finish]\nshape = \"flat\"\ndiameter = 3.0\n",
+        patch_job("degree = 1\nsize = [20.0, 20.0]\nrow0 = [0.0, 5.0]\nrow1 = [0.0, 5.0]")
+    );
+    let j = job(&body).unwrap();
+    let e = pipeline::run(&j, &mut |_| {}).unwrap_err().to_string();
+    assert!(e.contains("finish.shape = \"flat\""), "{e}");
+}
