@@ -282,7 +282,13 @@ pub fn raster_finish(job: &Job, f: &Finish, part: &RasterPart) -> Result<Finishe
         last = pass.last().copied();
         let z = pass.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
         sections.push(Section {
-            label: format!("finish pass {} y {:.3}", k + 1, y),
+            label: format!(
+                "{} {} y {:.3} {}",
+                crate::toolpath::FINISH_PASS,
+                k + 1,
+                y,
+                crate::toolpath::RASTER_PASS
+            ),
             z,
             moves,
         });
