@@ -765,14 +765,14 @@ fn cmd_surface(
     let own = surface::check_stl_target(&target, force)?;
     check_writable(&target)?;
     let mut progress = Reporter::new(quiet);
-    let result = surface::job_surface(&job, &SurfaceOptions { resolution }, &mut |p| {
+    let result = surface::job_part_surface(&job, &SurfaceOptions { resolution }, &mut |p| {
         progress.event(p)
     });
     progress.finish();
     let built = result
         .map_err(|e| anyhow!(e))
         .with_context(|| path.display().to_string())?;
-    let mesh = &built.surface.mesh;
+    let mesh = &built.mesh;
     // Never write a mesh that is not closed (it would be a pfcam bug).
     mesh.check().map_err(|e| {
         anyhow!("internal error: the surface mesh is not watertight: {e} (please report this pfcam bug)")

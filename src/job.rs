@@ -20,6 +20,7 @@ pub mod extent;
 mod field;
 pub mod finish;
 mod font;
+mod harmonic;
 pub mod limits;
 mod operation;
 mod profile;
@@ -485,6 +486,19 @@ pub struct RawShape {
     pub result: Option<String>,
     /// `[[shape.part]]`: the parts of a composition
     pub part: Option<Vec<RawPart>>,
+    /// `kind`: a surface source, `"harmonic-bezier"`
+    pub kind: Option<String>,
+    /// `degree` (harmonic patch): n, the degree along the rows
+    pub degree: Option<i64>,
+    /// `form` (harmonic patch): `"square"` or `"raised"`
+    pub form: Option<String>,
+    /// `size` (harmonic patch), mm: [X, Y]
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub size: Option<[f64; 2]>,
+    /// `row0` (harmonic patch), mm: heights of the edge y = 0
+    pub row0: Option<Vec<f64>>,
+    /// `row1` (harmonic patch), mm: heights of the edge y = Y
+    pub row1: Option<Vec<f64>>,
 }
 
 /// `[[shape.part]]`: one part of a composition, in design units.
@@ -1105,6 +1119,10 @@ impl RawJob {
         let mut shape = shape::resolve(self.shape.unwrap_or_default(), tool.diameter, src)?;
         check_height_per_tool(&shape, tool.diameter)?;
         let stock = stock::resolve(self.stock.unwrap_or_default())?;
+        let surface_depth = match &shape {
+            ShapeSource::HarmonicBezier(spec) => Some(harmonic::patch_depth(spec)?),
+            _ => None,
+        };
         let operation::Resolved {
             operation,
             profile,
@@ -1113,8 +1131,8 @@ impl RawJob {
             self.operation.unwrap_or_default(),
             &tool,
             &stock,
-            self.profile,
-            self.finish,
+            (self.profile, self.finish),
+            surface_depth,
         )?;
         set_file_tolerance(&mut shape, operation.tolerance);
         let field = field::resolve(self.field.unwrap_or_default())?;
@@ -1189,6 +1207,8 @@ fn check_height_per_tool(shape: &ShapeSource, diameter: f64) -> Result<(), JobEr
         },
         ShapeSource::DxfFile(_) => None,
         ShapeSource::Composite(c) => c.height,
+        // Its size is bounded by limits::PATCH_SIZE and check_extent.
+        ShapeSource::HarmonicBezier(_) => None,
     };
     match height {
         Some(h) if h / diameter > limits::MAX_HEIGHT_PER_DIAMETER => Err(invalid(
@@ -2165,6 +2185,12 @@ mod doc_tests {
             "exponent",
             "points",
             "shape.result",
+            "shape.kind",
+            "shape.degree",
+            "shape.form",
+            "shape.size",
+            "shape.row0",
+            "shape.row1",
             "shape.part.name",
             "shape.part.polygon",
             "shape.part.svg",

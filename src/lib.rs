@@ -16,6 +16,7 @@ pub mod job;
 pub mod levels;
 pub mod num;
 pub mod output;
+pub mod patch;
 pub mod pipeline;
 pub mod preview;
 pub mod report;

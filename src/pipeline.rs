@@ -187,7 +187,10 @@ pub const UNCUT_ERROR: f64 = 0.01;
 
 /// The coverage of every cavity level: a warning past [`UNCUT_WARNING`], an
 /// error past [`UNCUT_ERROR`]. A NaN share (the measurement failed) is an error.
-fn check_coverage(info: &[LevelInfo], warnings: &mut Vec<String>) -> Result<(), PipelineError> {
+pub(crate) fn check_coverage(
+    info: &[LevelInfo],
+    warnings: &mut Vec<String>,
+) -> Result<(), PipelineError> {
     for (k, li) in info.iter().enumerate() {
         let Some(share) = li.uncut else { continue };
         if share.is_nan() || share > UNCUT_ERROR {
@@ -482,6 +485,9 @@ pub fn plan_shape(
 /// Run a job to a tool path: plan, link, and the independent gouge check (a
 /// failing check is an error: no tool path is returned).
 pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
+    if let ShapeSource::HarmonicBezier(spec) = &job.shape {
+        return crate::patch::run_patch(job, spec, progress);
+    }
     match job.operation.kind {
         OperationKind::Profile => run_profile(job, progress),
         OperationKind::Boss | OperationKind::Cavity => run_levels(job, progress),
@@ -490,7 +496,7 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
 
 /// The level planner's settings of a job (the stock rectangle is filled in
 /// by the planner).
-fn level_params(job: &Job) -> LevelParams {
+pub(crate) fn level_params(job: &Job) -> LevelParams {
     LevelParams {
         radius: job.tool.diameter / 2.0,
         tol: job.operation.tolerance,
@@ -515,7 +521,7 @@ fn level_params(job: &Job) -> LevelParams {
 /// clearance; the first failing level in cutting order is the error. Fills
 /// each level's `min_clearance` and returns the smallest, measured from the
 /// part itself (the stock to leave included).
-fn check_levels(
+pub(crate) fn check_levels(
     toolpath: &Toolpath,
     in_order: &[&LevelCut],
     order: &[usize],
@@ -666,6 +672,12 @@ pub fn job_sections(
     job: &Job,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<(Box<dyn Sections>, Vec<SolveReport>), PipelineError> {
+    if let ShapeSource::HarmonicBezier(spec) = &job.shape {
+        return Ok((
+            Box::new(crate::patch::patch_sections(job, spec)?),
+            Vec::new(),
+        ));
+    }
     let (shape, mut solves) = job_shape(job, progress)?;
     let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
     let Some(profile) = job
@@ -781,7 +793,7 @@ fn finish_program(
 /// Plan the levels (in parallel, on the current rayon pool) while this thread
 /// reports each finished level: a stage of as many steps as there are levels,
 /// announced once the z schedule is known.
-fn plan_with_progress(
+pub(crate) fn plan_with_progress(
     lj: &LevelJob,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<crate::levels::plan::Planned, PipelineError> {

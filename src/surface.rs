@@ -336,6 +336,19 @@ pub fn job_surface(
     })
 }
 
+/// The part of any boss or cavity job as a closed mesh at `opts.resolution`:
+/// a harmonic patch's block (`patch::patch_surface`), else [`job_surface`]'s.
+pub fn job_part_surface(
+    job: &Job,
+    opts: &SurfaceOptions,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Surface, SurfaceError> {
+    if let crate::geometry::ShapeSource::HarmonicBezier(spec) = &job.shape {
+        return Ok(crate::patch::patch_surface(job, spec, opts.resolution)?);
+    }
+    Ok(job_surface(job, opts, progress)?.surface)
+}
+
 /// The levels s of the isobands: from s_bottom to s_top, neighbours at most
 /// [`LEVEL_DZ`] apart in z and (s_top − s_bottom)/[`LEVEL_DS_DIVISIONS`] in s.
 pub fn level_values(profile: &DepthProfile) -> Vec<f64> {

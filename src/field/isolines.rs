@@ -254,6 +254,24 @@ fn trace_loops(grid: &Grid, s: f64) -> Vec<Vec<Edge>> {
     loops_edges
 }
 
+/// The loops of {u = s} on `grid` (values only: `origin`, `h` and `inside`
+/// are not read), each a chain of the grid edges it crosses, an edge given by
+/// its two end points (i, j), in the order of the loop, u ≥ s on its left.
+/// For sources that place the vertices themselves (`levels::height_field`).
+pub fn edge_loops(grid: &Grid, s: f64) -> Vec<Vec<[(usize, usize); 2]>> {
+    trace_loops(grid, s)
+        .into_iter()
+        .map(|lp| {
+            lp.into_iter()
+                .map(|e| match e {
+                    Edge::H(i, j) => [(i, j), (i + 1, j)],
+                    Edge::V(i, j) => [(i, j), (i, j + 1)],
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// An edge of the grid: horizontal (i, j)–(i+1, j) or vertical (i, j)–(i, j+1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 enum Edge {

@@ -439,8 +439,17 @@ fn levels_line(tp: &Toolpath) -> String {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
                 (lo.min(s.z), hi.max(s.z))
             });
+        let raster = tp
+            .sections
+            .iter()
+            .all(|s| s.label.ends_with(crate::toolpath::RASTER_PASS));
+        let how = if raster {
+            "parallel along x, stepped over in y"
+        } else {
+            "along the surface from the floor up"
+        };
         return format!(
-            "passes: {passes} along the surface from the floor up, lowest z {} to {}",
+            "passes: {passes} {how}, lowest z {} to {}",
             fmt_num(lo),
             fmt_num(hi)
         );

@@ -237,6 +237,9 @@ pub enum ShapeSource {
     /// Parts combined by the paper's Boolean operations on fields (Section 4);
     /// built by `field::boolean`, since every step needs a potential field.
     Composite(Composition),
+    /// A harmonic tensor-product Bézier patch (`kind = "harmonic-bezier"`):
+    /// a height field over a rectangle, which is its shape seen from above.
+    HarmonicBezier(crate::sources::harmonic_bezier::PatchSpec),
 }
 
 /// A shape built from named parts in design units (the paper's Section 5): each

@@ -66,6 +66,17 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
         }
         ShapeSource::SvgFile(src) => super::svgfile::svg_file_shape(src),
         ShapeSource::DxfFile(src) => super::dxffile::dxf_file_shape(src),
+        ShapeSource::HarmonicBezier(p) => {
+            check_point("origin", p.origin)?;
+            let outline = super::Contour::polygon(&p.rectangle())?;
+            Ok(super::Shape {
+                regions: vec![super::Region {
+                    name: "patch".into(),
+                    outline,
+                    counters: Vec::new(),
+                }],
+            })
+        }
         ShapeSource::Composite(_) => Err(GeometryError::Invalid(
             "a composition of parts is built with its fields (pipeline::job_shape)".into(),
         )),

@@ -62,6 +62,10 @@ pub fn check_extent(source: &ShapeSource, shape: &Shape, diameter: f64) -> Resul
             "shape.result",
             "the result is wide for its height: lower shape.height",
         ),
+        ShapeSource::HarmonicBezier(_) => (
+            "shape.size",
+            "make the patch smaller, or use a larger tool",
+        ),
     };
     let why = if limit < limits::MAX_EXTENT {
         format!(

@@ -134,6 +134,11 @@ pub const SVG_SCALE: Range = Range::open(0.0, 1000.0, "");
 pub const JOIN_TOLERANCE: Range = Range::closed(0.000001, 10.0, "mm");
 /// `shape.origin`, each coordinate.
 pub const ORIGIN: Range = Range::closed(-10_000.0, 10_000.0, "mm");
+/// `shape.size` (harmonic patch), each side: as `shape.height`, from 1 mm.
+pub const PATCH_SIZE: Range = Range::closed(1.0, 2000.0, "mm");
+/// `shape.row0`, `shape.row1` (harmonic patch), each height: the part is at
+/// most `operation.depth`'s 200 mm deep.
+pub const PATCH_HEIGHT: Range = Range::closed(-200.0, 200.0, "mm");
 /// `shape.letter_spacing`.
 pub const LETTER_SPACING: Range = Range::closed(-1000.0, 1000.0, "mm");
 /// `shape.line_spacing`, baseline to baseline in em: lines may overlap (below
@@ -195,6 +200,9 @@ pub const KEYS: &[(&str, Range)] = &[
     ("shape.width", SHAPE_WIDTH),
     ("shape.scale", SVG_SCALE),
     ("shape.origin", ORIGIN),
+    ("shape.size", PATCH_SIZE),
+    ("shape.row0", PATCH_HEIGHT),
+    ("shape.row1", PATCH_HEIGHT),
     ("shape.join_tolerance", JOIN_TOLERANCE),
     ("shape.letter_spacing", LETTER_SPACING),
     ("shape.line_spacing", LINE_SPACING),

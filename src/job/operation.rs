@@ -19,20 +19,35 @@ pub(super) struct Resolved {
 /// `[operation]`, `[profile]` and `[finish]` against the resolved tool and
 /// stock: the depth (mm below `stock.top`) in passes of `tool.stepdown`, the
 /// tolerance below the tool radius, the clearing rings of a boss's margin.
+/// `surface_depth` is a surface source's own depth (a harmonic patch's max h
+/// − min h, mm): it is then the depth, the operation a boss by default, and
+/// `operation.depth` and `[profile]` do not apply.
 pub(super) fn resolve(
     o: RawOperation,
     tool: &Tool,
     stock: &Stock,
-    profile: Option<RawProfile>,
-    finish: Option<RawFinish>,
+    tables: (Option<RawProfile>, Option<RawFinish>),
+    surface_depth: Option<f64>,
 ) -> Result<Resolved, JobError> {
-    let kind = o.kind.unwrap_or_else(|| "profile".into());
+    let (profile, finish) = tables;
+    let default_kind = if surface_depth.is_some() {
+        "boss"
+    } else {
+        "profile"
+    };
+    let kind = o.kind.unwrap_or_else(|| default_kind.into());
     one_of("operation.kind", &kind, OPERATION_KINDS)?;
+    if let Some(d) = surface_depth {
+        check_surface(&kind, o.depth, profile.is_some(), d)?;
+    }
     let side = o.side.unwrap_or_else(|| "outside".into());
     one_of("operation.side", &side, SIDES)?;
     let direction = o.direction.unwrap_or_else(|| "climb".into());
     one_of("operation.direction", &direction, DIRECTIONS)?;
-    let depth = resolve_depth(o.depth, tool)?;
+    let depth = match surface_depth {
+        Some(d) => d,
+        None => resolve_depth(o.depth, tool)?,
+    };
     let tolerance = resolve_tolerance(o.tolerance, tool.diameter)?;
     let max_scallop = limits::MAX_SCALLOP.check(
         "operation.max_scallop",
@@ -45,7 +60,10 @@ pub(super) fn resolve(
     };
     check_margin_rings(op_kind, stock, tool)?;
     check_levels(op_kind, depth, tool)?;
-    let profile = resolve_profile_table(op_kind, profile, depth)?;
+    let profile = match surface_depth {
+        Some(_) => None,
+        None => resolve_profile_table(op_kind, profile, depth)?,
+    };
     let finish = resolve_finish_table(op_kind, finish, tool)?;
     let stock_to_leave = resolve_stock_to_leave(op_kind, o.stock_to_leave, finish.is_some())?;
     let operation = Operation {
@@ -66,6 +84,44 @@ pub(super) fn resolve(
         profile,
         finish,
     })
+}
+
+/// A surface source (a harmonic patch) is milled as a boss: its depth is the
+/// surface's own, and its heights are its own depth profile.
+fn check_surface(
+    kind: &str,
+    depth: Option<f64>,
+    has_profile: bool,
+    surface_depth: f64,
+) -> Result<(), JobError> {
+    if kind == "profile" {
+        return Err(invalid(
+            "operation.kind",
+            "= \"profile\" cuts a shape's outline with vertical walls; a harmonic patch is a surface: use \"boss\" (the default with shape.kind)",
+        ));
+    }
+    if kind == "cavity" {
+        return Err(invalid(
+            "operation.kind",
+            "= \"cavity\" (the patch's mould milled into a slab) is not available for a harmonic patch; for the negative surface as a boss, negate shape.row0 and shape.row1 (the mould of a harmonic patch is linear in its rows, so −h is the patch of the negated rows)",
+        ));
+    }
+    if let Some(d) = depth {
+        return Err(invalid(
+            "operation.depth",
+            format!(
+                "= {} does not apply to a harmonic patch: its depth is the surface's own range, max h − min h = {surface_depth:.3} mm (the stock top is at max h)",
+                show(d)
+            ),
+        ));
+    }
+    if has_profile {
+        return Err(invalid(
+            "profile",
+            "does not apply to a harmonic patch: its heights are the surface h(x, y) itself",
+        ));
+    }
+    Ok(())
 }
 
 /// `operation.depth` (required, mm below `stock.top`): positive, within

@@ -4,7 +4,7 @@
 
 use super::font::Sources;
 use super::{
-    at_most_one, composition, dxffile, invalid, limits, svgfile, text, JobError, RawShape,
+    at_most_one, composition, dxffile, harmonic, invalid, limits, svgfile, text, JobError, RawShape,
 };
 use crate::geometry::{Composition, ShapeSource, Vec2};
 
@@ -26,6 +26,10 @@ pub(super) fn resolve(
         .height
         .map(|h| limits::SHAPE_HEIGHT.check("shape.height", h))
         .transpose()?;
+    if s.kind.is_some() {
+        return harmonic::resolve(s, origin);
+    }
+    harmonic::refuse_patch_keys(&s)?;
     if let Some(parts) = s.part.take() {
         check_composite_keys(&s)?;
         let composition = composition::resolve(parts, s.result, src)?;

@@ -5,6 +5,7 @@
 //! φ(s_bottom) = −depth. φ increases strictly with s on [s_bottom, s_top], so it
 //! can be inverted: at every z-level the generating boundary is Γ(s(z)).
 
+pub mod height_field;
 pub mod mfs_sections;
 pub mod plan;
 pub mod prism;

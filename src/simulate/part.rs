@@ -84,6 +84,23 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         });
         return Ok(facts);
     }
+    if let crate::geometry::ShapeSource::HarmonicBezier(spec) = &job.shape {
+        let part = |e: crate::pipeline::PipelineError| SimError::Part(e.to_string());
+        let (lo, hi) = crate::patch::patch_stock(job, spec);
+        facts.stock = Some(StockBox {
+            lo: [lo.x, lo.y],
+            hi: [hi.x, hi.y],
+            top: job.stock.top,
+        });
+        facts.part = Some(PartModel {
+            name: "harmonic patch".into(),
+            triangles: crate::patch::patch_part_triangles(job, spec, surface_resolution)
+                .map_err(part)?,
+            outlines: Vec::new(),
+            outline_z: job.stock.top,
+        });
+        return Ok(facts);
+    }
     let opts = SurfaceOptions {
         resolution: surface_resolution,
     };

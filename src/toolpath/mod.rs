@@ -21,6 +21,10 @@ pub mod zlevel;
 /// z-levels.
 pub const FINISH_PASS: &str = "finish pass";
 
+/// The label's end of a finishing pass of a raster (parallel passes along
+/// x, `patch::raster`) rather than along the surface's level curves.
+pub const RASTER_PASS: &str = "along x";
+
 /// A point in machine coordinates, millimetres.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Vec3 {

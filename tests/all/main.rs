@@ -38,6 +38,7 @@ mod field_robust;
 mod finish;
 mod golden;
 mod harmonic_bezier;
+mod harmonic_patch;
 mod imports;
 mod inputs;
 mod levels;

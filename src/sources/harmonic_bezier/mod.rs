@@ -12,8 +12,10 @@ mod net;
 mod patch;
 pub mod polynomials;
 mod range;
+mod spec;
 
 pub use error::HarmonicError;
 pub use mould::{mould, solve_mould, Form, Mould, MAX_DEGREE, ROW_SUM_LIMIT};
 pub use patch::{HarmonicPatch, ParamDerivatives, EVEN_DIFFERENCE_TOL};
 pub use range::HeightRange;
+pub use spec::{default_form, PatchSpec};

@@ -1,0 +1,198 @@
+//! A harmonic patch job (`shape.kind = "harmonic-bezier"`) through the
+//! pipeline: the patch's sections ([`HeightFieldSections`]) go through the
+//! level planner unchanged (the schedule, each level's MFS solve on its
+//! section and rolling-disk rings, linking, arcs and the gouge check of every
+//! level against its section), as a boss's. The stock top is max h; the
+//! part's foot, min h, is `operation.depth` below it.
+
+pub mod mesh;
+pub mod raster;
+
+use crate::count::{set_stage, Stage};
+use crate::geometry::Vec2;
+use crate::job::Job;
+use crate::levels::height_field::HeightFieldSections;
+use crate::levels::plan::LevelJob;
+use crate::pipeline::{
+    check_coverage, check_levels, job_shape, level_params, plan_with_progress, solve_shape,
+    PipelineError, Progress, RunOutput, SolveReport, FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
+};
+use crate::sources::harmonic_bezier::PatchSpec;
+use crate::toolpath::arcfit::{self, ArcFitParams};
+use crate::toolpath::zlevel::{link_levels, LevelCut};
+
+/// The patch's sections for a job (chords within the job's tolerance).
+pub fn patch_sections(job: &Job, spec: &PatchSpec) -> Result<HeightFieldSections, PipelineError> {
+    HeightFieldSections::new(spec, job.operation.tolerance).map_err(PipelineError::Other)
+}
+
+/// Rough a patch by levels (and finish it, with `[finish]`).
+pub fn run_patch(
+    job: &Job,
+    spec: &PatchSpec,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<RunOutput, PipelineError> {
+    set_stage(Stage::ShapeSolve);
+    // The rectangle: the part seen from above, for the preview and report.
+    let (shape, mut solves) = job_shape(job, progress)?;
+    let source = patch_sections(job, spec)?;
+    let [sx, sy] = spec.size;
+    let lj = LevelJob {
+        source: &source,
+        cavity: false,
+        top: job.stock.top,
+        stepdown: job.tool.stepdown,
+        max_scallop: job.operation.max_scallop,
+        margin: job.stock.margin,
+        outer_radius: OUTER_RADIUS_FACTOR * sx.hypot(sy),
+        params: level_params(job),
+        max_hours: job.machine.max_hours,
+    };
+    set_stage(Stage::LevelGrid);
+    let mut planned = plan_with_progress(&lj, progress)?;
+    set_stage(Stage::Other);
+    check_coverage(&planned.info, &mut planned.warnings)?;
+    let in_order: Vec<&LevelCut> = planned.order.iter().map(|&k| &planned.cuts[k]).collect();
+    let linked = link_levels(&in_order, &planned.params);
+    let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
+    let min_clearance = check_levels(&toolpath, &in_order, &planned.order, &mut planned.info, job)?;
+    let stock = (planned.params.stock_lo, planned.params.stock_hi);
+    set_stage(Stage::Finishing);
+    let finish = match &job.finish {
+        Some(f) => Some(finish_patch(job, spec, f, &source, progress)?),
+        None => None,
+    };
+    set_stage(Stage::Other);
+    // The rectangle's own field, for the preview's colour map only (the
+    // levels were traced in their sections' fields).
+    let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
+    let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
+    report.label = "patch outline (preview)".into();
+    solves.push(report);
+    for (k, li) in planned.info.iter().enumerate() {
+        solves.push(SolveReport {
+            label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),
+            n: li.n,
+            m: li.m,
+            distance: li.distance,
+            max_error: li.max_error,
+        });
+    }
+    Ok(RunOutput {
+        toolpath,
+        solves,
+        min_clearance,
+        warnings: planned.warnings,
+        glyphs: vec!["patch".into()],
+        fallbacks: 0,
+        stock: Some(stock),
+        t_schedule: planned.t_schedule,
+        levels: planned.info,
+        shape,
+        field: solved.solution.field,
+        lower_bound: planned.bound,
+        finish,
+    })
+}
+
+/// The finishing program: the raster of [`raster`] against the part's
+/// mesh at `pipeline::FINISH_MESH` (its top surface and the floor round it).
+fn finish_patch(
+    job: &Job,
+    spec: &PatchSpec,
+    f: &crate::job::Finish,
+    source: &HeightFieldSections,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<crate::finish::Finished, PipelineError> {
+    progress(Progress::Stage {
+        name: "finishing passes".into(),
+        total: 1,
+    });
+    let fine = crate::pipeline::FINISH_MESH;
+    let tris = patch_part_triangles(job, spec, fine)?;
+    let z_floor = placement(job).z_floor();
+    // The top surface's area (the floor is flat and finished by the roughing).
+    let area = tris
+        .iter()
+        .filter(|c| c.iter().any(|v| v[2] > z_floor + 1e-9))
+        .map(|c| {
+            let u = [c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]];
+            let v = [c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]];
+            let n = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+        })
+        .sum();
+    let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
+    let part = raster::RasterPart {
+        rect: source.rectangle_box(),
+        max_slope_y: source.max_slope_y(),
+        mesh: &index,
+        z_floor,
+        area,
+    };
+    let done = raster::raster_finish(job, f, &part)
+        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
+    progress(Progress::Step);
+    Ok(done)
+}
+
+/// The stock rectangle of a patch job: the rectangle grown by `stock.margin`
+/// (what the level planner computes from the bottom section, which is the
+/// rectangle).
+pub fn patch_stock(job: &Job, spec: &PatchSpec) -> (Vec2, Vec2) {
+    let m = Vec2::new(job.stock.margin, job.stock.margin);
+    let size = Vec2::new(spec.size[0], spec.size[1]);
+    (spec.origin - m, spec.origin + size + m)
+}
+
+/// Where the part's heights go: max h at `stock.top`, `operation.depth`
+/// (max h − min h) deep.
+pub fn placement(job: &Job) -> mesh::Placement {
+    mesh::Placement {
+        top: job.stock.top,
+        depth: job.operation.depth,
+    }
+}
+
+/// The patch block as a closed mesh at `resolution` mm (`pfcam surface`).
+pub fn patch_surface(
+    job: &Job,
+    spec: &PatchSpec,
+    resolution: f64,
+) -> Result<crate::surface::Surface, PipelineError> {
+    let sections = patch_sections(job, spec)?;
+    let stock = patch_stock(job, spec);
+    Ok(mesh::patch_mesh(
+        &sections,
+        placement(job),
+        resolution,
+        stock,
+    ))
+}
+
+/// The part for `simulate` and the finisher: the block's up-facing
+/// triangles (its top surface) and the floor around it at min h, over the
+/// stock rectangle.
+pub fn patch_part_triangles(
+    job: &Job,
+    spec: &PatchSpec,
+    resolution: f64,
+) -> Result<Vec<[[f64; 3]; 3]>, PipelineError> {
+    let s = patch_surface(job, spec, resolution)?;
+    let m = &s.mesh;
+    let mut tris: Vec<[[f64; 3]; 3]> = (0..m.triangles.len())
+        .map(|t| m.corners(t))
+        .filter(|c| crate::surface::up_area(c) > 1e-12)
+        .collect();
+    let size = Vec2::new(spec.size[0], spec.size[1]);
+    tris.extend(mesh::floor_triangles(
+        (spec.origin, spec.origin + size),
+        (s.stock_lo, s.stock_hi),
+        placement(job).z_floor(),
+    ));
+    Ok(tris)
+}
