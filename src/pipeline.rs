@@ -271,6 +271,20 @@ pub fn field_target(job: &Job) -> f64 {
     })
 }
 
+/// One solve report per level, in order ("level k z Z s S").
+pub fn level_reports(info: &[crate::levels::plan::LevelInfo]) -> Vec<SolveReport> {
+    info.iter()
+        .enumerate()
+        .map(|(k, li)| SolveReport {
+            label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),
+            n: li.n,
+            m: li.m,
+            distance: li.distance,
+            max_error: li.max_error,
+        })
+        .collect()
+}
+
 /// The shape's field: problem (2.5) with u = 1 on every contour, in the paired
 /// layout (docs/method.md §3a), N from `field.singularities` or grown from
 /// `AUTO_N_PER_REGION` per region until the max boundary error reaches
@@ -610,15 +624,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     };
     set_stage(Stage::Other);
     solves.push(shape_report);
-    for (k, li) in planned.info.iter().enumerate() {
-        solves.push(SolveReport {
-            label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),
-            n: li.n,
-            m: li.m,
-            distance: li.distance,
-            max_error: li.max_error,
-        });
-    }
+    solves.extend(level_reports(&planned.info));
     Ok(RunOutput {
         toolpath,
         solves,

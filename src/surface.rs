@@ -117,6 +117,16 @@ fn norm3(a: [f64; 3]) -> f64 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
+/// (c₁ − c₀) × (c₂ − c₀): the triangle's normal, twice its area long.
+pub fn triangle_normal(c: &[[f64; 3]; 3]) -> [f64; 3] {
+    cross3(sub3(c[1], c[0]), sub3(c[2], c[0]))
+}
+
+/// The triangle's area, mm².
+pub fn triangle_area(c: &[[f64; 3]; 3]) -> f64 {
+    0.5 * norm3(triangle_normal(c))
+}
+
 impl Mesh {
     /// The three corners of triangle `t`.
     pub fn corners(&self, t: usize) -> [[f64; 3]; 3] {
@@ -130,8 +140,7 @@ impl Mesh {
 
     /// Area of triangle `t`, mm².
     pub fn area(&self, t: usize) -> f64 {
-        let [a, b, c] = self.corners(t);
-        0.5 * norm3(cross3(sub3(b, a), sub3(c, a)))
+        triangle_area(&self.corners(t))
     }
 
     /// Enclosed volume, mm³ (divergence theorem; positive for outward normals).

@@ -73,13 +73,7 @@ pub struct Finished {
 pub fn wall_area(tris: &[[[f64; 3]; 3]]) -> f64 {
     tris.iter()
         .map(|c| {
-            let u = [c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]];
-            let v = [c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]];
-            let n = [
-                u[1] * v[2] - u[2] * v[1],
-                u[2] * v[0] - u[0] * v[2],
-                u[0] * v[1] - u[1] * v[0],
-            ];
+            let n = crate::surface::triangle_normal(c);
             let a = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
             let cos = if a > 0.0 { n[2].abs() / a } else { 1.0 };
             if cos < 1.0 - 1e-9 && cos > 1e-9 {

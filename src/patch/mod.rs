@@ -15,7 +15,7 @@ use crate::levels::height_field::HeightFieldSections;
 use crate::levels::plan::LevelJob;
 use crate::pipeline::{
     check_coverage, check_levels, job_shape, level_params, plan_with_progress, solve_shape,
-    PipelineError, Progress, RunOutput, SolveReport, FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
+    PipelineError, Progress, RunOutput, FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
 };
 use crate::sources::harmonic_bezier::PatchSpec;
 use crate::toolpath::arcfit::{self, ArcFitParams};
@@ -69,15 +69,7 @@ pub fn run_patch(
     let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
     report.label = "patch outline (preview)".into();
     solves.push(report);
-    for (k, li) in planned.info.iter().enumerate() {
-        solves.push(SolveReport {
-            label: format!("level {} z {:.3} s {:.4}", k + 1, li.z, li.s),
-            n: li.n,
-            m: li.m,
-            distance: li.distance,
-            max_error: li.max_error,
-        });
-    }
+    solves.extend(crate::pipeline::level_reports(&planned.info));
     Ok(RunOutput {
         toolpath,
         solves,
@@ -115,16 +107,7 @@ fn finish_patch(
     let area = tris
         .iter()
         .filter(|c| c.iter().any(|v| v[2] > z_floor + 1e-9))
-        .map(|c| {
-            let u = [c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]];
-            let v = [c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]];
-            let n = [
-                u[1] * v[2] - u[2] * v[1],
-                u[2] * v[0] - u[0] * v[2],
-                u[0] * v[1] - u[1] * v[0],
-            ];
-            0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
-        })
+        .map(crate::surface::triangle_area)
         .sum();
     let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
     let part = raster::RasterPart {
