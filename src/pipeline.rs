@@ -601,15 +601,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
         params,
         max_hours: job.machine.max_hours,
     };
-    let mut planned = plan_with_progress(&lj, progress)?;
-    set_stage(Stage::Other);
-    check_coverage(&planned.info, &mut planned.warnings)?;
-    // The levels in cutting order; sections[i] is the level order[i].
-    let in_order: Vec<&LevelCut> = planned.order.iter().map(|&k| &planned.cuts[k]).collect();
-    let linked = link_levels(&in_order, &planned.params);
-    // Arcs within tol/2 of the traced rings, before the gouge check (as for a profile).
-    let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
-    let min_clearance = check_levels(&toolpath, &in_order, &planned.order, &mut planned.info, job)?;
+    let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
     set_stage(Stage::Finishing);
     let finish = match &job.finish {
         Some(f) => Some(finish_program(
@@ -794,6 +786,28 @@ fn finish_program(
         .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
     progress(Progress::Step);
     Ok(done)
+}
+
+/// The levels of a boss or cavity, planned ([`plan_with_progress`]), their
+/// coverage checked, linked in cutting order, fitted with arcs within tol/2
+/// of the traced rings and gouge-checked level by level (before the arcs
+/// are trusted, as for a profile): the plan, the tool path and its least
+/// clearance, mm.
+pub(crate) fn cut_levels(
+    lj: &LevelJob,
+    job: &Job,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<(crate::levels::plan::Planned, Toolpath, f64), PipelineError> {
+    use crate::count::{set_stage, Stage};
+    let mut planned = plan_with_progress(lj, progress)?;
+    set_stage(Stage::Other);
+    check_coverage(&planned.info, &mut planned.warnings)?;
+    // The levels in cutting order; sections[i] is the level order[i].
+    let in_order: Vec<&LevelCut> = planned.order.iter().map(|&k| &planned.cuts[k]).collect();
+    let linked = link_levels(&in_order, &planned.params);
+    let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
+    let min_clearance = check_levels(&toolpath, &in_order, &planned.order, &mut planned.info, job)?;
+    Ok((planned, toolpath, min_clearance))
 }
 
 /// Plan the levels (in parallel, on the current rayon pool) while this thread

@@ -14,12 +14,10 @@ use crate::job::Job;
 use crate::levels::height_field::HeightFieldSections;
 use crate::levels::plan::LevelJob;
 use crate::pipeline::{
-    check_coverage, check_levels, job_shape, level_params, plan_with_progress, solve_shape,
-    PipelineError, Progress, RunOutput, FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
+    cut_levels, job_shape, level_params, solve_shape, PipelineError, Progress, RunOutput,
+    FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
 };
 use crate::sources::harmonic_bezier::PatchSpec;
-use crate::toolpath::arcfit::{self, ArcFitParams};
-use crate::toolpath::zlevel::{link_levels, LevelCut};
 
 /// The patch's sections for a job (chords within the job's tolerance).
 pub fn patch_sections(job: &Job, spec: &PatchSpec) -> Result<HeightFieldSections, PipelineError> {
@@ -49,13 +47,7 @@ pub fn run_patch(
         max_hours: job.machine.max_hours,
     };
     set_stage(Stage::LevelGrid);
-    let mut planned = plan_with_progress(&lj, progress)?;
-    set_stage(Stage::Other);
-    check_coverage(&planned.info, &mut planned.warnings)?;
-    let in_order: Vec<&LevelCut> = planned.order.iter().map(|&k| &planned.cuts[k]).collect();
-    let linked = link_levels(&in_order, &planned.params);
-    let toolpath = arcfit::fit_toolpath(&linked, &ArcFitParams::for_job(job));
-    let min_clearance = check_levels(&toolpath, &in_order, &planned.order, &mut planned.info, job)?;
+    let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
     let stock = (planned.params.stock_lo, planned.params.stock_hi);
     set_stage(Stage::Finishing);
     let finish = match &job.finish {

@@ -80,18 +80,15 @@ pub(super) fn kept_arcs(trims: &[Vec<[f64; 2]>], u: f64) -> Option<Vec<(f64, f64
     Some(kept)
 }
 
-/// Even-odd inside test of q against all the polygons.
+/// Whether q lies inside the region of `region`'s polygons (their winding
+/// numbers' sum is not 0: outlines count +1, holes −1; the even-odd answer
+/// for nested, oriented rings).
 fn inside(region: &[Vec<Vec2>], q: Vec2) -> bool {
-    let mut c = false;
-    for p in region {
-        for i in 0..p.len() {
-            let (a, b) = (p[i], p[(i + 1) % p.len()]);
-            if (a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-                c = !c;
-            }
-        }
-    }
-    c
+    region
+        .iter()
+        .map(|p| crate::geometry::polygon_winding_number(p, q))
+        .sum::<i32>()
+        != 0
 }
 
 /// Distance from q to the region's edges.
