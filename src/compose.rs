@@ -43,6 +43,8 @@ use crate::geometry::{
 use std::collections::HashMap;
 use std::time::Instant;
 
+mod mask;
+
 /// Singularities per region of a primitive when a part does not set them.
 pub const AUTO_N_PER_REGION: usize = 120;
 
@@ -402,12 +404,13 @@ pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, 
     let polys = m.polygons(frame.flat_tol());
     let (lo0, hi0) = polygons_bbox(&polys).ok_or_else(|| part_err(&m.name, "empty"))?;
     let inside = |p: Vec2| m.csg.contains(p);
+    let mask = |o: Vec2, h: f64, nx: usize, ny: usize| m.csg.grid_mask(o, h, nx, ny);
     let mut grow = 0.5;
     for _ in 0..6 {
         let pad = (hi0 - lo0) * grow + Vec2::new(1.0, 1.0) * (0.01 * frame.size);
         let (lo, hi) = (lo0 - pad, hi0 + pad);
         let h = (hi.x - lo.x).max(hi.y - lo.y) / EXTRACT_GRID;
-        let grid = Grid::sample_in(&m.field, lo, hi, h, &inside);
+        let grid = Grid::sample_masked(&m.field, lo, hi, h, &mask);
         if m.bounded() && grid.border_max() >= s {
             grow *= 2.0;
             continue;
@@ -813,7 +816,8 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
     let (lo, hi) = (lo0 - pad, hi0 + pad);
     let h = (hi.x - lo.x).max(hi.y - lo.y) / EXTRACT_GRID;
     let inside = |p: Vec2| m.csg.contains(p);
-    let grid = Grid::sample_in(&m.field, lo, hi, h, &inside);
+    let mask = |o: Vec2, h: f64, nx: usize, ny: usize| m.csg.grid_mask(o, h, nx, ny);
+    let grid = Grid::sample_masked(&m.field, lo, hi, h, &mask);
     let loops: Vec<Vec<Vec2>> = isolines_in(&grid, s, &m.field, &inside)
         .into_iter()
         .filter(|l| polygon_area(l).abs() > 4.0 * h * h)

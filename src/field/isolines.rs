@@ -99,26 +99,30 @@ impl Grid {
     }
 
     /// As `sample`, with the material given by a membership test.
-    pub fn sample_in(
+    /// Sample u over the box [lo, hi] with spacing `h`, where `mask(lo, h, nx,
+    /// ny)` marks the grid points inside the material (row-major, index
+    /// j·nx + i): u is taken as 1 there and evaluated elsewhere.
+    pub fn sample_masked(
         field: &Field,
         lo: Vec2,
         hi: Vec2,
         h: f64,
-        inside: &(dyn Fn(Vec2) -> bool + Sync),
+        mask: &(dyn Fn(Vec2, f64, usize, usize) -> Vec<bool> + Sync),
     ) -> Grid {
         let nx = (((hi.x - lo.x) / h).ceil() as usize + 1).max(2);
         let ny = (((hi.y - lo.y) / h).ceil() as usize + 1).max(2);
+        let mut inside = mask(lo, h, nx, ny);
+        debug_assert_eq!(inside.len(), nx * ny, "a grid mask has one entry per point");
+        inside.resize(nx * ny, false);
         let mut values = vec![0.0; nx * ny];
-        let mut mask = vec![false; nx * ny];
         values
             .par_chunks_mut(nx)
-            .zip(mask.par_chunks_mut(nx))
+            .zip(inside.par_chunks(nx))
             .enumerate()
             .for_each(|(j, (row, mrow))| {
-                for (i, (v, m)) in row.iter_mut().zip(mrow.iter_mut()).enumerate() {
+                for (i, (v, &m)) in row.iter_mut().zip(mrow).enumerate() {
                     let p = Vec2::new(lo.x + h * i as f64, lo.y + h * j as f64);
-                    *m = inside(p);
-                    *v = if *m { 1.0 } else { field.value(p) };
+                    *v = if m { 1.0 } else { field.value(p) };
                 }
             });
         Grid {
@@ -127,7 +131,7 @@ impl Grid {
             nx,
             ny,
             values,
-            inside: mask,
+            inside,
         }
     }
 
