@@ -44,6 +44,10 @@ use std::collections::HashMap;
 use std::time::Instant;
 
 mod mask;
+mod order;
+
+/// The models a part may refer to, by name.
+type Models<'a> = HashMap<&'a str, &'a Model>;
 
 /// Singularities per region of a primitive when a part does not set them.
 pub const AUTO_N_PER_REGION: usize = 120;
@@ -969,23 +973,17 @@ pub struct Built {
     pub scale: f64,
 }
 
-/// Build the models of a composition, in order, and place the result.
+/// Build the models of a composition and place the result. Parts that do
+/// not depend on each other are built in parallel (`order::waves`); each
+/// part's model and reports are those of building them one by one in order,
+/// and an error is the one the first failing part in order gives.
 pub fn build(
     comp: &Composition,
     on_part: &mut dyn FnMut(usize, usize),
 ) -> Result<Built, ComposeError> {
-    let (mut prims, frame) = primitives_and_frame(comp)?;
-    let mut models: HashMap<String, Model> = HashMap::new();
-    let mut reports = Vec::new();
-    let total = comp.parts.len();
-    for (k, part) in comp.parts.iter().enumerate() {
-        let prim = prims.remove(part.name.as_str());
-        let base = part_base(part, prim, &models, &frame, &mut reports)?;
-        let model = at_level(part, base, &frame, &mut reports)?;
-        models.insert(part.name.clone(), model);
-        on_part(k + 1, total);
-    }
-    let model = model_of(&models, &comp.result, &comp.result)?;
+    let (prims, frame) = primitives_and_frame(comp)?;
+    let built = order::build_parts(comp, prims, &frame, on_part)?;
+    let (model, reports) = built.result(&comp.result)?;
     if !model.bounded() {
         return Err(part_err(
             &comp.result,
@@ -1000,6 +998,20 @@ pub fn build(
         frame,
         scale,
     })
+}
+
+/// Part `part`'s model and the reports of its solves, given the models it
+/// may refer to (`models`: the latest earlier part of each name it names).
+fn build_part(
+    part: &Part,
+    prim: Option<Vec<Contour>>,
+    models: &Models,
+    frame: &Frame,
+) -> Result<(Model, Vec<PartReport>), ComposeError> {
+    let mut reports = Vec::new();
+    let base = part_base(part, prim, models, frame, &mut reports)?;
+    let model = at_level(part, base, frame, &mut reports)?;
+    Ok((model, reports))
 }
 
 /// Every primitive part's contours by name, and the frame from their
@@ -1029,8 +1041,8 @@ fn primitives_and_frame(
 
 /// The model of the part named `of`, which part `who` refers to: an error
 /// if it is not defined yet.
-fn model_of(models: &HashMap<String, Model>, of: &str, who: &str) -> Result<Model, ComposeError> {
-    models.get(of).cloned().ok_or_else(|| {
+fn model_of(models: &Models, of: &str, who: &str) -> Result<Model, ComposeError> {
+    models.get(of).map(|m| (*m).clone()).ok_or_else(|| {
         part_err(
             who,
             format!("refers to \"{of}\", which is not defined before it"),
@@ -1044,7 +1056,7 @@ fn model_of(models: &HashMap<String, Model>, of: &str, who: &str) -> Result<Mode
 fn part_base(
     part: &Part,
     prim: Option<Vec<Contour>>,
-    models: &HashMap<String, Model>,
+    models: &Models,
     frame: &Frame,
     reports: &mut Vec<PartReport>,
 ) -> Result<Model, ComposeError> {
@@ -1079,7 +1091,7 @@ fn operate(
     part: &Part,
     op: BoolOp,
     of: &[String],
-    models: &HashMap<String, Model>,
+    models: &Models,
     frame: &Frame,
     reports: &mut Vec<PartReport>,
 ) -> Result<Model, ComposeError> {

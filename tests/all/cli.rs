@@ -1016,33 +1016,48 @@ fn progress_counts_each_level_and_never_overruns() {
 /// arcs and gouge checks run in parallel and the fields' expansions are built
 /// lazily by whichever thread first needs a box, so a boss with a cavity of
 /// its own (the letter A, whose counter is a hole) is run on 1, 2 and 3
-/// threads and must come out byte for byte the same.
+/// threads and must come out byte for byte the same; so must a composition,
+/// whose independent parts are built in parallel (a rectangle less an
+/// equipotential of a triangle: the triangle and the rectangle in one wave).
 #[test]
 fn the_program_is_the_same_on_any_number_of_threads() {
     let dir = scratch("cli", "threads");
-    fs::write(
-        dir.join("a.toml"),
-        "[shape]\ntext = \"A\"\nheight = 30.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n\
-         [operation]\nkind = \"boss\"\ndepth = 2.0\n[profile]\nkind = \"sigmoid\"\ns1 = 0.98\ns2 = 0.9\n",
-    )
-    .expect("write job");
-    let mut programs = Vec::new();
-    for threads in ["1", "2", "3"] {
-        let out = format!("out{threads}");
-        let o = Command::new(PFCAM)
-            .args(["run", "a.toml", "-o", &out, "-q"])
-            .env("RAYON_NUM_THREADS", threads)
-            .current_dir(&dir)
-            .output()
-            .expect("run pfcam");
-        assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
-        programs.push(fs::read(dir.join(&out).join("a.nc")).expect("a.nc"));
+    let jobs = [
+        (
+            "a",
+            "[shape]\ntext = \"A\"\nheight = 30.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n\
+             [operation]\nkind = \"boss\"\ndepth = 2.0\n[profile]\nkind = \"sigmoid\"\ns1 = 0.98\ns2 = 0.9\n",
+        ),
+        (
+            "c",
+            "[shape]\nheight = 30.0\n\
+             [[shape.part]]\nname = \"a\"\npolygon = [[0, 0], [60, 0], [60, 40], [0, 40]]\n\
+             [[shape.part]]\nname = \"b\"\npolygon = [[20, 10], [45, 12], [30, 32]]\n\
+             [[shape.part]]\nname = \"c\"\nof = \"b\"\nlevel = 0.9\n\
+             [[shape.part]]\nname = \"r\"\nop = \"subtract\"\nof = [\"a\", \"c\"]\n\
+             [tool]\ndiameter = 3.175\n[operation]\ndepth = 2.0\n",
+        ),
+    ];
+    for (name, job) in jobs {
+        fs::write(dir.join(format!("{name}.toml")), job).expect("write job");
+        let mut programs = Vec::new();
+        for threads in ["1", "2", "3"] {
+            let out = format!("out{threads}");
+            let o = Command::new(PFCAM)
+                .args(["run", &format!("{name}.toml"), "-o", &out, "-q"])
+                .env("RAYON_NUM_THREADS", threads)
+                .current_dir(&dir)
+                .output()
+                .expect("run pfcam");
+            assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+            programs.push(fs::read(dir.join(&out).join(format!("{name}.nc"))).expect("program"));
+        }
+        assert!(programs[0].len() > 1000, "{name}");
+        assert!(
+            programs[0] == programs[1] && programs[1] == programs[2],
+            "{name}: the program differs with the thread count"
+        );
     }
-    assert!(programs[0].len() > 1000);
-    assert!(
-        programs[0] == programs[1] && programs[1] == programs[2],
-        "the program differs with the thread count"
-    );
 }
 
 /// Issue 14's guard before the work: a large cavity cut with a 0.5 mm tool
