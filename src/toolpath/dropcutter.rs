@@ -295,6 +295,35 @@ impl Cutter {
         rc - ((rc - s) * (rc + s)).sqrt()
     }
 
+    /// Whether something with highest corner `zmax` at squared XY distance
+    /// `d2` from the axis may lift the tip above `floor`: z_max − p(ρ) >
+    /// floor, ρ = √d2. With δ = z_max − floor and p(ρ) = rc − √(rc² − (ρ −
+    /// a)²) (a = r − rc), p(ρ) < δ for every ρ when δ > rc (p ≤ rc), and
+    /// otherwise iff (ρ − a)⁺ < √q, q = δ(2rc − δ). The test is looser, so
+    /// that rounding never skips what could win (it only decides what is
+    /// tested): ρ < a + √q + ε with ε = 1e-6·r for a bull nose; for a ball
+    /// (a = 0) without a root, d2 < q(1 + 1e-6) + 1e-12·r², which holds
+    /// whenever ρ < √q + 1e-9·r (2·√q·ε ≤ 1e-6·q + 1e6·ε²).
+    #[inline]
+    fn may_beat(&self, zmax: f64, d2: f64, floor: f64) -> bool {
+        let delta = zmax - floor;
+        if delta.is_nan() || delta <= 0.0 {
+            return false;
+        }
+        let rc = self.corner;
+        if delta >= rc {
+            return true;
+        }
+        let q = delta * (2.0 * rc - delta);
+        let r = self.radius;
+        let a = self.flat_radius();
+        if a == 0.0 {
+            return d2 < q * (1.0 + 1e-6) + 1e-12 * r * r;
+        }
+        let reach = a + (q * (1.0 + 1e-6)).sqrt() + 1e-6 * r;
+        d2 < reach * reach
+    }
+
     /// The lowest tip z at which the cutter, axis vertical through (x, y),
     /// touches a triangle of `mesh` without any triangle entering it; None when
     /// no triangle lies under the cutter's footprint (or the cutter fails
@@ -340,26 +369,16 @@ impl Cutter {
         let c = [x, y];
         // Pass 1: vertices only, cheap, to get a good lower bound that lets
         // pass 2 skip most triangles: a triangle can give at most
-        // z_max − p(distance from the axis to its bounding box), its `bound`.
-        // (That distance is shrunk by 1e-9·r so that its rounding, p being
-        // steep near the rim, cannot skip a triangle that would win.)
+        // z_max − p(distance from the axis to its bounding box)
+        // ([`Cutter::may_beat`]).
         let mut best: Option<Contact> = None;
         let floor_cell = std::cell::Cell::new(floor);
-        let mut near: Vec<(u32, f64)> = Vec::with_capacity(256);
-        // The same bound for a cell: its triangles' highest corner less p at
-        // the distance to the box round all of them.
-        let cell_may_win = |b: &Bounds, box_dist: f64| {
-            b.zmax - self.profile(box_dist - 1e-9 * r) > floor_cell.get()
-        };
-        mesh.for_each_near(c, r, range, cell_may_win, |ti, b, box_dist| {
+        let mut near: Vec<(u32, f64, f64)> = Vec::with_capacity(256);
+        // A cell is skipped on the same bound: its triangles' highest corner
+        // at the distance to the box round all of them.
+        let may_win = |b: &Bounds, d2: f64| self.may_beat(b.zmax, d2, floor_cell.get());
+        mesh.for_each_near(c, r, range, may_win, may_win, |ti, b, d2| {
             let mut floor = floor_cell.get();
-            if b.zmax <= floor {
-                return;
-            }
-            let bound = b.zmax - self.profile(box_dist - 1e-9 * r);
-            if bound <= floor {
-                return;
-            }
             let t = &mesh.tris[ti as usize];
             for v in t.relative(c) {
                 if let Some(k) = self.vertex(v) {
@@ -370,12 +389,12 @@ impl Cutter {
                 }
             }
             floor_cell.set(floor);
-            near.push((ti, bound));
+            near.push((ti, b.zmax, d2));
         });
         let mut floor = floor_cell.get();
         // Pass 2: edges and facets of the triangles that may still beat it.
-        for (ti, bound) in near {
-            if bound <= floor {
+        for (ti, zmax, d2) in near {
+            if !self.may_beat(zmax, d2, floor) {
                 continue;
             }
             let t = &mesh.tris[ti as usize];
@@ -1001,8 +1020,11 @@ impl MeshIndex {
         ))
     }
 
-    /// Calls `f(index, bounds, distance from c to the bounding box)` once for every
-    /// triangle in the cells `range` whose bounding box comes within `r` of `c`.
+    /// Calls `f(index, bounds, squared distance from c to the bounding box)`
+    /// once for every triangle in the cells `range` whose bounding box comes
+    /// within `r` of `c` and that `tri_may_win(bounds, squared distance)`
+    /// keeps, skipping the cells `cell_may_win` rules out (asked with the
+    /// box round the cell's triangles).
     ///
     /// A triangle in several cells is visited only in the first cell, in each
     /// direction, that both it and the range cover: in cell (i, j) of a range
@@ -1020,6 +1042,7 @@ impl MeshIndex {
         r: f64,
         (i0, i1, j0, j1): (usize, usize, usize, usize),
         cell_may_win: impl Fn(&Bounds, f64) -> bool,
+        tri_may_win: impl Fn(&Bounds, f64) -> bool,
         mut f: impl FnMut(u32, &Bounds, f64),
     ) {
         // Slack: the tests measure ρ their own way; rounding must not make this
@@ -1037,7 +1060,7 @@ impl MeshIndex {
                 // cell out of reach, or one the caller's bound rules out,
                 // holds nothing to visit, whichever cell would visit them.
                 let d2 = box_dist2(&self.cells[k]);
-                if d2 > r2 || !cell_may_win(&self.cells[k], d2.sqrt()) {
+                if d2 > r2 || !cell_may_win(&self.cells[k], d2) {
                     continue;
                 }
                 let cell = &self.items[self.start[k]..self.start[k + 1]];
@@ -1053,8 +1076,8 @@ impl MeshIndex {
                     let ti = it >> 2;
                     let t = &self.bounds[ti as usize];
                     let d2 = box_dist2(t);
-                    if d2 <= r2 {
-                        f(ti, t, d2.sqrt());
+                    if d2 <= r2 && tri_may_win(t, d2) {
+                        f(ti, t, d2);
                     }
                 }
             }
@@ -1635,6 +1658,39 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The root-free skip test keeps everything the bound z_max − p(ρ) >
+    /// floor keeps (ρ measured exactly, for ball, bull and flat cutters, at
+    /// distances and heights spread round the rim and the corner), and
+    /// still skips most of what that bound skips.
+    #[test]
+    fn dropcutter_may_beat_keeps_whatever_the_bound_keeps() {
+        let mut g = Rng(11);
+        let (mut kept, mut skipped, mut bound_skips) = (0, 0, 0);
+        for shape in 0..3 {
+            let c = [
+                Cutter::ball(1.5875),
+                Cutter::bull(3.0, 1.0),
+                Cutter::flat(2.0),
+            ][shape];
+            for _ in 0..200_000 {
+                let rho = g.range(0.0, 1.05) * c.radius;
+                let zmax = g.range(-1.0, 1.0);
+                let floor = zmax - g.range(-0.2, 1.2) * c.corner.max(0.1);
+                let exact = zmax - c.profile(rho) > floor;
+                let fast = c.may_beat(zmax, rho * rho, floor);
+                assert!(fast || !exact, "{shape}: ρ {rho} z {zmax} floor {floor}");
+                kept += usize::from(fast);
+                bound_skips += usize::from(!exact);
+                skipped += usize::from(!fast);
+            }
+        }
+        assert!(kept > 0 && bound_skips > 100_000);
+        assert!(
+            skipped as f64 > 0.99 * bound_skips as f64,
+            "{skipped} of {bound_skips}"
+        );
     }
 
     /// A drop above a level is the drop when it lies above it, to the last
