@@ -323,7 +323,7 @@ fn solve_boundary(
                 outer: groups.outer,
                 sinks: groups.sinks,
             },
-            field: solved.solution.field,
+            field: sampled_fast(solved.solution.field, &polys),
             max_error: solved.solution.max_error,
             contours,
             is_counter,
@@ -508,10 +508,11 @@ pub fn combine(
     };
     let problem = set.problem();
     let sol = mfs::solve(&problem).map_err(|e| field_err(name, e))?;
+    let pts: Vec<Vec<Vec2>> = vec![set.material.colloc.iter().map(|c| c.p).collect()];
     let mut model = Model {
         name: name.to_string(),
         set,
-        field: sol.field,
+        field: sampled_fast(sol.field, &pts),
         max_error: sol.max_error,
         contours: Vec::new(),
         is_counter: Vec::new(),
@@ -532,6 +533,17 @@ pub fn combine(
         seconds: t0.elapsed().as_secs_f64(),
     };
     Ok((model, report))
+}
+
+/// A part's field for sampling: evaluated from local expansions
+/// (`Field::accelerated_around`) over the box of `near` grown by half its
+/// diagonal, where its level curves and boundary are extracted (grids of
+/// 400² points each), and directly beyond.
+fn sampled_fast(field: Field, near: &[Vec<Vec2>]) -> Field {
+    match polygons_bbox(near) {
+        Some((lo, hi)) => field.accelerated_around(lo, hi),
+        None => field,
+    }
 }
 
 /// The exact membership of `a` op `b` and the result's outer circle: a
