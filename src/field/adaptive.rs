@@ -41,42 +41,67 @@ fn layout(prep: &Prepared, n_total: usize, distance: Option<f64>) -> Layout {
     }
 }
 
+/// The Ns tried: n_start, n_start·1.5, … (rounded up), ending at n_max.
+fn sequence(target: &Target) -> Vec<usize> {
+    let mut n = target.n_start.min(target.n_max);
+    let mut ns = vec![n];
+    while n < target.n_max {
+        n = ((n as f64 * GROWTH).ceil() as usize).min(target.n_max);
+        ns.push(n);
+    }
+    ns
+}
+
 /// Solve with N = n_start, n_start·1.5, … up to n_max, stopping at the first
 /// whose max boundary error is at most the target. Returns that solve, or the
 /// best one seen when none reaches it (the caller decides whether that is an
 /// error: `Solved::solution.max_error` is the figure reached).
+///
+/// The Ns are solved two at a time, side by side (each solve is sequential,
+/// so the two cores each take one): the larger of a pair is wasted when the
+/// smaller reaches the target, but the wall time of a sequence that grows by
+/// 1.5 (solve cost ∝ N³) falls from about 1.42 to 1.10 times its last solve.
+/// The results are taken in order, so the answer and the count of solves are
+/// those of solving one N after another.
 pub fn solve_to(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> {
-    let mut n = target.n_start.min(target.n_max);
     let mut best: Option<Solved> = None;
     let mut solves = 0;
     let mut last_err = None;
-    loop {
+    let try_n = |n: usize| {
         let lay = layout(prep, n, target.distance);
-        match solve_layout(prep, &lay) {
-            Ok((solution, m)) => {
-                solves += 1;
-                let solved = Solved {
-                    solution,
-                    layout: lay,
-                    solves,
-                    m,
-                };
-                if solved.solution.max_error <= target.max_error {
-                    return Ok(solved);
-                }
-                if best
-                    .as_ref()
-                    .is_none_or(|b| solved.solution.better_than(&b.solution))
-                {
-                    best = Some(solved);
-                }
+        solve_layout(prep, &lay).map(|(solution, m)| (lay, solution, m))
+    };
+    for pair in sequence(target).chunks(2) {
+        let (first, second) = match pair {
+            [a, b] => {
+                let (x, y) = rayon::join(|| try_n(*a), || try_n(*b));
+                (x, Some(y))
             }
-            Err(e) => last_err = Some(e),
+            _ => (try_n(pair[0]), None),
+        };
+        for r in std::iter::once(first).chain(second) {
+            match r {
+                Ok((layout, solution, m)) => {
+                    solves += 1;
+                    let solved = Solved {
+                        solution,
+                        layout,
+                        solves,
+                        m,
+                    };
+                    if solved.solution.max_error <= target.max_error {
+                        return Ok(solved);
+                    }
+                    if best
+                        .as_ref()
+                        .is_none_or(|b| solved.solution.better_than(&b.solution))
+                    {
+                        best = Some(solved);
+                    }
+                }
+                Err(e) => last_err = Some(e),
+            }
         }
-        if n >= target.n_max {
-            break;
-        }
-        n = ((n as f64 * GROWTH).ceil() as usize).min(target.n_max);
     }
     match best {
         Some(mut b) => {
@@ -84,5 +109,85 @@ pub fn solve_to(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> 
             Ok(b)
         }
         None => Err(last_err.unwrap_or(FieldError::Invalid("no layout could be solved".into()))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sequence_grows_by_half_and_ends_at_n_max() {
+        let t = |n_start, n_max| Target {
+            max_error: 0.0,
+            n_start,
+            n_max,
+            distance: None,
+        };
+        assert_eq!(
+            sequence(&t(338, 2570)),
+            vec![338, 507, 761, 1142, 1713, 2570]
+        );
+        assert_eq!(sequence(&t(100, 100)), vec![100]);
+        assert_eq!(sequence(&t(500, 100)), vec![100]);
+    }
+
+    /// Solving two Ns side by side returns what solving them one after
+    /// another does: the first N whose error reaches the target, its error to
+    /// the bit, and the number of solves, for targets met at different places
+    /// (first or second of a pair) and for none (the paper's I, whose error
+    /// does not fall monotonically over these small Ns).
+    #[test]
+    fn pairs_of_solves_give_the_sequential_answer() {
+        let prep = Prepared::new(super::super::paper_boundary('I').unwrap()).unwrap();
+        let base = Target {
+            max_error: 0.0,
+            n_start: 40,
+            n_max: 135,
+            distance: None,
+        };
+        let ns = sequence(&base);
+        let errors: Vec<f64> = ns
+            .iter()
+            .map(|&n| {
+                solve_layout(&prep, &layout(&prep, n, None))
+                    .unwrap()
+                    .0
+                    .max_error
+            })
+            .collect();
+        assert_eq!(ns.len(), 4, "{ns:?}");
+        let mut met = Vec::new();
+        for &e in &errors {
+            // One after another: the first N whose error is within e.
+            let k = errors.iter().position(|&x| x <= e).unwrap();
+            let got = solve_to(
+                &prep,
+                &Target {
+                    max_error: e,
+                    ..base
+                },
+            )
+            .unwrap();
+            assert_eq!(got.layout.n_total, ns[k]);
+            assert_eq!(got.solution.max_error.to_bits(), errors[k].to_bits());
+            assert_eq!(got.solves, k + 1);
+            met.push(k);
+        }
+        met.sort_unstable();
+        met.dedup();
+        assert!(met.len() >= 3, "targets met at {met:?} only ({errors:?})");
+        // None met: the best one seen, after all four.
+        let none = solve_to(
+            &prep,
+            &Target {
+                max_error: 0.0,
+                ..base
+            },
+        )
+        .unwrap();
+        assert_eq!(none.solves, 4);
+        let best = errors.iter().copied().fold(f64::INFINITY, f64::min);
+        assert_eq!(none.solution.max_error.to_bits(), best.to_bits());
     }
 }
