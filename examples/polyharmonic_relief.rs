@@ -9,55 +9,25 @@ use pfcam::sources::polyharmonic::{
 };
 use std::time::Instant;
 
-/// The face of jobs/polyharmonic-face.toml: surface and inside points, mm.
+/// The face of jobs/polyharmonic-face.toml, read from its CSV file.
 fn face() -> Vec<GivenPoint> {
-    let mut pts = Vec::new();
-    let s = |x: f64, y: f64, z: f64| GivenPoint {
-        p: Vector3::new(x, y, z),
-        kind: PointKind::Surface,
-    };
-    for k in 0..12 {
-        let t = k as f64 * std::f64::consts::PI / 6.0;
-        pts.push(s(35.0 + 24.0 * t.cos(), 45.0 + 34.0 * t.sin(), 0.0));
-    }
-    for k in 0..8 {
-        let t = (k as f64 + 0.5) * std::f64::consts::PI / 4.0;
-        pts.push(s(35.0 + 30.0 * t.cos(), 45.0 + 42.0 * t.sin(), -4.0));
-    }
-    for p in [
-        [35.0, 68.0, 7.0],
-        [25.0, 66.0, 6.0],
-        [45.0, 66.0, 6.0],
-        [27.0, 58.0, 8.5],
-        [43.0, 58.0, 8.5],
-        [27.0, 53.0, 6.0],
-        [43.0, 53.0, 6.0],
-        [35.0, 55.0, 9.0],
-        [35.0, 44.0, 13.0],
-        [31.0, 41.0, 9.0],
-        [39.0, 41.0, 9.0],
-        [23.0, 42.0, 7.5],
-        [47.0, 42.0, 7.5],
-        [35.0, 33.0, 8.0],
-        [30.0, 33.0, 7.0],
-        [40.0, 33.0, 7.0],
-        [35.0, 22.0, 7.0],
-        [29.0, 25.0, 5.5],
-        [41.0, 25.0, 5.5],
-        [16.0, 50.0, 4.0],
-        [54.0, 50.0, 4.0],
-        [18.0, 30.0, 3.5],
-        [52.0, 30.0, 3.5],
-    ] {
-        pts.push(s(p[0], p[1], p[2]));
-    }
-    for p in [[35.0, 45.0, -6.0], [35.0, 30.0, -4.0], [35.0, 60.0, -4.0]] {
-        pts.push(GivenPoint {
-            p: Vector3::new(p[0], p[1], p[2]),
-            kind: PointKind::Inside,
-        });
-    }
-    pts
+    let text = std::fs::read_to_string("jobs/polyharmonic-face.csv").expect("the face's points");
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with('x') && !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            let n = |k: usize| f[k].trim().parse::<f64>().expect("a number");
+            let kind = match f[3].trim() {
+                "inside" => PointKind::Inside,
+                "outside" => PointKind::Outside,
+                _ => PointKind::Surface,
+            };
+            GivenPoint {
+                p: Vector3::new(n(0), n(1), n(2)),
+                kind,
+            }
+        })
+        .collect()
 }
 
 fn main() {
@@ -144,14 +114,24 @@ fn main() {
         "0.2 mm grid {nx} x {ny}: {:.2} s",
         t.elapsed().as_secs_f64()
     );
+    let mut at = (0.0, 0.0);
+    let mut steep = 0;
     for (k, h) in hs.iter().enumerate() {
         hmax = hmax.max(*h);
         if k % 7 == 0 {
-            let g = relief.gradient_at((k % nx) as f64 * 0.2, (k / nx) as f64 * 0.2, *h);
-            slope = slope.max(g[0].hypot(g[1]));
+            let (x, y) = ((k % nx) as f64 * 0.2, (k / nx) as f64 * 0.2);
+            let g = relief.gradient_at(x, y, *h);
+            let m = g[0].hypot(g[1]);
+            steep += usize::from(m > 0.9);
+            if m > slope {
+                (slope, at) = (m, (x, y));
+            }
         }
     }
-    println!("max h {hmax:.3}, max slope {slope:.3}");
+    println!(
+        "max h {hmax:.3}, max slope {slope:.3} at {at:?}, {steep} of {} samples steeper than 0.9",
+        hs.len() / 7
+    );
     // A picture: ASCII
     for j in (0..ny).step_by(20).rev() {
         let row: String = (0..nx)

@@ -44,6 +44,11 @@ pub struct RasterPart<'a> {
     pub z_floor: f64,
     /// Area of the top surface, mm² (for the time's lower bound).
     pub area: f64,
+    /// Whether the part has concave kinks (a relief meeting its flat base):
+    /// a chord across the offset's kink there stands above the drop and
+    /// leaves material, so steps are also halved while the drop at the
+    /// midpoint lies more than tol below the chord.
+    pub valleys: bool,
 }
 
 /// The raster's spacing: (Δy across the passes, δ along them), mm.
@@ -113,7 +118,8 @@ impl Dropper<'_> {
     }
 
     /// Points between `a` and `b` (exclusive) so that no chord's midpoint
-    /// lies more than `tol` below the drop there.
+    /// lies more than `tol` below the drop there (nor, with
+    /// [`RasterPart::valleys`], more than `tol` above it).
     fn refine(&self, a: Vec3, b: Vec3, tol: f64, depth: usize, out: &mut Vec<Vec3>) {
         if depth == 0 {
             return;
@@ -122,7 +128,8 @@ impl Dropper<'_> {
         let Some(z) = self.on_part(mx, my) else {
             return;
         };
-        if z > 0.5 * (a.z + b.z) + tol {
+        let chord = 0.5 * (a.z + b.z);
+        if z > chord + tol || (self.part.valleys && z < chord - tol) {
             let m = Vec3::new(mx, my, z);
             self.refine(a, m, tol, depth - 1, out);
             out.push(m);

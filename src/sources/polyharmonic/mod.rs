@@ -15,6 +15,7 @@ pub mod kernels;
 pub mod lagrange;
 pub mod quadrature;
 pub mod relief;
+pub mod spec;
 pub mod system;
 
 pub use elements::{BoxMesh, Element};
@@ -25,4 +26,5 @@ pub use gauss::GaussRule;
 pub use kernels::{Kernel, Radial};
 pub use quadrature::{QuadRule, Quadrature};
 pub use relief::{Relief, ReliefSpec};
+pub use spec::{PolyInputs, PolySpec};
 pub use system::{solve, solve_dirichlet, GivenPoint, Model, PointKind, Solution};
