@@ -23,6 +23,8 @@ mod font;
 mod harmonic;
 pub mod limits;
 mod operation;
+mod polyharmonic;
+mod polyharmonic_file;
 mod profile;
 mod shape;
 mod stock;
@@ -499,6 +501,28 @@ pub struct RawShape {
     pub row0: Option<Vec<f64>>,
     /// `row1` (harmonic patch), mm: heights of the edge y = Y
     pub row1: Option<Vec<f64>>,
+    /// `points` (polyharmonic), mm: [[x, y, z], ...] on the surface
+    #[serde(default, deserialize_with = "exact::opt_vec")]
+    pub points: Option<Vec<[f64; 3]>>,
+    /// `inside` (polyharmonic), mm: points inside the solid
+    #[serde(default, deserialize_with = "exact::opt_vec")]
+    pub inside: Option<Vec<[f64; 3]>>,
+    /// `outside` (polyharmonic), mm: points outside the solid (separators)
+    #[serde(default, deserialize_with = "exact::opt_vec")]
+    pub outside: Option<Vec<[f64; 3]>>,
+    /// `points_file` (polyharmonic): a CSV or XYZ file of the points
+    pub points_file: Option<String>,
+    /// `kernel` (polyharmonic): `"T2A"` or `"T2"`
+    pub kernel: Option<String>,
+    /// `a` (polyharmonic), mm: the T2A kernel's ball radius A
+    pub a: Option<f64>,
+    /// `box` (polyharmonic), mm: [[x0, y0, z0], [x1, y1, z1]]
+    #[serde(rename = "box", default, deserialize_with = "exact::opt_vec")]
+    pub box_: Option<Vec<[f64; 3]>>,
+    /// `elements` (polyharmonic): elements per box edge
+    pub elements: Option<i64>,
+    /// `base` (polyharmonic), mm: the height of the block's foot
+    pub base: Option<f64>,
 }
 
 /// `[[shape.part]]`: one part of a composition, in design units.
@@ -1121,6 +1145,7 @@ impl RawJob {
         let stock = stock::resolve(self.stock.unwrap_or_default())?;
         let surface_depth = match &shape {
             ShapeSource::HarmonicBezier(spec) => Some(harmonic::patch_depth(spec)?),
+            ShapeSource::Polyharmonic(spec) => Some(polyharmonic::relief_depth(spec)?),
             _ => None,
         };
         let operation::Resolved {
@@ -1208,7 +1233,7 @@ fn check_height_per_tool(shape: &ShapeSource, diameter: f64) -> Result<(), JobEr
         ShapeSource::DxfFile(_) => None,
         ShapeSource::Composite(c) => c.height,
         // Its size is bounded by limits::PATCH_SIZE and check_extent.
-        ShapeSource::HarmonicBezier(_) => None,
+        ShapeSource::HarmonicBezier(_) | ShapeSource::Polyharmonic(_) => None,
     };
     match height {
         Some(h) if h / diameter > limits::MAX_HEIGHT_PER_DIAMETER => Err(invalid(
@@ -2191,6 +2216,15 @@ mod doc_tests {
             "shape.size",
             "shape.row0",
             "shape.row1",
+            "shape.points",
+            "shape.inside",
+            "shape.outside",
+            "shape.points_file",
+            "shape.kernel",
+            "shape.a",
+            "shape.box",
+            "shape.elements",
+            "shape.base",
             "shape.part.name",
             "shape.part.polygon",
             "shape.part.svg",

@@ -499,7 +499,7 @@ pub fn plan_shape(
 /// Run a job to a tool path: plan, link, and the independent gouge check (a
 /// failing check is an error: no tool path is returned).
 pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
-    if let ShapeSource::HarmonicBezier(spec) = &job.shape {
+    if let Some(spec) = job.shape.height_source() {
         return crate::patch::run_patch(job, spec, progress);
     }
     match job.operation.kind {
@@ -670,7 +670,7 @@ pub fn job_sections(
     job: &Job,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<(Box<dyn Sections>, Vec<SolveReport>), PipelineError> {
-    if let ShapeSource::HarmonicBezier(spec) = &job.shape {
+    if let Some(spec) = job.shape.height_source() {
         return Ok((
             Box::new(crate::patch::patch_sections(job, spec)?),
             Vec::new(),

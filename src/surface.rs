@@ -346,13 +346,13 @@ pub fn job_surface(
 }
 
 /// The part of any boss or cavity job as a closed mesh at `opts.resolution`:
-/// a harmonic patch's block (`patch::patch_surface`), else [`job_surface`]'s.
+/// a height field's block (`patch::patch_surface`), else [`job_surface`]'s.
 pub fn job_part_surface(
     job: &Job,
     opts: &SurfaceOptions,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Surface, SurfaceError> {
-    if let crate::geometry::ShapeSource::HarmonicBezier(spec) = &job.shape {
+    if let Some(spec) = job.shape.height_source() {
         return Ok(crate::patch::patch_surface(job, spec, opts.resolution)?);
     }
     Ok(job_surface(job, opts, progress)?.surface)

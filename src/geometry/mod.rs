@@ -240,6 +240,10 @@ pub enum ShapeSource {
     /// A harmonic tensor-product Bézier patch (`kind = "harmonic-bezier"`):
     /// a height field over a rectangle, which is its shape seen from above.
     HarmonicBezier(crate::sources::harmonic_bezier::PatchSpec),
+    /// A polyharmonic solid's top envelope over a rectangle (`kind =
+    /// "polyharmonic"`): a height field, its shape seen from above the
+    /// rectangle.
+    Polyharmonic(crate::sources::polyharmonic::PolySpec),
 }
 
 /// A shape built from named parts in design units (the paper's Section 5): each

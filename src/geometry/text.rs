@@ -77,6 +77,24 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
                 }],
             })
         }
+        ShapeSource::Polyharmonic(p) => {
+            let o = Vec2::new(p.origin[0], p.origin[1]);
+            check_point("origin", o)?;
+            let [x, y] = p.size;
+            let rect = [
+                o,
+                o + Vec2::new(x, 0.0),
+                o + Vec2::new(x, y),
+                o + Vec2::new(0.0, y),
+            ];
+            Ok(super::Shape {
+                regions: vec![super::Region {
+                    name: "relief".into(),
+                    outline: super::Contour::polygon(&rect)?,
+                    counters: Vec::new(),
+                }],
+            })
+        }
         ShapeSource::Composite(_) => Err(GeometryError::Invalid(
             "a composition of parts is built with its fields (pipeline::job_shape)".into(),
         )),

@@ -8,7 +8,7 @@ use crate::geometry::{ShapeSource, Vec2};
 use crate::sources::harmonic_bezier::{default_form, Form, HarmonicError, PatchSpec};
 
 /// The accepted values of `shape.kind`.
-pub const SHAPE_KINDS: &[&str] = &["harmonic-bezier"];
+pub const SHAPE_KINDS: &[&str] = &["harmonic-bezier", "polyharmonic"];
 
 /// The patch keys and whether each is given.
 fn patch_keys(s: &RawShape) -> [(&'static str, bool); 5] {
@@ -23,10 +23,26 @@ fn patch_keys(s: &RawShape) -> [(&'static str, bool); 5] {
 
 /// Without `shape.kind`: no patch key.
 pub(super) fn refuse_patch_keys(s: &RawShape) -> Result<(), JobError> {
-    match patch_keys(s).iter().find(|k| k.1) {
-        Some((key, _)) => Err(invalid(
+    if let Some((key, _)) = patch_keys(s).iter().find(|k| k.1) {
+        return Err(invalid(
             key,
             "only applies to shape.kind = \"harmonic-bezier\" (a harmonic patch)",
+        ));
+    }
+    refuse_poly_keys(s, "without shape.kind")
+}
+
+/// No polyharmonic key (`base` included) outside `kind = "polyharmonic"`.
+fn refuse_poly_keys(s: &RawShape, context: &str) -> Result<(), JobError> {
+    let keys = super::polyharmonic::poly_keys(s);
+    match keys
+        .iter()
+        .chain(&[("shape.base", s.base.is_some())])
+        .find(|k| k.1)
+    {
+        Some((key, _)) => Err(invalid(
+            key,
+            format!("only applies to shape.kind = \"polyharmonic\" (a solid from points), not {context}"),
         )),
         None => Ok(()),
     }
@@ -77,6 +93,7 @@ pub(super) fn resolve(s: RawShape, origin: Vec2) -> Result<ShapeSource, JobError
     let kind = s.kind.clone().unwrap_or_default();
     one_of("shape.kind", &kind, SHAPE_KINDS)?;
     refuse_other_keys(&s)?;
+    refuse_poly_keys(&s, "with a harmonic patch")?;
     let degree = required(s.degree, "shape.degree", "n, the degree along the rows")?;
     let degree = usize::try_from(degree)
         .ok()

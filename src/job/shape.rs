@@ -4,7 +4,8 @@
 
 use super::font::Sources;
 use super::{
-    at_most_one, composition, dxffile, harmonic, invalid, limits, svgfile, text, JobError, RawShape,
+    at_most_one, composition, dxffile, harmonic, invalid, limits, polyharmonic, svgfile, text,
+    JobError, RawShape,
 };
 use crate::geometry::{Composition, ShapeSource, Vec2};
 
@@ -26,6 +27,9 @@ pub(super) fn resolve(
         .height
         .map(|h| limits::SHAPE_HEIGHT.check("shape.height", h))
         .transpose()?;
+    if s.kind.as_deref() == Some("polyharmonic") {
+        return polyharmonic::resolve(s, origin, src.base_dir);
+    }
     if s.kind.is_some() {
         return harmonic::resolve(s, origin);
     }

@@ -1,5 +1,7 @@
 //! A height field over a rectangle as a [`Sections`] source: the harmonic
-//! patch of a job (`shape.kind = "harmonic-bezier"`), milled from above.
+//! patch of a job (`shape.kind = "harmonic-bezier"`) or a polyharmonic
+//! solid's top envelope (`shape.kind = "polyharmonic"`), milled from above.
+//! The field is any [`Height`]: h and ∇h in the rectangle's own coordinates.
 //!
 //! The part is {(x, y, z): (x, y) in the rectangle, z ≤ h(x, y)}; its top
 //! (z = 0, relative) is max h, its bottom (z = −depth) min h. The section at
@@ -22,7 +24,41 @@ use super::plan::CHORD_FRACTION;
 use super::sections::{LevelField, Sections};
 use crate::field::isolines::{edge_loops, polygon_area, root_in_unit, Grid};
 use crate::geometry::Vec2;
-use crate::sources::harmonic_bezier::{HarmonicPatch, PatchSpec};
+use crate::sources::harmonic_bezier::{HarmonicPatch, HeightRange, PatchSpec};
+
+/// A height field over a rectangle, (x, y) from its lower-left corner, mm.
+pub trait Height: Send + Sync {
+    /// h(x, y), mm.
+    fn height(&self, x: f64, y: f64) -> f64;
+    /// ∇h = (∂h/∂x, ∂h/∂y) at (x, y).
+    fn gradient(&self, x: f64, y: f64) -> [f64; 2];
+    /// ∇h at (x, y) where h(x, y) = `h` is already known (a field that finds
+    /// h by a search may skip it).
+    fn gradient_at(&self, x: f64, y: f64, _h: f64) -> [f64; 2] {
+        self.gradient(x, y)
+    }
+}
+
+impl Height for crate::sources::polyharmonic::Relief {
+    fn height(&self, x: f64, y: f64) -> f64 {
+        crate::sources::polyharmonic::Relief::height(self, x, y)
+    }
+    fn gradient(&self, x: f64, y: f64) -> [f64; 2] {
+        crate::sources::polyharmonic::Relief::gradient(self, x, y)
+    }
+    fn gradient_at(&self, x: f64, y: f64, h: f64) -> [f64; 2] {
+        crate::sources::polyharmonic::Relief::gradient_at(self, x, y, h)
+    }
+}
+
+impl Height for HarmonicPatch {
+    fn height(&self, x: f64, y: f64) -> f64 {
+        HarmonicPatch::height(self, x, y)
+    }
+    fn gradient(&self, x: f64, y: f64) -> [f64; 2] {
+        HarmonicPatch::gradient(self, x, y)
+    }
+}
 
 /// Largest grid spacing, mm: a component of a section narrower than about
 /// this is not seen (h is a polynomial of low degree, so its level sets have
@@ -39,7 +75,7 @@ const REFINE_DEPTH: usize = 4;
 
 /// A height field's sections (module doc).
 pub struct HeightFieldSections {
-    patch: HarmonicPatch,
+    field: Box<dyn Height>,
     origin: Vec2,
     size: [f64; 2],
     /// max h and min h, mm (patch heights).
@@ -65,7 +101,26 @@ impl HeightFieldSections {
     pub fn new(spec: &PatchSpec, tol: f64) -> Result<HeightFieldSections, String> {
         let patch = spec.patch().map_err(|e| e.to_string())?;
         let range = patch.height_range();
-        let [sx, sy] = spec.size;
+        Ok(Self::of_height(
+            Box::new(patch),
+            spec.origin,
+            spec.size,
+            range,
+            tol,
+        ))
+    }
+
+    /// The sections of any height field over the rectangle `origin`, `size`
+    /// whose max and min heights (and where the max is, relative to the
+    /// origin) are `range`; chords within `CHORD_FRACTION` × `tol` (mm).
+    pub fn of_height(
+        field: Box<dyn Height>,
+        origin: Vec2,
+        size: [f64; 2],
+        range: HeightRange,
+        tol: f64,
+    ) -> HeightFieldSections {
+        let [sx, sy] = size;
         let spacing = SPACING.max((sx * sy / MAX_POINTS as f64).sqrt());
         let nx = ((sx / spacing).ceil() as usize).max(1) + 1;
         let ny = ((sy / spacing).ceil() as usize).max(1) + 1;
@@ -73,27 +128,27 @@ impl HeightFieldSections {
         use rayon::prelude::*;
         let values: Vec<f64> = (0..nx * ny)
             .into_par_iter()
-            .map(|k| patch.height((k % nx) as f64 * hx, (k / nx) as f64 * hy))
+            .map(|k| field.height((k % nx) as f64 * hx, (k / nx) as f64 * hy))
             .collect();
-        Ok(HeightFieldSections {
-            origin: spec.origin,
-            size: spec.size,
+        HeightFieldSections {
+            origin,
+            size,
             top: range.max,
             bottom: range.min,
-            argmax: spec.origin + Vec2::new(range.argmax[0], range.argmax[1]),
+            argmax: origin + Vec2::new(range.argmax[0], range.argmax[1]),
             nx,
             ny,
             hx,
             hy,
             values,
             chord_tol: CHORD_FRACTION * tol,
-            patch,
-        })
+            field,
+        }
     }
 
     /// h at a point in job coordinates, mm (patch heights).
     pub fn height(&self, p: Vec2) -> f64 {
-        self.patch.height(p.x - self.origin.x, p.y - self.origin.y)
+        self.field.height(p.x - self.origin.x, p.y - self.origin.y)
     }
 
     /// max h, mm: the part's top, placed at the stock top.
@@ -101,9 +156,15 @@ impl HeightFieldSections {
         self.top
     }
 
-    /// The patch.
-    pub fn patch(&self) -> &HarmonicPatch {
-        &self.patch
+    /// min h, mm: the part's foot.
+    pub fn bottom_height(&self) -> f64 {
+        self.bottom
+    }
+
+    /// h on the sampling grid: (points in x, points in y, spacing in x, in y,
+    /// values row by row from the origin).
+    pub fn samples(&self) -> (usize, usize, f64, f64, &[f64]) {
+        (self.nx, self.ny, self.hx, self.hy, &self.values)
     }
 
     /// The rectangle's lower-left corner and its size (job coordinates, mm).
@@ -122,7 +183,7 @@ impl HeightFieldSections {
                     (k % self.nx) as f64 * self.hx,
                     (k / self.nx) as f64 * self.hy,
                 );
-                self.patch.gradient(x, y)[1].abs()
+                self.field.gradient_at(x, y, self.values[k])[1].abs()
             })
             .reduce(|| 0.0, f64::max)
     }
@@ -198,7 +259,7 @@ impl HeightFieldSections {
         let mut q = p;
         for _ in 0..8 {
             let r = q - self.origin;
-            let g = self.patch.gradient(r.x, r.y);
+            let g = self.field.gradient(r.x, r.y);
             let g2 = g[0] * g[0] + g[1] * g[1];
             if g2 == 0.0 || !g2.is_finite() {
                 return None;

@@ -1,4 +1,5 @@
-//! A harmonic patch job (`shape.kind = "harmonic-bezier"`) through the
+//! A height-field job (`shape.kind = "harmonic-bezier"`, a harmonic patch,
+//! or `"polyharmonic"`, a solid's top envelope: [`HeightSource`]) through the
 //! pipeline: the patch's sections ([`HeightFieldSections`]) go through the
 //! level planner unchanged (the schedule, each level's MFS solve on its
 //! section and rolling-disk rings, linking, arcs and the gouge check of every
@@ -9,6 +10,7 @@ pub mod mesh;
 pub mod raster;
 
 use crate::count::{set_stage, Stage};
+use crate::geometry::ShapeSource;
 use crate::geometry::Vec2;
 use crate::job::Job;
 use crate::levels::height_field::HeightFieldSections;
@@ -18,23 +20,80 @@ use crate::pipeline::{
     FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
 };
 use crate::sources::harmonic_bezier::PatchSpec;
+use crate::sources::polyharmonic::PolySpec;
 
-/// The patch's sections for a job (chords within the job's tolerance).
-pub fn patch_sections(job: &Job, spec: &PatchSpec) -> Result<HeightFieldSections, PipelineError> {
-    HeightFieldSections::new(spec, job.operation.tolerance).map_err(PipelineError::Other)
+/// A shape source that is a height field over a rectangle.
+#[derive(Clone, Copy, Debug)]
+pub enum HeightSource<'a> {
+    /// A harmonic Bézier patch.
+    Bezier(&'a PatchSpec),
+    /// A polyharmonic solid's top envelope.
+    Poly(&'a PolySpec),
+}
+
+impl ShapeSource {
+    /// The height field this source is, if it is one.
+    pub fn height_source(&self) -> Option<HeightSource<'_>> {
+        match self {
+            ShapeSource::HarmonicBezier(s) => Some(HeightSource::Bezier(s)),
+            ShapeSource::Polyharmonic(s) => Some(HeightSource::Poly(s)),
+            _ => None,
+        }
+    }
+}
+
+impl HeightSource<'_> {
+    /// The rectangle's lower-left corner, mm.
+    pub fn origin(&self) -> Vec2 {
+        match self {
+            HeightSource::Bezier(s) => s.origin,
+            HeightSource::Poly(s) => Vec2::new(s.origin[0], s.origin[1]),
+        }
+    }
+
+    /// The rectangle's size [X, Y], mm.
+    pub fn size(&self) -> [f64; 2] {
+        match self {
+            HeightSource::Bezier(s) => s.size,
+            HeightSource::Poly(s) => s.size,
+        }
+    }
+
+    /// Its sections, chords within `CHORD_FRACTION` × `tol` (mm).
+    pub fn sections(&self, tol: f64) -> Result<HeightFieldSections, String> {
+        match self {
+            HeightSource::Bezier(s) => HeightFieldSections::new(s, tol),
+            HeightSource::Poly(s) => Ok(HeightFieldSections::of_height(
+                Box::new(s.relief().clone()),
+                self.origin(),
+                s.size,
+                s.range(),
+                tol,
+            )),
+        }
+    }
+}
+
+/// The height field's sections for a job (chords within the job's tolerance).
+pub fn patch_sections(
+    job: &Job,
+    spec: HeightSource<'_>,
+) -> Result<HeightFieldSections, PipelineError> {
+    spec.sections(job.operation.tolerance)
+        .map_err(PipelineError::Other)
 }
 
 /// Rough a patch by levels (and finish it, with `[finish]`).
 pub fn run_patch(
     job: &Job,
-    spec: &PatchSpec,
+    spec: HeightSource<'_>,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<RunOutput, PipelineError> {
     set_stage(Stage::ShapeSolve);
     // The rectangle: the part seen from above, for the preview and report.
     let (shape, mut solves) = job_shape(job, progress)?;
     let source = patch_sections(job, spec)?;
-    let [sx, sy] = spec.size;
+    let [sx, sy] = spec.size();
     let lj = LevelJob {
         source: &source,
         cavity: false,
@@ -83,7 +142,7 @@ pub fn run_patch(
 /// mesh at `pipeline::FINISH_MESH` (its top surface and the floor round it).
 fn finish_patch(
     job: &Job,
-    spec: &PatchSpec,
+    spec: HeightSource<'_>,
     f: &crate::job::Finish,
     source: &HeightFieldSections,
     progress: &mut dyn FnMut(Progress),
@@ -102,12 +161,21 @@ fn finish_patch(
         .map(crate::surface::triangle_area)
         .sum();
     let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
+    // A patch's floor is only round it; a relief's base is also its own flat
+    // top between the rectangle's edges and the solid's rim, which the
+    // levels leave stepped: the ball finishes it too, so only below the base
+    // (the block's bottom, never under the cutter) is off the part.
+    let off_part = match spec {
+        HeightSource::Bezier(_) => z_floor,
+        HeightSource::Poly(_) => placement(job).z_bottom(),
+    };
     let part = raster::RasterPart {
         rect: source.rectangle_box(),
         max_slope_y: source.max_slope_y(),
         mesh: &index,
-        z_floor,
+        z_floor: off_part,
         area,
+        valleys: matches!(spec, HeightSource::Poly(_)),
     };
     let done = raster::raster_finish(job, f, &part)
         .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
@@ -118,10 +186,10 @@ fn finish_patch(
 /// The stock rectangle of a patch job: the rectangle grown by `stock.margin`
 /// (what the level planner computes from the bottom section, which is the
 /// rectangle).
-pub fn patch_stock(job: &Job, spec: &PatchSpec) -> (Vec2, Vec2) {
+pub fn patch_stock(job: &Job, spec: HeightSource<'_>) -> (Vec2, Vec2) {
     let m = Vec2::new(job.stock.margin, job.stock.margin);
-    let size = Vec2::new(spec.size[0], spec.size[1]);
-    (spec.origin - m, spec.origin + size + m)
+    let size = Vec2::new(spec.size()[0], spec.size()[1]);
+    (spec.origin() - m, spec.origin() + size + m)
 }
 
 /// Where the part's heights go: max h at `stock.top`, `operation.depth`
@@ -136,7 +204,7 @@ pub fn placement(job: &Job) -> mesh::Placement {
 /// The patch block as a closed mesh at `resolution` mm (`pfcam surface`).
 pub fn patch_surface(
     job: &Job,
-    spec: &PatchSpec,
+    spec: HeightSource<'_>,
     resolution: f64,
 ) -> Result<crate::surface::Surface, PipelineError> {
     let sections = patch_sections(job, spec)?;
@@ -154,7 +222,7 @@ pub fn patch_surface(
 /// stock rectangle.
 pub fn patch_part_triangles(
     job: &Job,
-    spec: &PatchSpec,
+    spec: HeightSource<'_>,
     resolution: f64,
 ) -> Result<Vec<[[f64; 3]; 3]>, PipelineError> {
     let s = patch_surface(job, spec, resolution)?;
@@ -163,9 +231,9 @@ pub fn patch_part_triangles(
         .map(|t| m.corners(t))
         .filter(|c| crate::surface::up_area(c) > 1e-12)
         .collect();
-    let size = Vec2::new(spec.size[0], spec.size[1]);
+    let size = Vec2::new(spec.size()[0], spec.size()[1]);
     tris.extend(mesh::floor_triangles(
-        (spec.origin, spec.origin + size),
+        (spec.origin(), spec.origin() + size),
         (s.stock_lo, s.stock_hi),
         placement(job).z_floor(),
     ));

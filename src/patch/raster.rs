@@ -44,6 +44,11 @@ pub struct RasterPart<'a> {
     pub z_floor: f64,
     /// Area of the top surface, mm² (for the time's lower bound).
     pub area: f64,
+    /// Whether the part has concave kinks (a relief meeting its flat base):
+    /// a chord across the offset's kink there stands above the drop and
+    /// leaves material, so steps are also halved while the drop at the
+    /// midpoint lies more than tol below the chord.
+    pub valleys: bool,
 }
 
 /// The raster's spacing: (Δy across the passes, δ along them), mm.
@@ -61,6 +66,14 @@ fn stations(a: f64, b: f64, step: f64) -> Vec<f64> {
     let n = (((b - a) / step).ceil() as usize).max(1);
     (0..=n).map(|k| a + (b - a) * k as f64 / n as f64).collect()
 }
+
+/// Passes per scallop spacing on a part with concave kinks
+/// ([`RasterPart::valleys`]). Beside a kink the cutter's centre path bends
+/// up, and the reachable surface there (the ball touching both facets) lies
+/// below the chord between two passes' centres by about (d/2) sin(θ/2) (d
+/// the passes' distance, θ the bend): 0.039 mm over the ball's reach at the
+/// full spacing on jobs/polyharmonic-face.toml, 0.021 at half.
+pub const VALLEY_PASSES: f64 = 3.0;
 
 /// Halvings of a step at most where its chord strays below the drop.
 const REFINE_DEPTH: usize = 8;
@@ -113,7 +126,8 @@ impl Dropper<'_> {
     }
 
     /// Points between `a` and `b` (exclusive) so that no chord's midpoint
-    /// lies more than `tol` below the drop there.
+    /// lies more than `tol` below the drop there (nor, with
+    /// [`RasterPart::valleys`], more than `tol` above it).
     fn refine(&self, a: Vec3, b: Vec3, tol: f64, depth: usize, out: &mut Vec<Vec3>) {
         if depth == 0 {
             return;
@@ -122,7 +136,8 @@ impl Dropper<'_> {
         let Some(z) = self.on_part(mx, my) else {
             return;
         };
-        if z > 0.5 * (a.z + b.z) + tol {
+        let chord = 0.5 * (a.z + b.z);
+        if z > chord + tol || (self.part.valleys && z < chord - tol) {
             let m = Vec3::new(mx, my, z);
             self.refine(a, m, tol, depth - 1, out);
             out.push(m);
@@ -206,6 +221,7 @@ pub fn raster_finish(job: &Job, f: &Finish, part: &RasterPart) -> Result<Finishe
     use rayon::prelude::*;
     let tol = job.operation.tolerance;
     let (dy, ds) = spacing(f, part.max_slope_y, tol)?;
+    let dy = if part.valleys { dy / VALLEY_PASSES } else { dy };
     let r = f.radius();
     let (lo, size) = part.rect;
     let ys = stations(lo.y - r, lo.y + size.y + r, dy);

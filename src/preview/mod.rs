@@ -57,7 +57,7 @@ pub const DEFAULT_LEVELS: [f64; 4] = [0.9, 0.95, 0.98, 0.99];
 /// a harmonic patch none (its levels are heights, not equipotentials).
 pub fn levels_for(job: &crate::job::Job) -> Vec<f64> {
     use crate::job::OperationKind;
-    if matches!(job.shape, crate::geometry::ShapeSource::HarmonicBezier(_)) {
+    if job.shape.height_source().is_some() {
         return Vec::new();
     }
     match (job.operation.kind, &job.profile) {

@@ -84,7 +84,7 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         });
         return Ok(facts);
     }
-    if let crate::geometry::ShapeSource::HarmonicBezier(spec) = &job.shape {
+    if let Some(spec) = job.shape.height_source() {
         let part = |e: crate::pipeline::PipelineError| SimError::Part(e.to_string());
         let (lo, hi) = crate::patch::patch_stock(job, spec);
         facts.stock = Some(StockBox {
@@ -93,7 +93,10 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
             top: job.stock.top,
         });
         facts.part = Some(PartModel {
-            name: "harmonic patch".into(),
+            name: match spec {
+                crate::patch::HeightSource::Bezier(_) => "harmonic patch".into(),
+                crate::patch::HeightSource::Poly(_) => "polyharmonic relief".into(),
+            },
             triangles: crate::patch::patch_part_triangles(job, spec, surface_resolution)
                 .map_err(part)?,
             outlines: Vec::new(),

@@ -18,13 +18,13 @@ use crate::common::{pfcam, scratch, shipped_jobs};
 use crate::doc_figures;
 
 /// Every job in jobs/ of the given kind whose part is the MFS field's S2
-/// (the directory is read, not listed here); a harmonic patch's block is
-/// checked in tests/all/harmonic_patch.rs.
+/// (the directory is read, not listed here); a height field's block is
+/// checked in tests/all/harmonic_patch.rs and tests/all/polyharmonic.rs.
 fn jobs_of(kind: OperationKind) -> Vec<Job> {
     shipped_jobs()
         .into_iter()
         .filter(|j| j.operation.kind == kind)
-        .filter(|j| !matches!(j.shape, pfcam::geometry::ShapeSource::HarmonicBezier(_)))
+        .filter(|j| j.shape.height_source().is_none())
         .collect()
 }
 

@@ -8,16 +8,23 @@
 pub mod elements;
 pub mod envelope;
 mod error;
+pub mod fast;
 mod field;
 mod gauss;
 pub mod kernels;
+pub mod lagrange;
 pub mod quadrature;
+pub mod relief;
+pub mod spec;
 pub mod system;
 
 pub use elements::{BoxMesh, Element};
 pub use envelope::Envelope;
 pub use error::PolyError;
+pub use fast::FastField;
 pub use gauss::GaussRule;
 pub use kernels::{Kernel, Radial};
 pub use quadrature::{QuadRule, Quadrature};
+pub use relief::{Relief, ReliefSpec};
+pub use spec::{PolyInputs, PolySpec};
 pub use system::{solve, solve_dirichlet, GivenPoint, Model, PointKind, Solution};

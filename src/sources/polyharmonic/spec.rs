@@ -1,0 +1,224 @@
+//! A polyharmonic relief as a job describes it (`shape.kind =
+//! "polyharmonic"`), built once when the job is resolved: the solve, the
+//! fast field over the work region, the coarse rays and the height range.
+//!
+//! The work region is the job's rectangle × [base − step, start], start =
+//! z_max + ¼(box top − z_max) with z_max the highest given point: the rays
+//! begin there, so the solid must not reach it (checked on the coarse rays).
+//! The box part of T₁ is interpolated on nodes a fifth of the smallest
+//! element side apart (4-point stencils). max h is the best coarse ray
+//! refined by a pattern search (steps from the coarse spacing halved to
+//! 1e-7 mm); min h is the base (the block's foot).
+
+use super::error::{invalid, PolyError};
+use super::fast::FastField;
+use super::relief::{Relief, ReliefSpec};
+use super::system::{solve, GivenPoint, Model};
+use super::{Kernel, Quadrature};
+use crate::sources::harmonic_bezier::HeightRange;
+use nalgebra::Vector3;
+use std::sync::Arc;
+
+/// The march step along a ray, mm: the thinnest piece (in z) seen.
+pub const RAY_STEP: f64 = 0.5;
+
+/// The coarse rays' spacing, mm: the narrowest piece (in x, y) seen away
+/// from others.
+pub const COARSE: f64 = 1.0;
+
+/// Built specs kept for reuse by [`PolySpec::build_cached`].
+pub const CACHE: usize = 4;
+
+/// Interpolation nodes per smallest element side.
+const NODES_PER_ELEMENT: f64 = 5.0;
+
+/// The inputs of a relief and what was built from them.
+#[derive(Clone)]
+pub struct PolySpec {
+    /// The given points (surface, then inside, then outside).
+    pub points: Vec<GivenPoint>,
+    /// `T2` or `T2A { a }`.
+    pub kernel: Kernel,
+    /// The box's corners, mm.
+    pub lo: Vector3<f64>,
+    /// Upper corner.
+    pub hi: Vector3<f64>,
+    /// Elements per face edge.
+    pub per_edge: usize,
+    /// The rectangle's lower-left corner and size, mm.
+    pub origin: [f64; 2],
+    /// [X, Y].
+    pub size: [f64; 2],
+    /// The lowest height (the block's foot), mm.
+    pub base: f64,
+    built: Arc<(Relief, HeightRange)>,
+}
+
+impl std::fmt::Debug for PolySpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PolySpec")
+            .field("points", &self.points.len())
+            .field("kernel", &self.kernel)
+            .field("box", &(self.lo, self.hi))
+            .field("per_edge", &self.per_edge)
+            .field("origin", &self.origin)
+            .field("size", &self.size)
+            .field("base", &self.base)
+            .finish()
+    }
+}
+
+/// Specs are equal when their inputs are (the built parts follow from them).
+impl PartialEq for PolySpec {
+    fn eq(&self, o: &Self) -> bool {
+        (&self.points, self.kernel, self.lo, self.hi, self.per_edge)
+            == (&o.points, o.kernel, o.lo, o.hi, o.per_edge)
+            && (self.origin, self.size, self.base) == (o.origin, o.size, o.base)
+    }
+}
+
+/// The inputs of [`PolySpec::build`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolyInputs {
+    /// The given points.
+    pub points: Vec<GivenPoint>,
+    /// The load kernel.
+    pub kernel: Kernel,
+    /// The box.
+    pub lo: Vector3<f64>,
+    /// Upper corner.
+    pub hi: Vector3<f64>,
+    /// Elements per face edge.
+    pub per_edge: usize,
+    /// The rectangle.
+    pub origin: [f64; 2],
+    /// Its size.
+    pub size: [f64; 2],
+    /// The base height.
+    pub base: f64,
+}
+
+impl PolySpec {
+    /// Solves and builds the relief (module doc). Errors name the job key.
+    pub fn build(i: PolyInputs) -> Result<PolySpec, PolyError> {
+        let model = Model {
+            lo: i.lo,
+            hi: i.hi,
+            per_edge: i.per_edge,
+            kernel: i.kernel,
+            points: i.points.clone(),
+            quadrature: Quadrature::default(),
+        };
+        let sol = solve(&model)?;
+        let zmax = i.points.iter().map(|p| p.p.z).fold(f64::MIN, f64::max);
+        let start = zmax + 0.25 * (i.hi.z - zmax);
+        if start <= i.base + RAY_STEP {
+            return Err(invalid(
+                "shape.base",
+                format!(
+                    "must lie below the highest given point ({zmax}) by more than {RAY_STEP} mm"
+                ),
+            ));
+        }
+        let [ox, oy] = i.origin;
+        let lo = Vector3::new(ox, oy, i.base - RAY_STEP);
+        let hi = Vector3::new(ox + i.size[0], oy + i.size[1], start);
+        let side = (i.hi - i.lo).min() / i.per_edge as f64;
+        let fast = FastField::new(sol, lo, hi, side / NODES_PER_ELEMENT, 4)?;
+        let spec = ReliefSpec {
+            origin: i.origin,
+            size: i.size,
+            base: i.base,
+            start,
+            step: RAY_STEP,
+            coarse: COARSE,
+        };
+        let relief = Relief::new(fast, spec)?;
+        let range = height_range(&relief);
+        Ok(PolySpec {
+            points: i.points,
+            kernel: i.kernel,
+            lo: i.lo,
+            hi: i.hi,
+            per_edge: i.per_edge,
+            origin: i.origin,
+            size: i.size,
+            base: i.base,
+            built: Arc::new((relief, range)),
+        })
+    }
+
+    /// As [`PolySpec::build`], reusing the result for inputs equal to one
+    /// of the last [`CACHE`] built (a job is resolved, then run, simulated
+    /// and meshed from the same inputs; the build is deterministic, so a
+    /// cached spec is the one a new build would make).
+    pub fn build_cached(i: PolyInputs) -> Result<PolySpec, PolyError> {
+        use std::sync::Mutex;
+        static BUILT: Mutex<Vec<PolySpec>> = Mutex::new(Vec::new());
+        let same = |s: &PolySpec| {
+            (&s.points, s.kernel, s.lo, s.hi, s.per_edge)
+                == (&i.points, i.kernel, i.lo, i.hi, i.per_edge)
+                && (s.origin, s.size, s.base) == (i.origin, i.size, i.base)
+        };
+        if let Ok(cache) = BUILT.lock() {
+            if let Some(s) = cache.iter().find(|s| same(s)) {
+                return Ok(s.clone());
+            }
+        }
+        let spec = Self::build(i)?;
+        if let Ok(mut cache) = BUILT.lock() {
+            if cache.len() >= CACHE {
+                cache.remove(0);
+            }
+            cache.push(spec.clone());
+        }
+        Ok(spec)
+    }
+
+    /// The relief.
+    pub fn relief(&self) -> &Relief {
+        &self.built.0
+    }
+
+    /// max h (and where, relative to the origin) and min h = base.
+    pub fn range(&self) -> HeightRange {
+        self.built.1
+    }
+}
+
+/// max h by the best coarse ray and a pattern search (module doc).
+fn height_range(r: &Relief) -> HeightRange {
+    let s = *r.spec();
+    let inside = |p: [f64; 2]| p[0] >= 0.0 && p[1] >= 0.0 && p[0] <= s.size[0] && p[1] <= s.size[1];
+    let (mut best, mut hbest) = ([0.0, 0.0], f64::MIN);
+    for (p, h) in r.coarse_rays() {
+        if h > hbest {
+            (best, hbest) = (p, h);
+        }
+    }
+    let mut step = s.coarse;
+    for _ in 0..10_000 {
+        if step <= 1e-7 {
+            break;
+        }
+        let mut moved = false;
+        for d in [[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]] {
+            let q = [best[0] + step * d[0], best[1] + step * d[1]];
+            if inside(q) {
+                let h = r.height(q[0], q[1]);
+                if h > hbest {
+                    (best, hbest, moved) = (q, h, true);
+                }
+            }
+        }
+        if !moved {
+            step *= 0.5;
+        }
+    }
+    HeightRange {
+        min: s.base,
+        max: hbest.max(s.base),
+        argmin: [0.0, 0.0],
+        argmax: best,
+    }
+}
