@@ -29,6 +29,7 @@ mod stock;
 mod svgfile;
 mod text;
 mod tool;
+mod tube;
 
 pub use composition::PART_OPS;
 pub use finish::{CutterShape, Finish};
@@ -499,6 +500,28 @@ pub struct RawShape {
     pub row0: Option<Vec<f64>>,
     /// `row1` (harmonic patch), mm: heights of the edge y = Y
     pub row1: Option<Vec<f64>>,
+    /// `bottom_size` (PDE tube), mm: [X, Y] of the curve at u = 0
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub bottom_size: Option<[f64; 2]>,
+    /// `bottom_exponent` (PDE tube): the superellipse's p at u = 0
+    pub bottom_exponent: Option<f64>,
+    /// `top_size` (PDE tube), mm: [X, Y] of the curve at u = 1
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub top_size: Option<[f64; 2]>,
+    /// `top_exponent` (PDE tube): the superellipse's p at u = 1
+    pub top_exponent: Option<f64>,
+    /// `flare` (PDE tube), mm per unit u: [bottom, top]
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub flare: Option<[f64; 2]>,
+    /// `rise` (PDE tube), mm per unit u: [bottom, top]
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub rise: Option<[f64; 2]>,
+    /// `a` (PDE tube): the PDE's parameter
+    pub a: Option<f64>,
+    /// `modes` (PDE tube): N
+    pub modes: Option<i64>,
+    /// `samples` (PDE tube): K
+    pub samples: Option<i64>,
 }
 
 /// `[[shape.part]]`: one part of a composition, in design units.
@@ -1121,6 +1144,7 @@ impl RawJob {
         let stock = stock::resolve(self.stock.unwrap_or_default())?;
         let surface_depth = match &shape {
             ShapeSource::HarmonicBezier(spec) => Some(harmonic::patch_depth(spec)?),
+            ShapeSource::PdeTube(spec) => Some(spec.height),
             _ => None,
         };
         let operation::Resolved {
@@ -1132,9 +1156,12 @@ impl RawJob {
             &tool,
             &stock,
             (self.profile, self.finish),
-            surface_depth,
+            (surface_depth, matches!(shape, ShapeSource::PdeTube(_))),
         )?;
         set_file_tolerance(&mut shape, operation.tolerance);
+        if let ShapeSource::PdeTube(spec) = &mut shape {
+            tube::check(spec, &operation, stock.top, finish.is_some())?;
+        }
         let field = field::resolve(self.field.unwrap_or_default())?;
         let machine = self.machine.unwrap_or_default().resolve()?;
         let output = resolve_output(self.output.unwrap_or_default())?;
@@ -1209,6 +1236,8 @@ fn check_height_per_tool(shape: &ShapeSource, diameter: f64) -> Result<(), JobEr
         ShapeSource::Composite(c) => c.height,
         // Its size is bounded by limits::PATCH_SIZE and check_extent.
         ShapeSource::HarmonicBezier(_) => None,
+        // Its sizes by limits::TUBE_SIZE, its height by limits::DEPTH.
+        ShapeSource::PdeTube(_) => None,
     };
     match height {
         Some(h) if h / diameter > limits::MAX_HEIGHT_PER_DIAMETER => Err(invalid(
@@ -2191,6 +2220,15 @@ mod doc_tests {
             "shape.size",
             "shape.row0",
             "shape.row1",
+            "shape.bottom_size",
+            "shape.bottom_exponent",
+            "shape.top_size",
+            "shape.top_exponent",
+            "shape.flare",
+            "shape.rise",
+            "shape.a",
+            "shape.modes",
+            "shape.samples",
             "shape.part.name",
             "shape.part.polygon",
             "shape.part.svg",

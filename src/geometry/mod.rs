@@ -240,6 +240,9 @@ pub enum ShapeSource {
     /// A harmonic tensor-product Bézier patch (`kind = "harmonic-bezier"`):
     /// a height field over a rectangle, which is its shape seen from above.
     HarmonicBezier(crate::sources::harmonic_bezier::PatchSpec),
+    /// A Bloor–Wilson PDE tube (`kind = "pde-tube"`): a boss or its mould
+    /// with horizontal sections; seen from above, its widest end curve.
+    PdeTube(crate::sources::pde_tube::spec::TubeSpec),
 }
 
 /// A shape built from named parts in design units (the paper's Section 5): each

@@ -4,7 +4,8 @@
 
 use super::font::Sources;
 use super::{
-    at_most_one, composition, dxffile, harmonic, invalid, limits, svgfile, text, JobError, RawShape,
+    at_most_one, composition, dxffile, harmonic, invalid, limits, svgfile, text, tube, JobError,
+    RawShape,
 };
 use crate::geometry::{Composition, ShapeSource, Vec2};
 
@@ -26,6 +27,11 @@ pub(super) fn resolve(
         .height
         .map(|h| limits::SHAPE_HEIGHT.check("shape.height", h))
         .transpose()?;
+    if s.kind.as_deref() == Some(tube::KIND) {
+        harmonic::refuse_patch_keys(&s)?;
+        return tube::resolve(s, origin, height);
+    }
+    tube::refuse_tube_keys(&s)?;
     if s.kind.is_some() {
         return harmonic::resolve(s, origin);
     }

@@ -19,12 +19,19 @@ use crate::doc_figures;
 
 /// Every job in jobs/ of the given kind whose part is the MFS field's S2
 /// (the directory is read, not listed here); a harmonic patch's block is
-/// checked in tests/all/harmonic_patch.rs.
+/// checked in tests/all/harmonic_patch.rs, a PDE tube's part in
+/// tests/all/pde_job.rs.
 fn jobs_of(kind: OperationKind) -> Vec<Job> {
     shipped_jobs()
         .into_iter()
         .filter(|j| j.operation.kind == kind)
-        .filter(|j| !matches!(j.shape, pfcam::geometry::ShapeSource::HarmonicBezier(_)))
+        .filter(|j| {
+            !matches!(
+                j.shape,
+                pfcam::geometry::ShapeSource::HarmonicBezier(_)
+                    | pfcam::geometry::ShapeSource::PdeTube(_)
+            )
+        })
         .collect()
 }
 
