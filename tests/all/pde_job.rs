@@ -314,3 +314,34 @@ fn the_part_mesh_is_closed_with_the_tubes_volume() {
         );
     }
 }
+
+/// jobs/pde-vase.toml's golden sample, simulated by the binary against the
+/// tube's part: no rapid into material, no straight plunge, no cell cut
+/// into the part by more than the tolerance, and (rough only, levels a
+/// stepdown apart) no cell left more than max_scallop + tolerance above it.
+#[test]
+fn the_shipped_vase_simulates_clean() {
+    use crate::common::{pfcam as bin, root, text};
+    let out = bin(
+        &[
+            "simulate",
+            "gcode-samples/pde-vase.nc",
+            "--job",
+            "jobs/pde-vase.toml",
+            "--json",
+        ],
+        root(),
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["clean"], true, "{v}");
+    let part = &v["part"];
+    assert_eq!(part["model"], "PDE tube");
+    let gouge = part["max_gouge"]["value"].as_f64().unwrap();
+    assert!((0.0..=0.01).contains(&gouge), "max gouge {gouge}");
+    assert_eq!(part["gouged_cells"], 0, "{part}");
+    assert_eq!(part["left_share_over_scallop"], 0.0, "{part}");
+    let report = &v["report"];
+    assert_eq!(report["rapids_into_material"], 0, "{report}");
+    assert_eq!(report["straight_plunges"], 0, "{report}");
+}
