@@ -345,3 +345,47 @@ fn the_shipped_vase_simulates_clean() {
     assert_eq!(report["rapids_into_material"], 0, "{report}");
     assert_eq!(report["straight_plunges"], 0, "{report}");
 }
+
+/// `pfcam surface` on the shipped vase and on its mould (the same job with
+/// `operation.kind = "cavity"`): each STL, read back from its bytes and
+/// welded as a viewer would, is watertight and oriented with no zero-area
+/// triangle (the check the other sources' STLs pass), spans the stock and
+/// the depth, and the two volumes add up to the whole block (30 × 30 mm,
+/// 15 mm and the 2 mm base): the mould is the boss's complement.
+#[test]
+fn pfcam_surface_writes_the_vase_and_its_mould_watertight() {
+    use crate::common::{pfcam as bin, root, scratch, text};
+    use pfcam::surface::{read_stl, weld, BASE_THICKNESS};
+    let dir = scratch("pde_job", "surface");
+    let vase = std::fs::read_to_string(root().join("jobs/pde-vase.toml")).unwrap();
+    let mould = vase
+        .replace("name = \"pde-vase\"", "name = \"pde-vase-mould\"")
+        .replace("kind = \"boss\"", "kind = \"cavity\"");
+    assert_ne!(mould, vase);
+    std::fs::write(dir.join("mould.toml"), mould).unwrap();
+    let job = root().join("jobs/pde-vase.toml");
+    let mut volumes = Vec::new();
+    for (job, stl) in [
+        (job.to_str().unwrap(), "vase.stl"),
+        ("mould.toml", "mould.stl"),
+    ] {
+        let out = bin(&["surface", job, "-o", stl, "-q"], &dir);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let bytes = std::fs::read(dir.join(stl)).unwrap();
+        let (_, tris) = read_stl(&bytes).unwrap();
+        let mesh = weld(&tris);
+        mesh.check().unwrap_or_else(|e| panic!("{stl}: {e}"));
+        let (lo, hi) = mesh.bbox().unwrap();
+        for (got, want) in [(lo[0], -15.0), (hi[1], 15.0), (lo[2], -17.0), (hi[2], 0.0)] {
+            assert!((got - want).abs() < 1e-5, "{stl}: {got} against {want}");
+        }
+        volumes.push(mesh.volume());
+    }
+    let block = 30.0 * 30.0 * (15.0 + BASE_THICKNESS);
+    let tube = volumes[0] - 30.0 * 30.0 * BASE_THICKNESS;
+    assert!(tube > 3000.0 && tube < 15.0 * 400.0, "{volumes:?}");
+    assert!(
+        (volumes[0] + volumes[1] - (block + 30.0 * 30.0 * BASE_THICKNESS)).abs() < 1e-3,
+        "{volumes:?}"
+    );
+}
