@@ -1160,7 +1160,7 @@ impl RawJob {
         )?;
         set_file_tolerance(&mut shape, operation.tolerance);
         if let ShapeSource::PdeTube(spec) = &mut shape {
-            tube::check(spec, &operation, stock.top, finish.is_some())?;
+            tube::check(spec, &operation, stock.top, finish.as_ref())?;
         }
         let field = field::resolve(self.field.unwrap_or_default())?;
         let machine = self.machine.unwrap_or_default().resolve()?;

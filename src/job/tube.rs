@@ -5,9 +5,11 @@
 //! The surface is solved when `[shape]` is resolved (every error of the
 //! solve names its key); once `[operation]` has given the boss or mould and
 //! the tolerance, [`check`] builds the part and refuses a turning spine or
-//! an overhang, naming the z.
+//! an overhang, naming the z, and a flat finishing tool.
 
-use super::{invalid, limits, show, JobError, Operation, OperationKind, RawShape};
+use super::{
+    invalid, limits, show, CutterShape, Finish, JobError, Operation, OperationKind, RawShape,
+};
 use crate::geometry::{ShapeSource, Vec2};
 use crate::sources::pde::PdeError;
 use crate::sources::pde_tube::spec::{TubeEnd, TubeSpec};
@@ -206,12 +208,12 @@ pub(super) fn check(
     spec: &mut TubeSpec,
     op: &Operation,
     top: f64,
-    has_finish: bool,
+    finish: Option<&Finish>,
 ) -> Result<(), JobError> {
-    if has_finish {
+    if finish.is_some_and(|f| f.shape == CutterShape::Flat) {
         return Err(invalid(
-            "finish",
-            "finishing a PDE tube is not available yet: it is roughed by levels only (leave out [finish])",
+            "finish.shape",
+            "= \"flat\" cannot follow a PDE tube's curved wall along its sections within the tolerance (its edge leaves a stair): use \"ball\" or \"bull\"",
         ));
     }
     spec.kind = match op.kind {

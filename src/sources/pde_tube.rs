@@ -210,6 +210,12 @@ impl PdeTube {
         self.z_ends.0.max(self.z_ends.1)
     }
 
+    /// The part's top in the curves' frame (mm): the z that heights
+    /// relative to the top are measured from.
+    pub fn top_z(&self) -> f64 {
+        self.top()
+    }
+
     /// A₀z(u) − top (mm).
     fn z_of(&self, u: f64) -> f64 {
         self.surface.spine().point(u)[2] - self.top()

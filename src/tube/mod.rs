@@ -3,9 +3,11 @@
 //! through the level planner unchanged (the schedule, each level's MFS solve
 //! on its section and its rings, linking, arcs and the gouge check of every
 //! level against its section), as a boss's, or as a cavity's for the mould.
-//! The stock top is the tube's top; its depth is `shape.height`.
+//! The stock top is the tube's top; its depth is `shape.height`. With
+//! `[finish]` a ring of the finishing tool follows each section ([`rings`]).
 
 pub mod mesh;
+pub mod rings;
 
 use crate::count::{set_stage, Stage};
 use crate::geometry::{polygons_bbox, Vec2};
@@ -69,6 +71,11 @@ pub fn run_tube(
     set_stage(Stage::LevelGrid);
     let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
     let stock = (planned.params.stock_lo, planned.params.stock_hi);
+    set_stage(Stage::Finishing);
+    let finish = match &job.finish {
+        Some(f) => Some(finish_tube(job, f, &tube, progress)?),
+        None => None,
+    };
     set_stage(Stage::Other);
     // The outline's own field, for the preview's colour map only (the levels
     // were traced in their sections' fields).
@@ -90,8 +97,41 @@ pub fn run_tube(
         shape,
         field: solved.solution.field,
         lower_bound: planned.bound,
-        finish: None,
+        finish,
     })
+}
+
+/// The finishing program: a ring along each section ([`rings`]) against
+/// the part's mesh at `pipeline::FINISH_MESH`.
+fn finish_tube(
+    job: &Job,
+    f: &crate::job::Finish,
+    tube: &PdeTube,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<crate::finish::Finished, PipelineError> {
+    progress(Progress::Stage {
+        name: "finishing rings".into(),
+        total: 1,
+    });
+    let fine = crate::pipeline::FINISH_MESH;
+    let stock = tube_stock(job, tube);
+    let s = mesh::tube_mesh(tube, job.stock.top, fine, stock).map_err(PipelineError::Internal)?;
+    let tris: Vec<[[f64; 3]; 3]> = (0..s.mesh.triangles.len())
+        .map(|t| s.mesh.corners(t))
+        .filter(|c| crate::surface::up_area(c) > 1e-12)
+        .collect();
+    let area = crate::finish::wall_area(&tris);
+    let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
+    let part = rings::RingPart {
+        tube,
+        mesh: &index,
+        area,
+        top: job.stock.top,
+    };
+    let done = rings::ring_finish(job, f, &part)
+        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
+    progress(Progress::Step);
+    Ok(done)
 }
 
 /// The tube's part as a closed mesh at `resolution` mm (`pfcam surface`).
