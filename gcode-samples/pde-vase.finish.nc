@@ -7,7 +7,7 @@
 (cut min: X-11.475 Y-11.475 Z-15)
 (cut max: X12.474 Y11.475 Z1)
 (passes: 69 along the surface from the floor up, lowest z -15 to -1.277)
-(moves: 35464 lines, 0 arcs of radius <= 1000 mm)
+(moves: 35464 lines, arcs off)
 (length: cut 4601.4 mm, rapid 22.8 mm)
 (estimated time: 4 min 41 s, rapids at 1000 mm/min, acceleration ignored)
 G21 G90 G17 G94
