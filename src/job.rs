@@ -31,6 +31,7 @@ mod stock;
 mod svgfile;
 mod text;
 mod tool;
+mod tube;
 
 pub use composition::PART_OPS;
 pub use finish::{CutterShape, Finish};
@@ -514,7 +515,8 @@ pub struct RawShape {
     pub points_file: Option<String>,
     /// `kernel` (polyharmonic): `"T2A"` or `"T2"`
     pub kernel: Option<String>,
-    /// `a` (polyharmonic), mm: the T2A kernel's ball radius A
+    /// `a`: the T2A kernel's ball radius A, mm (polyharmonic), or the PDE's
+    /// parameter (PDE tube)
     pub a: Option<f64>,
     /// `box` (polyharmonic), mm: [[x0, y0, z0], [x1, y1, z1]]
     #[serde(rename = "box", default, deserialize_with = "exact::opt_vec")]
@@ -523,6 +525,26 @@ pub struct RawShape {
     pub elements: Option<i64>,
     /// `base` (polyharmonic), mm: the height of the block's foot
     pub base: Option<f64>,
+    /// `bottom_size` (PDE tube), mm: [X, Y] of the curve at u = 0
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub bottom_size: Option<[f64; 2]>,
+    /// `bottom_exponent` (PDE tube): the superellipse's p at u = 0
+    pub bottom_exponent: Option<f64>,
+    /// `top_size` (PDE tube), mm: [X, Y] of the curve at u = 1
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub top_size: Option<[f64; 2]>,
+    /// `top_exponent` (PDE tube): the superellipse's p at u = 1
+    pub top_exponent: Option<f64>,
+    /// `flare` (PDE tube), mm per unit u: [bottom, top]
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub flare: Option<[f64; 2]>,
+    /// `rise` (PDE tube), mm per unit u: [bottom, top]
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub rise: Option<[f64; 2]>,
+    /// `modes` (PDE tube): N
+    pub modes: Option<i64>,
+    /// `samples` (PDE tube): K
+    pub samples: Option<i64>,
 }
 
 /// `[[shape.part]]`: one part of a composition, in design units.
@@ -1146,6 +1168,7 @@ impl RawJob {
         let surface_depth = match &shape {
             ShapeSource::HarmonicBezier(spec) => Some(harmonic::patch_depth(spec)?),
             ShapeSource::Polyharmonic(spec) => Some(polyharmonic::relief_depth(spec)?),
+            ShapeSource::PdeTube(spec) => Some(spec.height),
             _ => None,
         };
         let operation::Resolved {
@@ -1157,9 +1180,12 @@ impl RawJob {
             &tool,
             &stock,
             (self.profile, self.finish),
-            surface_depth,
+            (surface_depth, matches!(shape, ShapeSource::PdeTube(_))),
         )?;
         set_file_tolerance(&mut shape, operation.tolerance);
+        if let ShapeSource::PdeTube(spec) = &mut shape {
+            tube::check(spec, &operation, stock.top, finish.as_ref())?;
+        }
         let field = field::resolve(self.field.unwrap_or_default())?;
         let machine = self.machine.unwrap_or_default().resolve()?;
         let output = resolve_output(self.output.unwrap_or_default())?;
@@ -1234,6 +1260,8 @@ fn check_height_per_tool(shape: &ShapeSource, diameter: f64) -> Result<(), JobEr
         ShapeSource::Composite(c) => c.height,
         // Its size is bounded by limits::PATCH_SIZE and check_extent.
         ShapeSource::HarmonicBezier(_) | ShapeSource::Polyharmonic(_) => None,
+        // Its sizes by limits::TUBE_SIZE, its height by limits::DEPTH.
+        ShapeSource::PdeTube(_) => None,
     };
     match height {
         Some(h) if h / diameter > limits::MAX_HEIGHT_PER_DIAMETER => Err(invalid(
@@ -2225,6 +2253,14 @@ mod doc_tests {
             "shape.box",
             "shape.elements",
             "shape.base",
+            "shape.bottom_size",
+            "shape.bottom_exponent",
+            "shape.top_size",
+            "shape.top_exponent",
+            "shape.flare",
+            "shape.rise",
+            "shape.modes",
+            "shape.samples",
             "shape.part.name",
             "shape.part.polygon",
             "shape.part.svg",

@@ -24,3 +24,4 @@ pub mod simulate;
 pub mod sources;
 pub mod surface;
 pub mod toolpath;
+pub mod tube;

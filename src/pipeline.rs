@@ -502,6 +502,9 @@ pub fn run(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, P
     if let Some(spec) = job.shape.height_source() {
         return crate::patch::run_patch(job, spec, progress);
     }
+    if let ShapeSource::PdeTube(spec) = &job.shape {
+        return crate::tube::run_tube(job, spec, progress);
+    }
     match job.operation.kind {
         OperationKind::Profile => run_profile(job, progress),
         OperationKind::Boss | OperationKind::Cavity => run_levels(job, progress),
@@ -675,6 +678,9 @@ pub fn job_sections(
             Box::new(crate::patch::patch_sections(job, spec)?),
             Vec::new(),
         ));
+    }
+    if let ShapeSource::PdeTube(spec) = &job.shape {
+        return Ok((Box::new(crate::tube::tube_sections(spec)?), Vec::new()));
     }
     let (shape, mut solves) = job_shape(job, progress)?;
     let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;

@@ -346,7 +346,8 @@ pub fn job_surface(
 }
 
 /// The part of any boss or cavity job as a closed mesh at `opts.resolution`:
-/// a height field's block (`patch::patch_surface`), else [`job_surface`]'s.
+/// a height field's block (`patch::patch_surface`), a PDE tube's part
+/// (`tube::tube_surface`), else [`job_surface`]'s.
 pub fn job_part_surface(
     job: &Job,
     opts: &SurfaceOptions,
@@ -354,6 +355,9 @@ pub fn job_part_surface(
 ) -> Result<Surface, SurfaceError> {
     if let Some(spec) = job.shape.height_source() {
         return Ok(crate::patch::patch_surface(job, spec, opts.resolution)?);
+    }
+    if let crate::geometry::ShapeSource::PdeTube(spec) = &job.shape {
+        return Ok(crate::tube::tube_surface(job, spec, opts.resolution)?);
     }
     Ok(job_surface(job, opts, progress)?.surface)
 }

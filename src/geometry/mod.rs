@@ -244,6 +244,9 @@ pub enum ShapeSource {
     /// "polyharmonic"`): a height field, its shape seen from above the
     /// rectangle.
     Polyharmonic(crate::sources::polyharmonic::PolySpec),
+    /// A Bloor–Wilson PDE tube (`kind = "pde-tube"`): a boss or its mould
+    /// with horizontal sections; seen from above, its widest end curve.
+    PdeTube(crate::sources::pde_tube::spec::TubeSpec),
 }
 
 /// A shape built from named parts in design units (the paper's Section 5): each

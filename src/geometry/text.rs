@@ -95,11 +95,26 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
                 }],
             })
         }
+        ShapeSource::PdeTube(t) => {
+            check_point("origin", t.origin)?;
+            let outline = super::Contour::polygon(&t.outline(TUBE_OUTLINE_POINTS))?;
+            Ok(super::Shape {
+                regions: vec![super::Region {
+                    name: "tube".into(),
+                    outline,
+                    counters: Vec::new(),
+                }],
+            })
+        }
         ShapeSource::Composite(_) => Err(GeometryError::Invalid(
             "a composition of parts is built with its fields (pipeline::job_shape)".into(),
         )),
     }
 }
+
+/// Points of a PDE tube's outline seen from above (its widest end curve):
+/// for the preview and the report, not the tool path.
+const TUBE_OUTLINE_POINTS: usize = 512;
 
 fn check_finite(what: &str, x: f64, positive: bool) -> Result<(), GeometryError> {
     if !x.is_finite() || (positive && x <= 0.0) {

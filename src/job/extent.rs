@@ -70,6 +70,10 @@ pub fn check_extent(source: &ShapeSource, shape: &Shape, diameter: f64) -> Resul
             "shape.size",
             "make the rectangle smaller, or use a larger tool",
         ),
+        ShapeSource::PdeTube(_) => (
+            "shape.bottom_size",
+            "make the tube smaller, or use a larger tool",
+        ),
     };
     let why = if limit < limits::MAX_EXTENT {
         format!(

@@ -8,7 +8,7 @@ use crate::geometry::{ShapeSource, Vec2};
 use crate::sources::harmonic_bezier::{default_form, Form, HarmonicError, PatchSpec};
 
 /// The accepted values of `shape.kind`.
-pub const SHAPE_KINDS: &[&str] = &["harmonic-bezier", "polyharmonic"];
+pub const SHAPE_KINDS: &[&str] = &["harmonic-bezier", "polyharmonic", super::tube::KIND];
 
 /// The patch keys and whether each is given.
 fn patch_keys(s: &RawShape) -> [(&'static str, bool); 5] {
@@ -21,7 +21,7 @@ fn patch_keys(s: &RawShape) -> [(&'static str, bool); 5] {
     ]
 }
 
-/// Without `shape.kind`: no patch key.
+/// Without `shape.kind = "harmonic-bezier"`: no patch key.
 pub(super) fn refuse_patch_keys(s: &RawShape) -> Result<(), JobError> {
     if let Some((key, _)) = patch_keys(s).iter().find(|k| k.1) {
         return Err(invalid(

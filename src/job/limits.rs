@@ -139,6 +139,20 @@ pub const PATCH_SIZE: Range = Range::closed(1.0, 2000.0, "mm");
 /// `shape.row0`, `shape.row1` (harmonic patch), each height: the part is at
 /// most `operation.depth`'s 200 mm deep.
 pub const PATCH_HEIGHT: Range = Range::closed(-200.0, 200.0, "mm");
+/// `shape.bottom_size`, `shape.top_size` (PDE tube), each side.
+pub const TUBE_SIZE: Range = Range::closed(1.0, 2000.0, "mm");
+/// `shape.bottom_exponent`, `shape.top_exponent` (PDE tube): 1 a diamond,
+/// 2 an ellipse, 4 a squircle; past 16 the curve is a rectangle whose
+/// corners K samples cannot follow.
+pub const TUBE_EXPONENT: Range = Range::closed(1.0, 16.0, "");
+/// `shape.flare`, `shape.rise` (PDE tube), each end: Xᵤ's parts, mm per unit u.
+pub const TUBE_SLOPE: Range = Range::closed(-1000.0, 1000.0, "mm");
+/// `shape.a` (PDE tube): the PDE's parameter; e^{−a} below rounding past 50.
+pub const TUBE_A: Range = Range::closed(0.01, 50.0, "");
+/// `shape.modes` (PDE tube): N.
+pub const TUBE_MODES: Range = Range::closed(0.0, 64.0, "");
+/// `shape.samples` (PDE tube): K, also at least 2·modes + 1.
+pub const TUBE_SAMPLES: Range = Range::closed(16.0, 1024.0, "");
 /// `shape.letter_spacing`.
 pub const LETTER_SPACING: Range = Range::closed(-1000.0, 1000.0, "mm");
 /// `shape.line_spacing`, baseline to baseline in em: lines may overlap (below
@@ -203,6 +217,15 @@ pub const KEYS: &[(&str, Range)] = &[
     ("shape.size", PATCH_SIZE),
     ("shape.row0", PATCH_HEIGHT),
     ("shape.row1", PATCH_HEIGHT),
+    ("shape.bottom_size", TUBE_SIZE),
+    ("shape.top_size", TUBE_SIZE),
+    ("shape.bottom_exponent", TUBE_EXPONENT),
+    ("shape.top_exponent", TUBE_EXPONENT),
+    ("shape.flare", TUBE_SLOPE),
+    ("shape.rise", TUBE_SLOPE),
+    ("shape.a", TUBE_A),
+    ("shape.modes", TUBE_MODES),
+    ("shape.samples", TUBE_SAMPLES),
     ("shape.join_tolerance", JOIN_TOLERANCE),
     ("shape.letter_spacing", LETTER_SPACING),
     ("shape.line_spacing", LINE_SPACING),

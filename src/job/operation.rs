@@ -19,16 +19,18 @@ pub(super) struct Resolved {
 /// `[operation]`, `[profile]` and `[finish]` against the resolved tool and
 /// stock: the depth (mm below `stock.top`) in passes of `tool.stepdown`, the
 /// tolerance below the tool radius, the clearing rings of a boss's margin.
-/// `surface_depth` is a surface source's own depth (a harmonic patch's max h
-/// − min h, mm): it is then the depth, the operation a boss by default, and
-/// `operation.depth` and `[profile]` do not apply.
+/// `surface` is a surface source's own depth (a harmonic patch's max h −
+/// min h, a PDE tube's height, mm) and whether it is a tube: the depth is
+/// then the surface's, the operation a boss by default (a tube may be a
+/// cavity, its mould), and `operation.depth` and `[profile]` do not apply.
 pub(super) fn resolve(
     o: RawOperation,
     tool: &Tool,
     stock: &Stock,
     tables: (Option<RawProfile>, Option<RawFinish>),
-    surface_depth: Option<f64>,
+    surface: (Option<f64>, bool),
 ) -> Result<Resolved, JobError> {
+    let (surface_depth, tube) = surface;
     let (profile, finish) = tables;
     let default_kind = if surface_depth.is_some() {
         "boss"
@@ -38,7 +40,7 @@ pub(super) fn resolve(
     let kind = o.kind.unwrap_or_else(|| default_kind.into());
     one_of("operation.kind", &kind, OPERATION_KINDS)?;
     if let Some(d) = surface_depth {
-        check_surface(&kind, o.depth, profile.is_some(), d)?;
+        check_surface(&kind, o.depth, profile.is_some(), d, tube)?;
     }
     let side = o.side.unwrap_or_else(|| "outside".into());
     one_of("operation.side", &side, SIDES)?;
@@ -86,19 +88,29 @@ pub(super) fn resolve(
     })
 }
 
-/// A surface source (a harmonic patch) is milled as a boss: its depth is the
-/// surface's own, and its heights are its own depth profile.
+/// A surface source is milled as a boss (a PDE tube also as its mould, a
+/// cavity): its depth is the surface's own, and its heights are its own
+/// depth profile.
 fn check_surface(
     kind: &str,
     depth: Option<f64>,
     has_profile: bool,
     surface_depth: f64,
+    tube: bool,
 ) -> Result<(), JobError> {
+    let what = if tube {
+        "a PDE tube"
+    } else {
+        "a harmonic patch"
+    };
     if kind == "profile" {
         return Err(invalid(
             "operation.kind",
-            "= \"profile\" cuts a shape's outline with vertical walls; a harmonic patch is a surface: use \"boss\" (the default with shape.kind)",
+            format!("= \"profile\" cuts a shape's outline with vertical walls; {what} is a surface: use \"boss\" (the default with shape.kind){}", if tube { " or \"cavity\" (its mould)" } else { "" }),
         ));
+    }
+    if tube {
+        return check_surface_keys(depth, has_profile, surface_depth, what);
     }
     if kind == "cavity" {
         return Err(invalid(
@@ -106,11 +118,30 @@ fn check_surface(
             "= \"cavity\" (the patch's mould milled into a slab) is not available for a harmonic patch; for the negative surface as a boss, negate shape.row0 and shape.row1 (the mould of a harmonic patch is linear in its rows, so −h is the patch of the negated rows)",
         ));
     }
+    check_surface_keys(depth, has_profile, surface_depth, what)
+}
+
+/// `operation.depth` and `[profile]` do not apply to a surface (`what`).
+fn check_surface_keys(
+    depth: Option<f64>,
+    has_profile: bool,
+    surface_depth: f64,
+    what: &str,
+) -> Result<(), JobError> {
+    let (range, top, heights) = if what == "a PDE tube" {
+        ("its shape.height", "its top curve", "X(u, v) itself")
+    } else {
+        (
+            "the surface's own range, max h − min h",
+            "max h",
+            "h(x, y) itself",
+        )
+    };
     if let Some(d) = depth {
         return Err(invalid(
             "operation.depth",
             format!(
-                "= {} does not apply to a harmonic patch: its depth is the surface's own range, max h − min h = {surface_depth:.3} mm (the stock top is at max h)",
+                "= {} does not apply to {what}: its depth is {range} = {surface_depth:.3} mm (the stock top is at {top})",
                 show(d)
             ),
         ));
@@ -118,7 +149,7 @@ fn check_surface(
     if has_profile {
         return Err(invalid(
             "profile",
-            "does not apply to a harmonic patch: its heights are the surface h(x, y) itself",
+            format!("does not apply to {what}: its heights are the surface {heights}"),
         ));
     }
     Ok(())

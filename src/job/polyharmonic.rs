@@ -56,6 +56,14 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
         ("shape.line_spacing", s.line_spacing.is_some()),
         ("shape.align", s.align.is_some()),
         ("shape.join_tolerance", s.join_tolerance.is_some()),
+        ("shape.bottom_size", s.bottom_size.is_some()),
+        ("shape.bottom_exponent", s.bottom_exponent.is_some()),
+        ("shape.top_size", s.top_size.is_some()),
+        ("shape.top_exponent", s.top_exponent.is_some()),
+        ("shape.flare", s.flare.is_some()),
+        ("shape.rise", s.rise.is_some()),
+        ("shape.modes", s.modes.is_some()),
+        ("shape.samples", s.samples.is_some()),
     ];
     match others.iter().find(|k| k.1) {
         Some((key, _)) => Err(invalid(

@@ -4,7 +4,7 @@
 
 use super::font::Sources;
 use super::{
-    at_most_one, composition, dxffile, harmonic, invalid, limits, polyharmonic, svgfile, text,
+    at_most_one, composition, dxffile, harmonic, invalid, limits, polyharmonic, svgfile, text, tube,
     JobError, RawShape,
 };
 use crate::geometry::{Composition, ShapeSource, Vec2};
@@ -30,6 +30,10 @@ pub(super) fn resolve(
     if s.kind.as_deref() == Some("polyharmonic") {
         return polyharmonic::resolve(s, origin, src.base_dir);
     }
+    if s.kind.as_deref() == Some(tube::KIND) {
+        return tube::resolve(s, origin, height);
+    }
+    tube::refuse_tube_keys(&s)?;
     if s.kind.is_some() {
         return harmonic::resolve(s, origin);
     }

@@ -54,10 +54,13 @@ pub const DEFAULT_LEVELS: [f64; 4] = [0.9, 0.95, 0.98, 0.99];
 /// The equipotentials a job's preview draws by default: for a boss or cavity
 /// the part's own outlines, its top edge Γ(s_top) and its foot Γ(s_bottom)
 /// (for a mould, its floor and its rim); for a profile `DEFAULT_LEVELS`; for
-/// a harmonic patch none (its levels are heights, not equipotentials).
+/// a harmonic patch or a PDE tube none (their levels are heights, not
+/// equipotentials).
 pub fn levels_for(job: &crate::job::Job) -> Vec<f64> {
     use crate::job::OperationKind;
-    if job.shape.height_source().is_some() {
+    if job.shape.height_source().is_some()
+        || matches!(job.shape, crate::geometry::ShapeSource::PdeTube(_))
+    {
         return Vec::new();
     }
     match (job.operation.kind, &job.profile) {

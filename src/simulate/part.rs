@@ -104,6 +104,24 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         });
         return Ok(facts);
     }
+    if let crate::geometry::ShapeSource::PdeTube(spec) = &job.shape {
+        let part = |e: crate::pipeline::PipelineError| SimError::Part(e.to_string());
+        let tube = crate::tube::tube_sections(spec).map_err(part)?;
+        let (lo, hi) = crate::tube::tube_stock(job, &tube);
+        facts.stock = Some(StockBox {
+            lo: [lo.x, lo.y],
+            hi: [hi.x, hi.y],
+            top: job.stock.top,
+        });
+        facts.part = Some(PartModel {
+            name: "PDE tube".into(),
+            triangles: crate::tube::tube_part_triangles(job, spec, surface_resolution)
+                .map_err(part)?,
+            outlines: Vec::new(),
+            outline_z: job.stock.top,
+        });
+        return Ok(facts);
+    }
     let opts = SurfaceOptions {
         resolution: surface_resolution,
     };

@@ -41,6 +41,7 @@ use crate::geometry::Vec2;
 use crate::levels::sections::{LevelField, Sections};
 use std::f64::consts::TAU;
 
+pub mod spec;
 mod trim;
 
 /// Heights between which [`PdeTube::new`] checks that sections nest.
@@ -189,9 +190,30 @@ impl PdeTube {
         &self.surface
     }
 
+    /// Boss or mould.
+    pub fn kind(&self) -> TubeKind {
+        self.kind
+    }
+
+    /// Points per section.
+    pub fn points(&self) -> usize {
+        self.points
+    }
+
+    /// Whether the tube rises with u (A₀z(1) > A₀z(0)).
+    pub fn rising(&self) -> bool {
+        self.z_ends.1 > self.z_ends.0
+    }
+
     /// The part's top: the larger end z (mm, the curves' frame).
     fn top(&self) -> f64 {
         self.z_ends.0.max(self.z_ends.1)
+    }
+
+    /// The part's top in the curves' frame (mm): the z that heights
+    /// relative to the top are measured from.
+    pub fn top_z(&self) -> f64 {
+        self.top()
     }
 
     /// A₀z(u) − top (mm).
@@ -269,8 +291,12 @@ impl PdeTube {
     /// pieces where trims apply; counter-clockwise.
     fn boss_section(&self, u: f64) -> Vec<Vec<Vec2>> {
         let p = self.points;
-        let mut full = self.arc(u, 0.0, TAU, p);
-        full.pop();
+        let mut full: Vec<Vec2> = self
+            .surface
+            .ring(u, p)
+            .iter()
+            .map(|q| Vec2::new(q[0], q[1]))
+            .collect();
         let ccw = polygon_area(&full) >= 0.0;
         let Some(kept) = trim::kept_arcs(&self.trims, u) else {
             if !ccw {

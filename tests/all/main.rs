@@ -43,6 +43,7 @@ mod imports;
 mod inputs;
 mod levels;
 mod pde;
+mod pde_job;
 mod polyharmonic;
 mod preview;
 mod sections;

@@ -664,8 +664,8 @@ fn every_job_sample_is_within_its_part() {
         }
     }
     assert_eq!(
-        quoted_runs, 4,
-        "docs/simulate.md quotes the four bosses and cavities"
+        quoted_runs, 5,
+        "docs/simulate.md quotes the four bosses and cavities and the PDE vase"
     );
 }
 

@@ -19,12 +19,16 @@ use crate::doc_figures;
 
 /// Every job in jobs/ of the given kind whose part is the MFS field's S2
 /// (the directory is read, not listed here); a height field's block is
-/// checked in tests/all/harmonic_patch.rs and tests/all/polyharmonic.rs.
+/// checked in tests/all/harmonic_patch.rs and tests/all/polyharmonic.rs, a
+/// PDE tube's part in tests/all/pde_job.rs.
 fn jobs_of(kind: OperationKind) -> Vec<Job> {
     shipped_jobs()
         .into_iter()
         .filter(|j| j.operation.kind == kind)
-        .filter(|j| j.shape.height_source().is_none())
+        .filter(|j| {
+            j.shape.height_source().is_none()
+                && !matches!(j.shape, pfcam::geometry::ShapeSource::PdeTube(_))
+        })
         .collect()
 }
 

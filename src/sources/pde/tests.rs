@@ -262,3 +262,18 @@ fn bad_input_is_a_typed_error_naming_the_field() {
     let e = PdeSurface::solve(&c, -1.0, 2).unwrap_err().to_string();
     assert!(e.starts_with("a: "), "{e}");
 }
+
+#[test]
+fn a_ring_equals_the_points_it_samples() {
+    let s = PdeSurface::solve(&wobbly(64), 0.7, 5).expect("solve");
+    for u in [0.0, 0.3, 0.75, 1.0] {
+        for p in [13, 64, 200] {
+            let ring = s.ring(u, p);
+            assert_eq!(ring.len(), p);
+            for (j, q) in ring.iter().enumerate() {
+                let d = dist(*q, s.point(u, TAU * j as f64 / p as f64));
+                assert!(d < 1e-12, "u {u}, p {p}, j {j}: {d}");
+            }
+        }
+    }
+}

@@ -1,0 +1,161 @@
+//! A PDE tube job (`shape.kind = "pde-tube"`) through the pipeline: the
+//! tube's horizontal sections ([`PdeTube`], docs/method.md §16.3) go
+//! through the level planner unchanged (the schedule, each level's MFS solve
+//! on its section and its rings, linking, arcs and the gouge check of every
+//! level against its section), as a boss's, or as a cavity's for the mould.
+//! The stock top is the tube's top; its depth is `shape.height`. With
+//! `[finish]` a ring of the finishing tool follows each section ([`rings`]).
+
+pub mod mesh;
+pub mod rings;
+
+use crate::count::{set_stage, Stage};
+use crate::geometry::{polygons_bbox, Vec2};
+use crate::job::Job;
+use crate::levels::plan::LevelJob;
+use crate::levels::sections::Sections;
+use crate::pipeline::{
+    cut_levels, job_shape, level_params, solve_shape, PipelineError, Progress, RunOutput,
+    FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
+};
+use crate::sources::pde_tube::spec::TubeSpec;
+use crate::sources::pde_tube::{PdeTube, TubeKind};
+
+/// The tube's sections for a job (its spec's kind and tolerance are the
+/// job's; the job's resolve has built it once, so an error here is a bug).
+pub fn tube_sections(spec: &TubeSpec) -> Result<PdeTube, PipelineError> {
+    spec.tube()
+        .map_err(|e| PipelineError::Internal(format!("the PDE tube of a resolved job: {e}")))
+}
+
+/// The height of the widest section, relative to the top: a boss's foot,
+/// a mould's rim.
+fn widest_z(tube: &PdeTube) -> f64 {
+    match tube.kind() {
+        TubeKind::Boss => tube.z_range().0,
+        TubeKind::Mould => tube.z_range().1,
+    }
+}
+
+/// The stock rectangle of a tube job: the widest section's bounding box
+/// grown by `stock.margin` (what the level planner computes, from the same
+/// section).
+pub fn tube_stock(job: &Job, tube: &PdeTube) -> (Vec2, Vec2) {
+    let m = Vec2::new(job.stock.margin, job.stock.margin);
+    let (lo, hi) = polygons_bbox(&tube.section(widest_z(tube))).unwrap_or((Vec2::ZERO, Vec2::ZERO));
+    (lo - m, hi + m)
+}
+
+/// Rough a tube by levels.
+pub fn run_tube(
+    job: &Job,
+    spec: &TubeSpec,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<RunOutput, PipelineError> {
+    set_stage(Stage::ShapeSolve);
+    // The widest end curve: the part seen from above, for the preview and report.
+    let (shape, mut solves) = job_shape(job, progress)?;
+    let tube = tube_sections(spec)?;
+    let (lo, hi) = tube_stock(job, &tube);
+    let lj = LevelJob {
+        source: &tube,
+        cavity: tube.kind() == TubeKind::Mould,
+        top: job.stock.top,
+        stepdown: job.tool.stepdown,
+        max_scallop: job.operation.max_scallop,
+        margin: job.stock.margin,
+        outer_radius: OUTER_RADIUS_FACTOR * (hi - lo).norm(),
+        params: level_params(job),
+        max_hours: job.machine.max_hours,
+    };
+    set_stage(Stage::LevelGrid);
+    let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
+    let stock = (planned.params.stock_lo, planned.params.stock_hi);
+    set_stage(Stage::Finishing);
+    let finish = match &job.finish {
+        Some(f) => Some(finish_tube(job, f, &tube, progress)?),
+        None => None,
+    };
+    set_stage(Stage::Other);
+    // The outline's own field, for the preview's colour map only (the levels
+    // were traced in their sections' fields).
+    let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
+    let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
+    report.label = "tube outline (preview)".into();
+    solves.push(report);
+    solves.extend(crate::pipeline::level_reports(&planned.info));
+    Ok(RunOutput {
+        toolpath,
+        solves,
+        min_clearance,
+        warnings: planned.warnings,
+        glyphs: vec!["tube".into()],
+        fallbacks: 0,
+        stock: Some(stock),
+        t_schedule: planned.t_schedule,
+        levels: planned.info,
+        shape,
+        field: solved.solution.field,
+        lower_bound: planned.bound,
+        finish,
+    })
+}
+
+/// The finishing program: a ring along each section ([`rings`]) against
+/// the part's mesh at `pipeline::FINISH_MESH`.
+fn finish_tube(
+    job: &Job,
+    f: &crate::job::Finish,
+    tube: &PdeTube,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<crate::finish::Finished, PipelineError> {
+    progress(Progress::Stage {
+        name: "finishing rings".into(),
+        total: 1,
+    });
+    let fine = crate::pipeline::FINISH_MESH;
+    let stock = tube_stock(job, tube);
+    let s = mesh::tube_mesh(tube, job.stock.top, fine, stock).map_err(PipelineError::Internal)?;
+    let tris: Vec<[[f64; 3]; 3]> = (0..s.mesh.triangles.len())
+        .map(|t| s.mesh.corners(t))
+        .filter(|c| crate::surface::up_area(c) > 1e-12)
+        .collect();
+    let area = crate::finish::wall_area(&tris);
+    let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
+    let part = rings::RingPart {
+        tube,
+        mesh: &index,
+        area,
+        top: job.stock.top,
+    };
+    let done = rings::ring_finish(job, f, &part)
+        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
+    progress(Progress::Step);
+    Ok(done)
+}
+
+/// The tube's part as a closed mesh at `resolution` mm (`pfcam surface`).
+pub fn tube_surface(
+    job: &Job,
+    spec: &TubeSpec,
+    resolution: f64,
+) -> Result<crate::surface::Surface, PipelineError> {
+    let tube = tube_sections(spec)?;
+    let stock = tube_stock(job, &tube);
+    mesh::tube_mesh(&tube, job.stock.top, resolution, stock).map_err(PipelineError::Internal)
+}
+
+/// The part for `simulate`: the mesh's up-facing triangles (the tube's
+/// wall and caps, and the floor or slab top round it).
+pub fn tube_part_triangles(
+    job: &Job,
+    spec: &TubeSpec,
+    resolution: f64,
+) -> Result<Vec<[[f64; 3]; 3]>, PipelineError> {
+    let s = tube_surface(job, spec, resolution)?;
+    let m = &s.mesh;
+    Ok((0..m.triangles.len())
+        .map(|t| m.corners(t))
+        .filter(|c| crate::surface::up_area(c) > 1e-12)
+        .collect())
+}
