@@ -4,8 +4,8 @@
 
 use super::font::Sources;
 use super::{
-    at_most_one, composition, dxffile, harmonic, invalid, limits, polyharmonic, svgfile, text, tube,
-    JobError, RawShape,
+    at_most_one, composition, dxffile, harmonic, invalid, limits, polyharmonic, svgfile, text,
+    tube, JobError, RawShape,
 };
 use crate::geometry::{Composition, ShapeSource, Vec2};
 

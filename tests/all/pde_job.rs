@@ -401,3 +401,32 @@ fn pfcam_surface_writes_the_vase_and_its_mould_watertight() {
         "{volumes:?}"
     );
 }
+
+/// The tube and the polyharmonic relief share `shape.a` (the PDE's
+/// parameter, the T2A ball radius) and refuse each other's other keys.
+#[test]
+fn a_tube_and_a_relief_refuse_each_others_keys() {
+    let with_a = format!("{VASE}a = 2.0\n");
+    assert!(job(&tube_job(&with_a, "")).is_ok());
+    for (line, key) in [
+        ("kernel = \"T2A\"", "shape.kernel"),
+        ("points = [[0.0, 0.0, 1.0]]", "shape.points"),
+        ("base = 0.0", "shape.base"),
+        ("degree = 3", "shape.degree"),
+    ] {
+        let e = job(&tube_job(&format!("{VASE}{line}\n"), "")).unwrap_err();
+        assert!(e.starts_with(key), "{key}: {e}");
+    }
+    let relief = std::fs::read_to_string(crate::common::root().join("jobs/polyharmonic-face.toml"))
+        .expect("read the relief job");
+    for (line, key) in [
+        ("modes = 8", "shape.modes"),
+        ("top_size = [1.0, 1.0]", "shape.top_size"),
+    ] {
+        let text = relief.replacen("[shape]\n", &format!("[shape]\n{line}\n"), 1);
+        let e = parse_job(&text, "face", &crate::common::root().join("jobs"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with(key), "{key}: {e}");
+    }
+}
