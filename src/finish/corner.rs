@@ -17,7 +17,13 @@ use crate::geometry::Vec2;
 use crate::toolpath::dropcutter::MeshIndex;
 
 /// How close to the floor the tip must come, mm.
-const SETTLE: f64 = 1e-3;
+pub const SETTLE: f64 = 1e-3;
+
+/// A foot loop's corner pass.
+pub struct Corner {
+    /// The axis positions, as contact points of a pass over the floor.
+    pub axes: Vec<Vec2>,
+}
 /// How finely the axis position is found, mm.
 const STEP: f64 = 2e-3;
 
@@ -34,7 +40,7 @@ pub fn corner_axes(
     mesh: &MeshIndex,
     floor_z: f64,
     (near, reach): (f64, f64),
-) -> Option<Vec<Vec2>> {
+) -> Option<Corner> {
     let away = if p.cavity { 1.0 } else { -1.0 };
     // A flat pass puts the axis (r − rc) out from its contact point.
     let shift = p.cutter.radius - p.cutter.corner;
@@ -68,5 +74,5 @@ pub fn corner_axes(
             q + d * hi
         })
         .collect();
-    moved.then_some(pts)
+    moved.then_some(Corner { axes: pts })
 }

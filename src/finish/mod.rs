@@ -181,7 +181,8 @@ pub fn finish(
     )?;
     let cands = with_corner(cands, width, field, &p, mesh);
     let loops = tip_loops(&cands.passes, field, &p, mesh)?;
-    let levels = cands.passes.iter().map(|(s, _)| *s).collect();
+    let floor_z = cands.passes.get(cands.floor).map_or(p.top, |f| p.z_of(f.0));
+    let (levels, loops) = without_floor_bound(&cands.passes, loops, cands.floor + 1, floor_z);
     let order = path::order(
         &loops,
         2.0 * width,
@@ -237,6 +238,7 @@ fn with_corner(
         use rayon::prelude::*;
         foot.par_iter()
             .filter_map(|l| corner::corner_axes(l, field, p, mesh, floor_z, reach))
+            .map(|c| c.axes)
             .collect()
     };
     if !loops.is_empty() {
@@ -244,4 +246,32 @@ fn with_corner(
         cands.floor += 1;
     }
     cands
+}
+
+/// The loops without the wall's that only sit on the floor (every tip
+/// within [`corner::SETTLE`] of it: where the foot bends tighter than the
+/// cutter, passes whose contact lies in the bend leave the cutter on the
+/// floor, where the corner pass and the floor's passes cut), their passes
+/// renumbered from the floor up; with each pass's s. `wall` is the first
+/// pass above the foot's.
+fn without_floor_bound(
+    passes: &[passes::Pass],
+    loops: Vec<path::Loop>,
+    wall: usize,
+    floor_z: f64,
+) -> (Vec<f64>, Vec<path::Loop>) {
+    let mut kept: Vec<path::Loop> = loops
+        .into_iter()
+        .filter(|l| l.pass < wall || l.tip.iter().any(|t| t.z > floor_z + corner::SETTLE))
+        .collect();
+    let mut number = vec![usize::MAX; passes.len()];
+    let mut levels = Vec::new();
+    for l in &mut kept {
+        if number[l.pass] == usize::MAX {
+            number[l.pass] = levels.len();
+            levels.push(passes[l.pass].0);
+        }
+        l.pass = number[l.pass];
+    }
+    (levels, kept)
 }

@@ -10,7 +10,7 @@
 //! pass width for the scallop bound
 //! ([`pass_width`]). Past the foot of the wall (where the roughing left
 //! `stock_to_leave` on the floor) the foot's loops are offset over the flat
-//! floor, w apart, until `leave` + w/2 is covered.
+//! floor, w apart, until the last one lies `leave` out.
 
 use crate::field::isolines::Grid;
 use crate::field::Field;
@@ -149,7 +149,8 @@ pub fn pass_levels(
 
 /// Over the floor, outwards from the foot Γ(`foot`): the foot's loops
 /// offset along the field's downhill direction by k·w (k = 1, 2, ...) until
-/// `leave` + w/2 is covered, the farthest first. Equipotentials would be as
+/// the last pass's band, w/2 either side of it, reaches `leave` + w/2 (k·w ≥
+/// `leave`; the foot's own pass covers the first w/2), the farthest first. Equipotentials would be as
 /// far apart there as |∇u| varies along the foot; the floor is flat, so plain
 /// offsets are the even spacing (a loop of the foot is smooth, far rounder
 /// than these few tenths of a millimetre). Their s lies just past φ's range:
@@ -162,7 +163,7 @@ fn floor_passes(
     leave: f64,
 ) -> Vec<Pass> {
     let (away, up) = if cavity { (1.0, -1.0) } else { (-1.0, 1.0) };
-    let k_max = ((leave + 0.5 * w) / w).ceil() as usize;
+    let k_max = ((leave / w).ceil() as usize).max(1);
     let s_floor = foot.0 - up * 1e-9;
     (1..=k_max)
         .rev()
