@@ -6,6 +6,7 @@
 //! ([`path`]), so that it never enters the part by construction; `pfcam
 //! simulate` checks the two programs against the part independently.
 
+pub mod corner;
 pub mod passes;
 pub mod path;
 
@@ -171,28 +172,17 @@ pub fn finish(
         tol: job.operation.tolerance,
     };
     let width = passes::pass_width(f.corner, f.scallop);
-    let levels = passes::pass_levels(
+    let cands = passes::pass_levels(
         &curves,
         profile,
         cavity,
         width,
         job.operation.stock_to_leave,
     )?;
-    // Every loop of every pass on its own (in parallel; the order kept).
-    let jobs: Vec<(usize, f64, &Vec<Vec2>)> = levels
-        .iter()
-        .enumerate()
-        .flat_map(|(k, (s, polys))| polys.iter().map(move |poly| (k, *s, poly)))
-        .collect();
-    let loops: Vec<path::Loop> = {
-        use rayon::prelude::*;
-        let each: Vec<Result<path::Loop, String>> = jobs
-            .par_iter()
-            .map(|&(k, s, poly)| path::tip_loop(poly, k, s, field, &p, mesh))
-            .collect();
-        // The first failure in pass order, whichever thread met it first.
-        each.into_iter().collect::<Result<_, _>>()?
-    };
+    let cands = with_corner(cands, width, field, &p, mesh);
+    let loops = tip_loops(&cands.passes, field, &p, mesh)?;
+    let floor_z = cands.passes.get(cands.floor).map_or(p.top, |f| p.z_of(f.0));
+    let (levels, loops) = without_floor_bound(&cands.passes, loops, cands.floor + 1, floor_z);
     let order = path::order(
         &loops,
         2.0 * width,
@@ -201,8 +191,87 @@ pub fn finish(
     let toolpath = path::moves(&loops, &order, &p, mesh);
     Ok(Finished {
         toolpath,
-        levels: levels.iter().map(|(s, _)| *s).collect(),
+        levels,
         width,
         lower_bound_s: wall_area / width / f.feed * 60.0,
     })
+}
+
+/// The tip loop of every loop of every pass (in parallel; in pass order, the
+/// first failure in that order reported).
+fn tip_loops(
+    passes: &[passes::Pass],
+    field: &Field,
+    p: &FinishParams,
+    mesh: &MeshIndex,
+) -> Result<Vec<path::Loop>, String> {
+    use rayon::prelude::*;
+    let jobs: Vec<(usize, f64, &Vec<Vec2>)> = passes
+        .iter()
+        .enumerate()
+        .flat_map(|(k, (s, polys))| polys.iter().map(move |poly| (k, *s, poly)))
+        .collect();
+    let each: Vec<Result<path::Loop, String>> = jobs
+        .par_iter()
+        .map(|&(k, s, poly)| path::tip_loop(poly, k, s, field, p, mesh))
+        .collect();
+    each.into_iter().collect()
+}
+
+/// The passes with the corner pass ([`corner`]) between the floor's passes
+/// and the foot's, for the foot loops where the cutter stops more than a
+/// pass width `width` short of the foot.
+fn with_corner(
+    mut cands: passes::Planned,
+    width: f64,
+    field: &Field,
+    p: &FinishParams,
+    mesh: &MeshIndex,
+) -> passes::Planned {
+    let Some((s_foot, foot)) = cands.passes.get(cands.floor) else {
+        return cands;
+    };
+    let floor_z = p.z_of(*s_foot);
+    let s_floor = cands.passes.first().map_or(*s_foot, |f| f.0);
+    let reach = (width, 2.0 * p.cutter.radius);
+    let loops: Vec<Vec<Vec2>> = {
+        use rayon::prelude::*;
+        foot.par_iter()
+            .filter_map(|l| corner::corner_axes(l, field, p, mesh, floor_z, reach))
+            .map(|c| c.axes)
+            .collect()
+    };
+    if !loops.is_empty() {
+        cands.passes.insert(cands.floor, (s_floor, loops));
+        cands.floor += 1;
+    }
+    cands
+}
+
+/// The loops without the wall's that only sit on the floor (every tip
+/// within [`corner::SETTLE`] of it: where the foot bends tighter than the
+/// cutter, passes whose contact lies in the bend leave the cutter on the
+/// floor, where the corner pass and the floor's passes cut), their passes
+/// renumbered from the floor up; with each pass's s. `wall` is the first
+/// pass above the foot's.
+fn without_floor_bound(
+    passes: &[passes::Pass],
+    loops: Vec<path::Loop>,
+    wall: usize,
+    floor_z: f64,
+) -> (Vec<f64>, Vec<path::Loop>) {
+    let mut kept: Vec<path::Loop> = loops
+        .into_iter()
+        .filter(|l| l.pass < wall || l.tip.iter().any(|t| t.z > floor_z + corner::SETTLE))
+        .collect();
+    let mut number = vec![usize::MAX; passes.len()];
+    let mut levels = Vec::new();
+    for l in &mut kept {
+        if number[l.pass] == usize::MAX {
+            number[l.pass] = levels.len();
+            levels.push(passes[l.pass].0);
+        }
+        l.pass = number[l.pass];
+    }
+    (levels, kept)
 }

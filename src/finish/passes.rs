@@ -4,15 +4,17 @@
 //! Contact points on neighbouring passes lie on S2 along the field's gradient:
 //! between Γ(s) and Γ(s + Δs) the horizontal step is Δs/|∇u| and the vertical
 //! one φ'(s)·Δs, so their distance on the surface is Δs·√(1/|∇u|² + φ'(s)²).
-//! The passes are Δs = w / max over Γ(s) of that root apart (the widest place
-//! sets the step), where w is the cutter's pass width for the scallop bound
+//! Candidate levels lie (w/[`REFINE`]) / max over Γ(s) of that root apart,
+//! and each wall (a loop and its continuation up the wall) is cut only at
+//! the candidates its own spread needs ([`thin`]), where w is the cutter's
+//! pass width for the scallop bound
 //! ([`pass_width`]). Past the foot of the wall (where the roughing left
 //! `stock_to_leave` on the floor) the foot's loops are offset over the flat
-//! floor, w apart, until `leave` + w/2 is covered.
+//! floor, w apart, until the last one lies `leave` out.
 
 use crate::field::isolines::Grid;
 use crate::field::Field;
-use crate::geometry::Vec2;
+use crate::geometry::{DistanceIndex, Vec2};
 use crate::levels::plan::curves;
 use crate::levels::DepthProfile;
 
@@ -86,69 +88,135 @@ fn spread(g: f64, dphi: f64) -> f64 {
     (1.0 / (g * g) + dphi * dphi).sqrt()
 }
 
-/// One pass: its s and the loops of Γ(s).
+/// One pass: its s and its loops.
 pub type Pass = (f64, Vec<Vec<Vec2>>);
 
-/// The pass levels from the floor up: s_k in the order the finisher cuts
-/// them (ascending z), each with Γ(s_k). `cavity` mirrors the profile (its
-/// floor is at the high end of s). Errors name what failed.
+/// Candidate levels per pass width: the wall's candidate levels Γ(s) lie
+/// w/REFINE apart where Γ(s) is most spread, and each wall (each loop of
+/// Γ(s) and its continuation up the wall) is cut only at the candidates it
+/// needs ([`thin`]).
+pub const REFINE: usize = 2;
+
+/// A candidate level of the wall: s, the loops of Γ(s) and the least |∇u|
+/// over each loop.
+struct Level {
+    s: f64,
+    loops: Vec<Vec<Vec2>>,
+    grad: Vec<f64>,
+}
+
+/// The passes from the floor up, the floor's first.
+pub struct Planned {
+    /// s_k in the order the finisher cuts them (ascending z), each with the
+    /// loops of Γ(s_k) cut there (over the floor: the foot's loops offset).
+    pub passes: Vec<Pass>,
+    /// How many of `passes` lie over the floor; the next is the foot's.
+    pub floor: usize,
+}
+
+/// The passes from the floor up (see [`Planned`]): the floor's, then the
+/// wall's candidate levels ([`candidate_levels`]) with each loop kept only
+/// where its wall's spacing needs it ([`thin`]). `cavity` mirrors the
+/// profile (its floor is at the high end of s). Errors name what failed.
 pub fn pass_levels(
     curves: &Curves,
     profile: &DepthProfile,
     cavity: bool,
     w: f64,
     leave: f64,
-) -> Result<Vec<Pass>, String> {
+) -> Result<Planned, String> {
     let (lo, hi) = profile.s_range();
-    // Towards the top: +1 in s for a boss, −1 for a cavity.
-    let up = if cavity { -1.0 } else { 1.0 };
     let (foot, top) = if cavity { (hi, lo) } else { (lo, hi) };
     let foot_loops = curves.at(foot);
     if foot_loops.is_empty() {
         return Err(format!("the foot of the wall Γ({foot:.4}) has no curve"));
     }
-    // Over the floor, outwards from the foot: the foot's loops offset along
-    // the field's downhill direction by k·w (k = 1, 2, ...) until leave + w/2
-    // is covered. Equipotentials would be as far apart there as |∇u| varies
-    // along the foot; the floor is flat, so plain offsets are the even
-    // spacing (a loop of the foot is smooth, far rounder than these few
-    // tenths of a millimetre). Their s lies just past φ's range: flat.
-    let away = if cavity { 1.0 } else { -1.0 };
-    let k_max = ((leave + 0.5 * w) / w).ceil() as usize;
-    let s_floor = foot - up * 1e-9;
-    let mut floor: Vec<Pass> = (1..=k_max)
+    let mut passes = floor_passes(curves.field, (foot, &foot_loops), cavity, w, leave);
+    let floor = passes.len();
+    let levels = candidate_levels(curves, profile, (foot, top), foot_loops, w, floor)?;
+    let cut = thin(&levels, profile, w);
+    passes.extend(levels.into_iter().zip(cut).filter_map(|(l, keep)| {
+        let loops: Vec<Vec<Vec2>> = l
+            .loops
+            .into_iter()
+            .zip(keep)
+            .filter_map(|(lp, k)| k.then_some(lp))
+            .collect();
+        (!loops.is_empty()).then_some((l.s, loops))
+    }));
+    Ok(Planned { passes, floor })
+}
+
+/// Over the floor, outwards from the foot Γ(`foot`): the foot's loops
+/// offset along the field's downhill direction by k·w (k = 1, 2, ...) until
+/// the last pass's band, w/2 either side of it, reaches `leave` + w/2 (k·w ≥
+/// `leave`; the foot's own pass covers the first w/2), the farthest first. Equipotentials would be as
+/// far apart there as |∇u| varies along the foot; the floor is flat, so plain
+/// offsets are the even spacing (a loop of the foot is smooth, far rounder
+/// than these few tenths of a millimetre). Their s lies just past φ's range:
+/// flat.
+fn floor_passes(
+    field: &Field,
+    foot: (f64, &[Vec<Vec2>]),
+    cavity: bool,
+    w: f64,
+    leave: f64,
+) -> Vec<Pass> {
+    let (away, up) = if cavity { (1.0, -1.0) } else { (-1.0, 1.0) };
+    let k_max = ((leave / w).ceil() as usize).max(1);
+    let s_floor = foot.0 - up * 1e-9;
+    (1..=k_max)
         .rev()
         .map(|k| {
             let d = k as f64 * w;
-            let loops = foot_loops
+            let loops = foot
+                .1
                 .iter()
                 .map(|l| {
                     l.iter()
-                        .map(|&p| p + curves.field.grad(p).normalized() * (away * d))
+                        .map(|&p| p + field.grad(p).normalized() * (away * d))
                         .collect()
                 })
                 .collect();
             (s_floor, loops)
         })
-        .collect();
-    // Up the wall, from the foot to the top edge.
-    let mut wall = vec![(foot, foot_loops)];
+        .collect()
+}
+
+/// The candidate levels up the wall, from the foot to the top edge
+/// (`ends`): Δs = (w/[`REFINE`]) / max over Γ(s) of the spread apart (the
+/// slope may steepen over the step: the larger spread of its ends).
+/// `before` passes are already planned (they count towards
+/// [`MAX_PASSES`]).
+fn candidate_levels(
+    curves: &Curves,
+    profile: &DepthProfile,
+    (foot, top): (f64, f64),
+    foot_loops: Vec<Vec<Vec2>>,
+    w: f64,
+    before: usize,
+) -> Result<Vec<Level>, String> {
+    let up = if top > foot { 1.0 } else { -1.0 };
+    let step = w / REFINE as f64;
+    let level = |s: f64, loops: Vec<Vec<Vec2>>| -> Result<Level, String> {
+        let grad = loops
+            .iter()
+            .map(|l| curves.min_grad(std::slice::from_ref(l)))
+            .collect::<Option<Vec<f64>>>()
+            .ok_or_else(|| format!("∇u vanishes on Γ({s:.5})"))?;
+        Ok(Level { s, loops, grad })
+    };
+    let mut out = vec![level(foot, foot_loops)?];
     let mut s = foot;
     while (top - s) * up > 1e-12 {
-        if floor.len() + wall.len() >= MAX_PASSES {
+        if before + out.len() >= MAX_PASSES * REFINE {
             return Err(format!(
                 "the wall needs more than {MAX_PASSES} finishing passes: raise finish.scallop or use a larger finishing tool"
             ));
         }
-        let loops = &wall[wall.len() - 1].1;
-        let g = curves
-            .min_grad(loops)
-            .ok_or_else(|| format!("∇u vanishes on Γ({s:.5})"))?;
-        // The slope may steepen over the step: the larger spread of its ends.
-        let m0 = spread(g, dphi_ds(profile, s));
-        let trial = s + up * w / m0;
-        let m1 = m0.max(spread(g, dphi_ds(profile, trial)));
-        let mut next = s + up * w / m1;
+        let last = &out[out.len() - 1];
+        let g = last.grad.iter().copied().fold(f64::INFINITY, f64::min);
+        let mut next = next_level(profile, s, up, g, step);
         if (next - top) * up > -1e-9 {
             next = top;
         }
@@ -156,11 +224,103 @@ pub fn pass_levels(
         if next_loops.is_empty() {
             break;
         }
-        wall.push((next, next_loops));
+        out.push(level(next, next_loops)?);
         s = next;
     }
-    floor.extend(wall);
-    Ok(floor)
+    Ok(out)
+}
+
+/// The next candidate level above `s` (`up` = ±1 towards the top) for a
+/// least |∇u| of `g`: Δs with Δs·spread(g, max(|φ′(s)|, |φ′(s + Δs)|)) =
+/// `step`, found by fixed-point
+/// iteration on the slope at the far end and, should it not have settled,
+/// shrunk until the bound holds.
+fn next_level(profile: &DepthProfile, s: f64, up: f64, g: f64, step: f64) -> f64 {
+    let d0 = dphi_ds(profile, s).abs();
+    let bound = |next: f64| (next - s).abs() * spread(g, d0.max(dphi_ds(profile, next).abs()));
+    let mut next = s + up * step / spread(g, d0);
+    for _ in 0..8 {
+        let d = d0.max(dphi_ds(profile, next).abs());
+        next = s + up * step / spread(g, d);
+    }
+    let mut k = 0;
+    while bound(next) > step && k < 60 {
+        next = s + 0.99 * (next - s);
+        k += 1;
+    }
+    next
+}
+
+/// Which loops of each candidate level the contact points' spacing needs.
+/// Each loop carries `acc`, a bound on the distance on S2 from the last pass
+/// cut below it on its wall: a step from a loop of level k to a loop of
+/// level k + 1 near it (within 2w: its predecessor; several where loops
+/// merge, or split) adds Δs × the spread of the lower loop's least |∇u|
+/// and the steeper of the two levels' slopes φ′, the bound
+/// [`next_level`] spaces the levels by. A loop is cut when a
+/// step to one of its successors would take that bound past w (or when it
+/// has none), else skipped. The foot, the top edge and loops with no
+/// predecessor are always cut.
+fn thin(levels: &[Level], profile: &DepthProfile, w: f64) -> Vec<Vec<bool>> {
+    let n = levels.len();
+    let mut cut: Vec<Vec<bool>> = levels
+        .iter()
+        .enumerate()
+        .map(|(k, l)| vec![k == 0 || k + 1 == n; l.loops.len()])
+        .collect();
+    let mut acc = vec![0.0; levels.first().map_or(0, |l| l.loops.len())];
+    for k in 0..n.saturating_sub(1) {
+        let (a, b) = (&levels[k], &levels[k + 1]);
+        let dphi = dphi_ds(profile, a.s).abs().max(dphi_ds(profile, b.s).abs());
+        let ds = (b.s - a.s).abs();
+        let preds = predecessors(&a.loops, &b.loops, 2.0 * w);
+        let step = |i: usize| ds * spread(a.grad[i], dphi);
+        for i in 0..a.loops.len() {
+            let succ: Vec<usize> = (0..b.loops.len())
+                .filter(|&j| preds[j].contains(&i))
+                .collect();
+            let worst = succ.iter().map(|_| acc[i] + step(i)).fold(0.0, f64::max);
+            if succ.is_empty() || worst > w * (1.0 + 1e-9) {
+                cut[k][i] = true;
+            }
+            if cut[k][i] {
+                acc[i] = 0.0;
+            }
+        }
+        acc = (0..b.loops.len())
+            .map(|j| {
+                preds[j]
+                    .iter()
+                    .map(|&i| acc[i] + step(i))
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        for (j, p) in preds.iter().enumerate() {
+            if p.is_empty() {
+                cut[k + 1][j] = true;
+            }
+        }
+    }
+    cut
+}
+
+/// For each curve of `next`, the curves of `below` that come within `reach`
+/// of it.
+fn predecessors(below: &[Vec<Vec2>], next: &[Vec<Vec2>], reach: f64) -> Vec<Vec<usize>> {
+    let index: Vec<DistanceIndex> = below
+        .iter()
+        .map(|l| DistanceIndex::new(std::slice::from_ref(l)))
+        .collect();
+    next.iter()
+        .map(|m| {
+            (0..below.len())
+                .filter(|&i| {
+                    let hint = std::cell::Cell::new(0);
+                    m.iter().any(|&p| index[i].closer_than(p, reach, &hint))
+                })
+                .collect()
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -193,5 +353,56 @@ mod tests {
         }
         assert_eq!(dphi_ds(&p, 0.85), 0.0);
         assert_eq!(dphi_ds(&p, 0.99), 0.0);
+    }
+
+    /// Two walls round one centre, the inner one's |∇u| five times the
+    /// outer's: each wall's cut passes lie at most w apart by the bound
+    /// `thin` sums (checked here from the levels), the ends are cut, and the
+    /// steeper-gradient wall needs fewer passes.
+    #[test]
+    fn each_wall_takes_its_own_spacing_within_the_pass_width() {
+        let p = DepthProfile::Linear {
+            s_bottom: 0.9,
+            depth: 3.0,
+        };
+        let circle = |r: f64| -> Vec<Vec2> {
+            (0..200)
+                .map(|k| {
+                    let t = k as f64 / 200.0 * std::f64::consts::TAU;
+                    Vec2::new(r * t.cos(), r * t.sin())
+                })
+                .collect()
+        };
+        let (w, g) = (pass_width(1.5875, 0.01), [0.01, 0.05]);
+        let levels: Vec<Level> = (0..=40)
+            .map(|k| Level {
+                s: 0.9 + k as f64 * 0.0005,
+                loops: vec![
+                    circle(20.0 - 0.02 * k as f64),
+                    circle(5.0 + 0.02 * k as f64),
+                ],
+                grad: g.to_vec(),
+            })
+            .collect();
+        let cut = thin(&levels, &p, w);
+        let mut count = [0; 2];
+        for wall in 0..2 {
+            let mut acc = 0.0;
+            for k in 0..levels.len() {
+                if cut[k][wall] {
+                    count[wall] += 1;
+                    acc = 0.0;
+                }
+                if k + 1 < levels.len() {
+                    let d = dphi_ds(&p, levels[k].s)
+                        .abs()
+                        .max(dphi_ds(&p, levels[k + 1].s).abs());
+                    acc += (levels[k + 1].s - levels[k].s) * spread(g[wall], d);
+                    assert!(acc <= w * (1.0 + 1e-9), "wall {wall} level {k}: {acc}");
+                }
+            }
+            assert!(cut[0][wall] && cut[levels.len() - 1][wall]);
+        }
+        assert!(count[1] < count[0], "{count:?}");
     }
 }
