@@ -48,9 +48,10 @@ fn refuse_poly_keys(s: &RawShape, context: &str) -> Result<(), JobError> {
     }
 }
 
-/// The keys of the other sources, refused with a patch.
-fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
-    let others = [
+/// The keys of the glyph sources (text, SVG, DXF, a composition), which
+/// every surface kind refuses.
+pub(super) fn glyph_keys(s: &RawShape) -> [(&'static str, bool); 16] {
+    [
         ("shape.text", s.text.is_some()),
         ("shape.lines", s.lines.is_some()),
         ("shape.svg_path", s.svg_path.is_some()),
@@ -59,7 +60,6 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
         ("shape.part", s.part.is_some()),
         ("shape.result", s.result.is_some()),
         ("shape.font", s.font.is_some()),
-        ("shape.height", s.height.is_some()),
         ("shape.letter_spacing", s.letter_spacing.is_some()),
         ("shape.line_spacing", s.line_spacing.is_some()),
         ("shape.align", s.align.is_some()),
@@ -68,8 +68,14 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
         ("shape.width", s.width.is_some()),
         ("shape.layer", s.layer.is_some()),
         ("shape.join_tolerance", s.join_tolerance.is_some()),
-    ];
-    match others.iter().find(|k| k.1) {
+    ]
+}
+
+/// The keys of the other sources, refused with a patch.
+fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
+    let more = [("shape.height", s.height.is_some())];
+    let others = glyph_keys(s);
+    match others.iter().chain(&more).find(|k| k.1) {
         Some((key, _)) => Err(invalid(
             key,
             "does not apply to shape.kind = \"harmonic-bezier\": a patch is given by shape.degree, shape.size, shape.row0 and shape.row1 (and shape.form, shape.origin)",

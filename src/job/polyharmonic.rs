@@ -34,28 +34,12 @@ pub(super) fn poly_keys(s: &RawShape) -> [(&'static str, bool); 8] {
 
 /// Keys of the other sources, refused with `kind = "polyharmonic"`.
 fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
-    let others = [
-        ("shape.text", s.text.is_some()),
-        ("shape.lines", s.lines.is_some()),
-        ("shape.svg_path", s.svg_path.is_some()),
-        ("shape.svg_file", s.svg_file.is_some()),
-        ("shape.dxf_file", s.dxf_file.is_some()),
-        ("shape.part", s.part.is_some()),
-        ("shape.result", s.result.is_some()),
-        ("shape.font", s.font.is_some()),
+    let more = [
         ("shape.height", s.height.is_some()),
         ("shape.degree", s.degree.is_some()),
         ("shape.form", s.form.is_some()),
         ("shape.row0", s.row0.is_some()),
         ("shape.row1", s.row1.is_some()),
-        ("shape.id", s.id.is_some()),
-        ("shape.scale", s.scale.is_some()),
-        ("shape.width", s.width.is_some()),
-        ("shape.layer", s.layer.is_some()),
-        ("shape.letter_spacing", s.letter_spacing.is_some()),
-        ("shape.line_spacing", s.line_spacing.is_some()),
-        ("shape.align", s.align.is_some()),
-        ("shape.join_tolerance", s.join_tolerance.is_some()),
         ("shape.bottom_size", s.bottom_size.is_some()),
         ("shape.bottom_exponent", s.bottom_exponent.is_some()),
         ("shape.top_size", s.top_size.is_some()),
@@ -65,7 +49,8 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
         ("shape.modes", s.modes.is_some()),
         ("shape.samples", s.samples.is_some()),
     ];
-    match others.iter().find(|k| k.1) {
+    let others = super::harmonic::glyph_keys(s);
+    match others.iter().chain(&more).find(|k| k.1) {
         Some((key, _)) => Err(invalid(
             key,
             "does not apply to shape.kind = \"polyharmonic\": the solid is given by shape.points (or shape.points_file), shape.box, shape.size and shape.base (and shape.inside, shape.outside, shape.kernel, shape.a, shape.elements, shape.origin)",

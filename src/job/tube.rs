@@ -54,23 +54,7 @@ pub(super) fn refuse_tube_keys(s: &RawShape) -> Result<(), JobError> {
 
 /// The keys of the other sources, refused with a tube.
 fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
-    let others = [
-        ("shape.text", s.text.is_some()),
-        ("shape.lines", s.lines.is_some()),
-        ("shape.svg_path", s.svg_path.is_some()),
-        ("shape.svg_file", s.svg_file.is_some()),
-        ("shape.dxf_file", s.dxf_file.is_some()),
-        ("shape.part", s.part.is_some()),
-        ("shape.result", s.result.is_some()),
-        ("shape.font", s.font.is_some()),
-        ("shape.letter_spacing", s.letter_spacing.is_some()),
-        ("shape.line_spacing", s.line_spacing.is_some()),
-        ("shape.align", s.align.is_some()),
-        ("shape.id", s.id.is_some()),
-        ("shape.scale", s.scale.is_some()),
-        ("shape.width", s.width.is_some()),
-        ("shape.layer", s.layer.is_some()),
-        ("shape.join_tolerance", s.join_tolerance.is_some()),
+    let more = [
         ("shape.degree", s.degree.is_some()),
         ("shape.form", s.form.is_some()),
         ("shape.size", s.size.is_some()),
@@ -85,7 +69,8 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
         ("shape.elements", s.elements.is_some()),
         ("shape.base", s.base.is_some()),
     ];
-    match others.iter().find(|k| k.1) {
+    let others = super::harmonic::glyph_keys(s);
+    match others.iter().chain(&more).find(|k| k.1) {
         Some((key, _)) => Err(invalid(
             key,
             "does not apply to shape.kind = \"pde-tube\": a tube is given by shape.bottom_size, shape.top_size and shape.height (and shape.bottom_exponent, shape.top_exponent, shape.flare, shape.rise, shape.a, shape.modes, shape.samples, shape.origin)",
