@@ -816,6 +816,45 @@ pub(crate) fn cut_levels(
     Ok((planned, toolpath, min_clearance))
 }
 
+/// The run of a source whose levels were traced in their own sections'
+/// fields (a height field, a PDE tube): the outline's own field, solved
+/// only for the preview's colour map and reported as "`name` outline
+/// (preview)", then the level reports and the output, `name` standing for
+/// the glyphs.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn sections_output(
+    job: &Job,
+    name: &str,
+    shape: Shape,
+    mut solves: Vec<SolveReport>,
+    planned: crate::levels::plan::Planned,
+    toolpath: Toolpath,
+    min_clearance: f64,
+    finish: Option<crate::finish::Finished>,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<RunOutput, PipelineError> {
+    let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
+    let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
+    report.label = format!("{name} outline (preview)");
+    solves.push(report);
+    solves.extend(level_reports(&planned.info));
+    Ok(RunOutput {
+        toolpath,
+        solves,
+        min_clearance,
+        warnings: planned.warnings,
+        glyphs: vec![name.into()],
+        fallbacks: 0,
+        stock: Some((planned.params.stock_lo, planned.params.stock_hi)),
+        t_schedule: planned.t_schedule,
+        levels: planned.info,
+        shape,
+        field: solved.solution.field,
+        lower_bound: planned.bound,
+        finish,
+    })
+}
+
 /// Plan the levels (in parallel, on the current rayon pool) while this thread
 /// reports each finished level: a stage of as many steps as there are levels,
 /// announced once the z schedule is known.

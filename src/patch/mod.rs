@@ -16,8 +16,8 @@ use crate::job::Job;
 use crate::levels::height_field::HeightFieldSections;
 use crate::levels::plan::LevelJob;
 use crate::pipeline::{
-    cut_levels, job_shape, level_params, solve_shape, PipelineError, Progress, RunOutput,
-    FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
+    cut_levels, job_shape, level_params, sections_output, PipelineError, Progress, RunOutput,
+    OUTER_RADIUS_FACTOR,
 };
 use crate::sources::harmonic_bezier::PatchSpec;
 use crate::sources::polyharmonic::PolySpec;
@@ -91,7 +91,7 @@ pub fn run_patch(
 ) -> Result<RunOutput, PipelineError> {
     set_stage(Stage::ShapeSolve);
     // The rectangle: the part seen from above, for the preview and report.
-    let (shape, mut solves) = job_shape(job, progress)?;
+    let (shape, solves) = job_shape(job, progress)?;
     let source = patch_sections(job, spec)?;
     let [sx, sy] = spec.size();
     let lj = LevelJob {
@@ -107,35 +107,23 @@ pub fn run_patch(
     };
     set_stage(Stage::LevelGrid);
     let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
-    let stock = (planned.params.stock_lo, planned.params.stock_hi);
     set_stage(Stage::Finishing);
     let finish = match &job.finish {
         Some(f) => Some(finish_patch(job, spec, f, &source, progress)?),
         None => None,
     };
     set_stage(Stage::Other);
-    // The rectangle's own field, for the preview's colour map only (the
-    // levels were traced in their sections' fields).
-    let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
-    let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
-    report.label = "patch outline (preview)".into();
-    solves.push(report);
-    solves.extend(crate::pipeline::level_reports(&planned.info));
-    Ok(RunOutput {
-        toolpath,
-        solves,
-        min_clearance,
-        warnings: planned.warnings,
-        glyphs: vec!["patch".into()],
-        fallbacks: 0,
-        stock: Some(stock),
-        t_schedule: planned.t_schedule,
-        levels: planned.info,
+    sections_output(
+        job,
+        "patch",
         shape,
-        field: solved.solution.field,
-        lower_bound: planned.bound,
+        solves,
+        planned,
+        toolpath,
+        min_clearance,
         finish,
-    })
+        progress,
+    )
 }
 
 /// The finishing program: the raster of [`raster`] against the part's

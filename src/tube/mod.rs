@@ -15,8 +15,8 @@ use crate::job::Job;
 use crate::levels::plan::LevelJob;
 use crate::levels::sections::Sections;
 use crate::pipeline::{
-    cut_levels, job_shape, level_params, solve_shape, PipelineError, Progress, RunOutput,
-    FLATTEN_FRACTION, OUTER_RADIUS_FACTOR,
+    cut_levels, job_shape, level_params, sections_output, PipelineError, Progress, RunOutput,
+    OUTER_RADIUS_FACTOR,
 };
 use crate::sources::pde_tube::spec::TubeSpec;
 use crate::sources::pde_tube::{PdeTube, TubeKind};
@@ -54,7 +54,7 @@ pub fn run_tube(
 ) -> Result<RunOutput, PipelineError> {
     set_stage(Stage::ShapeSolve);
     // The widest end curve: the part seen from above, for the preview and report.
-    let (shape, mut solves) = job_shape(job, progress)?;
+    let (shape, solves) = job_shape(job, progress)?;
     let tube = tube_sections(spec)?;
     let (lo, hi) = tube_stock(job, &tube);
     let lj = LevelJob {
@@ -70,35 +70,23 @@ pub fn run_tube(
     };
     set_stage(Stage::LevelGrid);
     let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
-    let stock = (planned.params.stock_lo, planned.params.stock_hi);
     set_stage(Stage::Finishing);
     let finish = match &job.finish {
         Some(f) => Some(finish_tube(job, f, &tube, progress)?),
         None => None,
     };
     set_stage(Stage::Other);
-    // The outline's own field, for the preview's colour map only (the levels
-    // were traced in their sections' fields).
-    let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
-    let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
-    report.label = "tube outline (preview)".into();
-    solves.push(report);
-    solves.extend(crate::pipeline::level_reports(&planned.info));
-    Ok(RunOutput {
-        toolpath,
-        solves,
-        min_clearance,
-        warnings: planned.warnings,
-        glyphs: vec!["tube".into()],
-        fallbacks: 0,
-        stock: Some(stock),
-        t_schedule: planned.t_schedule,
-        levels: planned.info,
+    sections_output(
+        job,
+        "tube",
         shape,
-        field: solved.solution.field,
-        lower_bound: planned.bound,
+        solves,
+        planned,
+        toolpath,
+        min_clearance,
         finish,
-    })
+        progress,
+    )
 }
 
 /// The finishing program: a ring along each section ([`rings`]) against
