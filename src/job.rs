@@ -2312,13 +2312,8 @@ mod doc_tests {
             .filter_map(|e| std::fs::read_to_string(e.ok()?.path()).ok())
             .collect();
         assert!(jobs.len() >= 5);
-        let mut seed: u64 = 0x6a6f62;
-        let mut next = |n: usize| -> usize {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            ((seed >> 33) as usize) % n.max(1)
-        };
+        let mut g = crate::num::testing::Lcg(0x6a6f62);
+        let mut next = |n: usize| g.below(n);
         let extremes = [
             "1e300",
             "-1e300",

@@ -20,18 +20,33 @@ pub(crate) mod testing {
     pub(crate) struct Lcg(pub(crate) u64);
 
     impl Lcg {
-        /// Uniform in [0, 1).
-        pub(crate) fn next(&mut self) -> f64 {
+        /// One step of the generator: the new state.
+        fn step(&mut self) -> u64 {
             self.0 = self
                 .0
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+            self.0
+        }
+
+        /// Uniform in [0, 1).
+        pub(crate) fn next(&mut self) -> f64 {
+            (self.step() >> 11) as f64 / (1u64 << 53) as f64
         }
 
         /// Uniform in [a, b).
         pub(crate) fn range(&mut self, a: f64, b: f64) -> f64 {
             a + (b - a) * self.next()
+        }
+
+        /// The state's top 31 bits after a step (for picking indices).
+        pub(crate) fn word(&mut self) -> usize {
+            (self.step() >> 33) as usize
+        }
+
+        /// [`Lcg::word`] modulo `n` (0 when n is 0).
+        pub(crate) fn below(&mut self, n: usize) -> usize {
+            self.word() % n.max(1)
         }
     }
 

@@ -619,22 +619,15 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     };
     set_stage(Stage::Other);
     solves.push(shape_report);
-    solves.extend(level_reports(&planned.info));
-    Ok(RunOutput {
+    let glyphs = shape.regions.iter().map(|r| r.name.clone()).collect();
+    let field = source.field().clone();
+    let levels = LevelsOutput {
+        planned,
         toolpath,
-        solves,
         min_clearance,
-        warnings: planned.warnings,
-        glyphs: shape.regions.iter().map(|r| r.name.clone()).collect(),
-        fallbacks: 0,
-        stock: Some((planned.params.stock_lo, planned.params.stock_hi)),
-        t_schedule: planned.t_schedule,
-        levels: planned.info,
-        shape,
-        field: source.field().clone(),
-        lower_bound: planned.bound,
         finish,
-    })
+    };
+    Ok(levels.output(solves, glyphs, shape, field))
 }
 
 /// The shape's field as the level planner's [`Sections`] source: the
@@ -837,22 +830,52 @@ pub(crate) fn sections_output(
     let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
     report.label = format!("{name} outline (preview)");
     solves.push(report);
-    solves.extend(level_reports(&planned.info));
-    Ok(RunOutput {
+    let levels = LevelsOutput {
+        planned,
         toolpath,
-        solves,
         min_clearance,
-        warnings: planned.warnings,
-        glyphs: vec![name.into()],
-        fallbacks: 0,
-        stock: Some((planned.params.stock_lo, planned.params.stock_hi)),
-        t_schedule: planned.t_schedule,
-        levels: planned.info,
-        shape,
-        field: solved.solution.field,
-        lower_bound: planned.bound,
         finish,
-    })
+    };
+    Ok(levels.output(solves, vec![name.into()], shape, solved.solution.field))
+}
+
+/// What a run by levels made: the plan, its tool path and least clearance,
+/// and the finishing program.
+struct LevelsOutput {
+    planned: crate::levels::plan::Planned,
+    toolpath: Toolpath,
+    min_clearance: f64,
+    finish: Option<crate::finish::Finished>,
+}
+
+impl LevelsOutput {
+    /// The run's output: `solves` (the shape's) followed by the levels'
+    /// reports, `glyphs` naming the shape, `field` the one the preview maps.
+    fn output(
+        self,
+        mut solves: Vec<SolveReport>,
+        glyphs: Vec<String>,
+        shape: Shape,
+        field: field::Field,
+    ) -> RunOutput {
+        let planned = self.planned;
+        solves.extend(level_reports(&planned.info));
+        RunOutput {
+            toolpath: self.toolpath,
+            solves,
+            min_clearance: self.min_clearance,
+            warnings: planned.warnings,
+            glyphs,
+            fallbacks: 0,
+            stock: Some((planned.params.stock_lo, planned.params.stock_hi)),
+            t_schedule: planned.t_schedule,
+            levels: planned.info,
+            shape,
+            field,
+            lower_bound: planned.bound,
+            finish: self.finish,
+        }
+    }
 }
 
 /// Plan the levels (in parallel, on the current rayon pool) while this thread

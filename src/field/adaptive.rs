@@ -8,7 +8,9 @@
 //! (`cargo run --release --example dscan -- I 800`). So one solve per N at
 //! d = 2h replaces the 17-solve distance search, and the budget goes into N.
 
-use super::{solve_layout, FieldError, Layout, Prepared, Solved, DEFAULT_CORNER_FRACTION};
+use super::{
+    solve_layout, BestSolve, FieldError, Layout, Prepared, Solved, DEFAULT_CORNER_FRACTION,
+};
 
 /// Pseudo-boundary distance of an accurate solve, in units of the spacing h.
 pub const DISTANCE_PER_SPACING: f64 = 2.0;
@@ -64,12 +66,15 @@ fn sequence(target: &Target) -> Vec<usize> {
 /// The results are taken in order, so the answer and the count of solves are
 /// those of solving one N after another.
 pub fn solve_to(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> {
-    let mut best: Option<Solved> = None;
-    let mut solves = 0;
-    let mut last_err = None;
+    let mut best = BestSolve::default();
     let try_n = |n: usize| {
         let lay = layout(prep, n, target.distance);
-        solve_layout(prep, &lay).map(|(solution, m)| (lay, solution, m))
+        solve_layout(prep, &lay).map(|(solution, m)| Solved {
+            solution,
+            layout: lay,
+            solves: 1,
+            m,
+        })
     };
     for pair in sequence(target).chunks(2) {
         let (first, second) = match pair {
@@ -81,35 +86,17 @@ pub fn solve_to(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> 
         };
         for r in std::iter::once(first).chain(second) {
             match r {
-                Ok((layout, solution, m)) => {
-                    solves += 1;
-                    let solved = Solved {
-                        solution,
-                        layout,
-                        solves,
-                        m,
-                    };
-                    if solved.solution.max_error <= target.max_error {
-                        return Ok(solved);
-                    }
-                    if best
-                        .as_ref()
-                        .is_none_or(|b| solved.solution.better_than(&b.solution))
-                    {
-                        best = Some(solved);
-                    }
+                Ok(s) if s.solution.max_error <= target.max_error => {
+                    return Ok(Solved {
+                        solves: best.solves() + 1,
+                        ..s
+                    });
                 }
-                Err(e) => last_err = Some(e),
+                r => best.add(r),
             }
         }
     }
-    match best {
-        Some(mut b) => {
-            b.solves = solves;
-            Ok(b)
-        }
-        None => Err(last_err.unwrap_or(FieldError::Invalid("no layout could be solved".into()))),
-    }
+    best.into_result()
 }
 
 #[cfg(test)]

@@ -75,27 +75,8 @@ impl Grid {
     /// Sample u over the box [lo, hi] with spacing `h`; `material` are the closed
     /// polygons of the generating boundary (material on the left).
     pub fn sample(field: &Field, lo: Vec2, hi: Vec2, h: f64, material: &[Vec<Vec2>]) -> Grid {
-        let nx = (((hi.x - lo.x) / h).ceil() as usize + 1).max(2);
-        let ny = (((hi.y - lo.y) / h).ceil() as usize + 1).max(2);
-        let inside = fill_rows(lo, h, nx, ny, material);
-        let mut values = vec![0.0; nx * ny];
-        values.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
-            for (i, v) in row.iter_mut().enumerate() {
-                *v = if inside[j * nx + i] {
-                    1.0
-                } else {
-                    field.value(Vec2::new(lo.x + h * i as f64, lo.y + h * j as f64))
-                };
-            }
-        });
-        Grid {
-            origin: lo,
-            h,
-            nx,
-            ny,
-            values,
-            inside,
-        }
+        let mask = |lo: Vec2, h: f64, nx: usize, ny: usize| fill_rows(lo, h, nx, ny, material);
+        Grid::sample_masked(field, lo, hi, h, &mask)
     }
 
     /// As `sample`, with the material given by a membership test.

@@ -73,9 +73,7 @@ pub fn solve_auto(
 /// As `solve_auto` with the distance chosen, trying each of `CORNER_FRACTIONS` and
 /// keeping the layout with the smallest max boundary error.
 pub fn solve_best(prep: &Prepared, n_total: usize, pairs: bool) -> Result<Solved, FieldError> {
-    let mut best: Option<Solved> = None;
-    let mut last_err = None;
-    let mut solves = 0;
+    let mut best = BestSolve::default();
     for f in CORNER_FRACTIONS {
         let base = Layout {
             n_total,
@@ -84,25 +82,55 @@ pub fn solve_best(prep: &Prepared, n_total: usize, pairs: bool) -> Result<Solved
             corner_fraction: f,
             pairs,
         };
-        match solve_with(prep, base, None) {
+        best.add(solve_with(prep, base, None));
+    }
+    best.into_result()
+}
+
+/// The best of several solves ([`Solution::better_than`]) with the count of
+/// solves they all took, or the last error when none succeeded.
+#[derive(Default)]
+pub(crate) struct BestSolve {
+    best: Option<Solved>,
+    solves: usize,
+    last_err: Option<FieldError>,
+}
+
+impl BestSolve {
+    /// Count a solve's work and keep it if it beats the best so far; keep an
+    /// error as the last one.
+    pub(crate) fn add(&mut self, r: Result<Solved, FieldError>) {
+        match r {
             Ok(s) => {
-                solves += s.solves;
-                if best
+                self.solves += s.solves;
+                if self
+                    .best
                     .as_ref()
                     .is_none_or(|b| s.solution.better_than(&b.solution))
                 {
-                    best = Some(s);
+                    self.best = Some(s);
                 }
             }
-            Err(e) => last_err = Some(e),
+            Err(e) => self.last_err = Some(e),
         }
     }
-    match best {
-        Some(mut b) => {
-            b.solves = solves;
-            Ok(b)
+
+    /// Solves counted so far.
+    pub(crate) fn solves(&self) -> usize {
+        self.solves
+    }
+
+    /// The best solve, its `solves` the count of all, or the last error.
+    pub(crate) fn into_result(self) -> Result<Solved, FieldError> {
+        match self.best {
+            Some(mut b) => {
+                b.solves = self.solves;
+                Ok(b)
+            }
+            None => Err(self
+                .last_err
+                .unwrap_or(FieldError::Invalid("no layout could be solved".into()))),
         }
-        None => Err(last_err.unwrap_or(FieldError::Invalid("no layout could be solved".into()))),
     }
 }
 

@@ -699,13 +699,8 @@ mod tests {
     /// generator, so a failure is reproducible).
     #[test]
     fn never_panics_on_garbage() {
-        let mut seed: u64 = 0x5eed;
-        let mut next = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) as usize
-        };
+        let mut g = crate::num::testing::Lcg(0x5eed);
+        let mut next = move || g.word();
         let alphabet: Vec<char> = "GMXYZIJKRFPSTNL0123456789.-+ ()%;$#E\té\r"
             .chars()
             .collect();

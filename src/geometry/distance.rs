@@ -345,17 +345,7 @@ pub fn deepest_point_in(
 mod tests {
     use super::*;
 
-    /// A fixed-seed linear congruential generator (Knuth's MMIX constants).
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::num::testing::Lcg;
 
     fn star(c: Vec2, r0: f64, r1: f64, n: usize) -> Vec<Vec2> {
         (0..2 * n)

@@ -436,13 +436,8 @@ mod tests {
         ];
         assert_eq!(polygon_winding_number(&star, Vec2::ZERO), 2);
         assert_eq!(polygon_winding_number(&tri, Vec2::new(1.0, 1.0)), -1);
-        let mut seed = 7u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 24.0
-        };
+        let mut g = crate::num::testing::Lcg(7);
+        let mut rnd = || (g.next() - 0.5) * 24.0;
         let mut counts = [0usize; 4];
         for _ in 0..5000 {
             let p = Vec2::new(rnd(), rnd());

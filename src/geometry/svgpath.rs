@@ -896,13 +896,8 @@ mod tests {
         // Fixed-seed LCG. Inputs are random commands with (mostly) the right number
         // of random numbers, mutated now and then by junk characters (one of them
         // multi-byte): every input must give Ok or a positioned error.
-        let mut seed = 3u64;
-        let mut next = |n: usize| {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            ((seed >> 33) as usize) % n
-        };
+        let mut g = crate::num::testing::Lcg(3u64);
+        let mut next = |n: usize| g.below(n);
         let commands = [
             "L", "l", "H", "h", "V", "v", "C", "c", "S", "s", "Q", "q", "T", "t", "Z", "z", "M",
             "m", "A",

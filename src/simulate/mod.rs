@@ -623,13 +623,8 @@ mod tests {
     /// (a fixed-seed generator, so a failure is reproducible).
     #[test]
     fn never_panics_on_garbage() {
-        let mut seed: u64 = 0x51u64;
-        let mut next = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) as usize
-        };
+        let mut g = crate::num::testing::Lcg(0x51u64);
+        let mut next = move || g.word();
         let alphabet: Vec<char> = "GXYZIJKRF0123456789.- ".chars().collect();
         let mut lines: Vec<String> = [
             "G0 X0 Y0 Z0",

@@ -329,7 +329,7 @@ impl Band<'_> {
                         cut.off_lo = cut.off_lo.min(o);
                         cut.off_hi = cut.off_hi.max(o);
                         if d > self.slot_depth
-                            && self.deep_within.is_none_or(|w| xy_dist(s, cx, cy) <= w)
+                            && self.deep_within.is_none_or(|w| s.xy_dist(cx, cy) <= w)
                         {
                             cut.deep_lo = cut.deep_lo.min(o);
                             cut.deep_hi = cut.deep_hi.max(o);
@@ -512,18 +512,6 @@ pub fn entry_angle_deg(mv: &Move) -> f64 {
         return 90.0;
     }
     (dz - Z_ROUNDING).max(0.0).atan2(xy).to_degrees()
-}
-
-/// Distance (mm) from (x, y) to the piece's XY segment.
-fn xy_dist(s: &Segment, x: f64, y: f64) -> f64 {
-    let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((x - s.a[0]) * dx + (y - s.a[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (s.a[0] + t * dx - x).hypot(s.a[1] + t * dy - y)
 }
 
 /// A piece's XY direction, for the signed offset of a cell from its axis.

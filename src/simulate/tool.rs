@@ -237,6 +237,20 @@ struct Span {
 }
 
 impl Segment {
+    /// Distance (mm) from (x, y) to the segment's XY projection, the textbook
+    /// way (the projection clamped to the segment); the tests hold the
+    /// quadratic of [`Segment::ball_over`] and its kin to it.
+    pub(crate) fn xy_dist(&self, x: f64, y: f64) -> f64 {
+        let (dx, dy) = (self.b[0] - self.a[0], self.b[1] - self.a[1]);
+        let l2 = dx * dx + dy * dy;
+        let t = if l2 > 0.0 {
+            (((x - self.a[0]) * dx + (y - self.a[1]) * dy) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (self.a[0] + t * dx - x).hypot(self.a[1] + t * dy - y)
+    }
+
     /// The XY length, mm.
     pub fn xy_len(&self) -> f64 {
         let (dx, dy) = (self.b[0] - self.a[0], self.b[1] - self.a[1]);
@@ -479,19 +493,6 @@ impl Segment {
 mod tests {
     use super::*;
 
-    /// Distance from (x, y) to the XY segment, the textbook way (projection
-    /// clamped to the segment): an oracle independent of the quadratic.
-    fn dist(s: &Segment, x: f64, y: f64) -> f64 {
-        let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
-        let l2 = dx * dx + dy * dy;
-        let t = if l2 > 0.0 {
-            (((x - s.a[0]) * dx + (y - s.a[1]) * dy) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (s.a[0] + t * dx - x).hypot(s.a[1] + t * dy - y)
-    }
-
     #[test]
     fn bottom_and_span_agree_with_the_distance_oracle() {
         let s = Segment {
@@ -501,7 +502,7 @@ mod tests {
         let r = 1.5;
         for k in 0..4000 {
             let (x, y) = (-1.0 + (k % 80) as f64 * 0.13, 0.0 + (k / 80) as f64 * 0.15);
-            let d = dist(&s, x, y);
+            let d = s.xy_dist(x, y);
             let got = s.bottom_over(x, y, r);
             if d < r - 1e-9 {
                 let z = got.expect("inside");
@@ -523,7 +524,7 @@ mod tests {
                     // Outside the capsule, yet maybe in its span's hull only
                     // if the span's ends are capsule points.
                     for e in [lo, hi] {
-                        assert!(dist(&s, e, y) <= r + 1e-9);
+                        assert!(s.xy_dist(e, y) <= r + 1e-9);
                     }
                 }
             }
@@ -657,7 +658,7 @@ mod tests {
                 assert!(zb >= zf - 1e-12, "ball below flat: {s:?} {c:?}");
                 assert!(zn >= zf - 1e-12, "bull below flat: {s:?} {c:?}");
                 assert!(zn <= zb + 1e-9, "bull above ball: {s:?} {c:?}");
-                let d = dist(&s, c[0], c[1]);
+                let d = s.xy_dist(c[0], c[1]);
                 if d > r * (1.0 - 1e-6) {
                     continue; // the oracle's samples may all miss a rim cell
                 }

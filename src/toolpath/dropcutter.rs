@@ -1103,29 +1103,15 @@ mod tests {
     use super::*;
 
     /// Fixed-seed generator (reproducible failures).
-    struct Rng(u64);
-    impl Rng {
-        fn f(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, a: f64, b: f64) -> f64 {
-            a + (b - a) * self.f()
-        }
-        fn unit3(&mut self) -> [f64; 3] {
-            loop {
-                let v = [
-                    self.range(-1.0, 1.0),
-                    self.range(-1.0, 1.0),
-                    self.range(-1.0, 1.0),
-                ];
-                let l = dot(v, v).sqrt();
-                if l > 0.1 && l <= 1.0 {
-                    return v.map(|c| c / l);
-                }
+    use crate::num::testing::Lcg as Rng;
+
+    /// A random unit vector (rejection from the cube's shell 0.1 < |v| ≤ 1).
+    fn unit3(g: &mut Rng) -> [f64; 3] {
+        loop {
+            let v = [g.range(-1.0, 1.0), g.range(-1.0, 1.0), g.range(-1.0, 1.0)];
+            let l = dot(v, v).sqrt();
+            if l > 0.1 && l <= 1.0 {
+                return v.map(|c| c / l);
             }
         }
     }
@@ -1316,19 +1302,19 @@ mod tests {
                 let (v0, v1) = (pt(g, r), pt(g, r));
                 let l = dot(sub(v1, v0), sub(v1, v0)).sqrt();
                 let m = lerp(v0, v1, g.range(0.1, 0.9));
-                let v2 = add(m, scale(g.unit3(), l * 10f64.powf(g.range(-7.0, -3.0))));
+                let v2 = add(m, scale(unit3(g), l * 10f64.powf(g.range(-7.0, -3.0))));
                 [v0, v1, v2]
             }
             // needle: one very short edge
             6 => {
                 let v0 = pt(g, r);
-                let v1 = add(v0, scale(g.unit3(), r * 10f64.powf(g.range(-7.0, -3.0))));
+                let v1 = add(v0, scale(unit3(g), r * 10f64.powf(g.range(-7.0, -3.0))));
                 [v0, v1, pt(g, r)]
             }
             // degenerate: zero area (collinear, a repeated corner, a point)
             _ => {
                 let (v0, v1) = (pt(g, r), pt(g, r));
-                match g.f() {
+                match g.next() {
                     q if q < 0.4 => [v0, v1, lerp(v0, v1, 0.5)],
                     q if q < 0.8 => [v0, v1, v0],
                     _ => [v0, v0, v0],
@@ -1351,8 +1337,8 @@ mod tests {
             let r = c.radius;
             let tri = random_triangle(&mut g, kind, r);
             // A third of the axes near a corner, the rest anywhere nearby.
-            let (x, y) = if g.f() < 0.33 {
-                let v = tri[(g.f() * 3.0) as usize % 3];
+            let (x, y) = if g.next() < 0.33 {
+                let v = tri[(g.next() * 3.0) as usize % 3];
                 (v[0] + g.range(-0.5, 0.5) * r, v[1] + g.range(-0.5, 0.5) * r)
             } else {
                 (g.range(-2.0 * r, 2.0 * r), g.range(-2.0 * r, 2.0 * r))
