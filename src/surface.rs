@@ -29,7 +29,6 @@
 //! same checks run on the written file after welding its float vertices
 //! ([`read_stl`], [`weld`]).
 
-use crate::field::isolines::{isolines, polygon_area, Grid};
 use crate::field::Field;
 use crate::geometry::{polygon_winding_number, Vec2};
 use crate::job::{Job, OperationKind};
@@ -528,39 +527,20 @@ fn space_out(ts: &mut [f64], ascending: bool) {
     }
 }
 
-/// The stock rectangle exactly as `levels::plan::plan_levels` computes it: the
-/// bounding box of the largest level Γ(s_bottom) (a boss's foot, a cavity's rim)
-/// plus the margin.
+/// The stock rectangle as the level planner computes it: the bounding box of
+/// the largest level Γ(s_bottom) (a boss's foot, a cavity's rim), from the
+/// same grid of u and the same curves ([`crate::levels::mfs_sections::job_grid`],
+/// [`crate::levels::plan::curves`]), plus the margin.
 pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
-    let f = sj.field;
-    let (s_lo, _) = sj.profile.s_range();
-    let (lo, hi) = crate::geometry::polygons_bbox(sj.glyphs)
-        .ok_or_else(|| SurfaceError::Invalid("the shape is empty: nothing to model".into()))?;
-    let diag = (hi - lo).norm();
-    let mut pad = 0.1 * diag;
-    let h = GRID_SPACING.max(diag / 2000.0);
-    let mut tries = 0;
-    let grid = loop {
-        let (glo, ghi) = (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad));
-        let grid = Grid::sample(f, glo, ghi, h, sj.glyphs);
-        if grid.border_max() < s_lo || tries >= 5 {
-            break grid;
-        }
-        pad *= 1.8;
-        tries += 1;
-    };
-    if grid.border_max() >= s_lo {
-        return Err(SurfaceError::Invalid(format!(
-            "the level s = {s_lo} does not close within {pad:.0} mm of the shape; raise profile.s_bottom / profile.s2"
-        )));
+    if crate::geometry::polygons_bbox(sj.glyphs).is_none() {
+        return Err(SurfaceError::Invalid(
+            "the shape is empty: nothing to model".into(),
+        ));
     }
-    let base: Vec<Vec<Vec2>> = isolines(&grid, s_lo, f, sj.glyphs)
-        .into_iter()
-        .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
-        .map(|p| {
-            crate::levels::plan::refine(&p, f, s_lo, crate::levels::plan::CHORD_FRACTION * sj.tol)
-        })
-        .collect();
+    let (s_lo, _) = sj.profile.s_range();
+    let (grid, h) = crate::levels::mfs_sections::job_grid(sj.field, sj.glyphs, sj.profile)
+        .map_err(|e| SurfaceError::Invalid(e.to_string()))?;
+    let base = crate::levels::plan::curves(&grid, sj.field, sj.glyphs, s_lo, h, sj.tol);
     let (blo, bhi) = crate::geometry::polygons_bbox(&base).ok_or_else(|| {
         SurfaceError::Invalid(format!(
             "the level s = {s_lo} has no contour around the shape"
@@ -568,37 +548,6 @@ pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
     })?;
     let m = Vec2::new(sj.margin, sj.margin);
     Ok((blo - m, bhi + m))
-}
-
-/// Marks grid points inside the closed polygons (non-zero winding), row by row
-/// (the same rule as `field::isolines::Grid::sample`).
-fn inside_points(xs: &[f64], ys: &[f64], polys: &[Vec<Vec2>]) -> Vec<bool> {
-    let nx = xs.len();
-    let mut inside = vec![false; nx * ys.len()];
-    inside.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
-        let y = ys[j];
-        let mut cuts: Vec<(f64, i32)> = Vec::new();
-        for poly in polys {
-            let n = poly.len();
-            for k in 0..n {
-                let (a, b) = (poly[k], poly[(k + 1) % n]);
-                if (a.y <= y) != (b.y <= y) {
-                    let t = (y - a.y) / (b.y - a.y);
-                    cuts.push((a.x + t * (b.x - a.x), if b.y > a.y { 1 } else { -1 }));
-                }
-            }
-        }
-        cuts.sort_by(|p, q| p.0.total_cmp(&q.0));
-        let (mut w, mut k) = (0, 0);
-        for (i, cell) in row.iter_mut().enumerate() {
-            while k < cuts.len() && cuts[k].0 <= xs[i] {
-                w += cuts[k].1;
-                k += 1;
-            }
-            *cell = w != 0;
-        }
-    });
-    inside
 }
 
 /// Index of the band of value v: how many levels are ≤ v.
@@ -650,7 +599,7 @@ impl StockGrid {
     fn sample(&mut self, sj: &SurfaceJob, progress: &mut dyn FnMut(Progress)) {
         const BLOCK: usize = 16;
         let (nx, ny) = (self.nx, self.ny);
-        self.inside = inside_points(&self.xs, &self.ys, sj.glyphs);
+        self.inside = crate::geometry::winding_rows(&self.xs, &self.ys, sj.glyphs);
         progress(Progress::Stage {
             name: "sampling the field".into(),
             total: ny.div_ceil(BLOCK) as u64,

@@ -32,8 +32,8 @@ pub struct Grid {
     pub inside: Vec<bool>,
 }
 
-/// Marks grid points inside the closed polygons (non-zero winding), row by row
-/// from the crossings of each row with the polygon edges.
+/// Marks grid points inside the closed polygons (non-zero winding): the
+/// grid's rows and columns through [`crate::geometry::winding_rows`].
 pub(crate) fn fill_rows(
     origin: Vec2,
     h: f64,
@@ -41,34 +41,9 @@ pub(crate) fn fill_rows(
     ny: usize,
     polys: &[Vec<Vec2>],
 ) -> Vec<bool> {
-    let mut inside = vec![false; nx * ny];
-    inside.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
-        let y = origin.y + h * j as f64;
-        let mut xs: Vec<(f64, i32)> = Vec::new();
-        for poly in polys {
-            let n = poly.len();
-            for k in 0..n {
-                let a = poly[k];
-                let b = poly[(k + 1) % n];
-                if (a.y <= y) != (b.y <= y) {
-                    let t = (y - a.y) / (b.y - a.y);
-                    xs.push((a.x + t * (b.x - a.x), if b.y > a.y { 1 } else { -1 }));
-                }
-            }
-        }
-        xs.sort_by(|p, q| p.0.total_cmp(&q.0));
-        let mut w = 0;
-        let mut k = 0;
-        for (i, cell) in row.iter_mut().enumerate() {
-            let x = origin.x + h * i as f64;
-            while k < xs.len() && xs[k].0 <= x {
-                w += xs[k].1;
-                k += 1;
-            }
-            *cell = w != 0;
-        }
-    });
-    inside
+    let xs: Vec<f64> = (0..nx).map(|i| origin.x + h * i as f64).collect();
+    let ys: Vec<f64> = (0..ny).map(|j| origin.y + h * j as f64).collect();
+    crate::geometry::winding_rows(&xs, &ys, polys)
 }
 
 impl Grid {

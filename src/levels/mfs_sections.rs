@@ -157,7 +157,7 @@ impl Sections for MfsSections {
 
 /// One grid of u for the whole job (spacing [`GRID_SPACING`], or finer for a
 /// shape over 800 mm across), grown until Γ(s_bottom) closes inside it.
-fn job_grid(
+pub(crate) fn job_grid(
     field: &Field,
     glyphs: &[Vec<Vec2>],
     profile: &DepthProfile,
