@@ -17,6 +17,7 @@ use crate::field::Field;
 use crate::geometry::{DistanceIndex, Vec2};
 use crate::levels::plan::curves;
 use crate::levels::DepthProfile;
+use rayon::prelude::*;
 
 /// Most passes of one program (a bound on work and file size; the job's
 /// `machine.max_hours` and `machine.max_file_mb` usually stop it first).
@@ -200,7 +201,7 @@ fn candidate_levels(
     let step = w / REFINE as f64;
     let level = |s: f64, loops: Vec<Vec<Vec2>>| -> Result<Level, String> {
         let grad = loops
-            .iter()
+            .par_iter()
             .map(|l| curves.min_grad(std::slice::from_ref(l)))
             .collect::<Option<Vec<f64>>>()
             .ok_or_else(|| format!("∇u vanishes on Γ({s:.5})"))?;

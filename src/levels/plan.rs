@@ -106,7 +106,7 @@ pub fn curves(
         return glyphs.to_vec();
     }
     isolines(grid, s, f, glyphs)
-        .into_iter()
+        .into_par_iter()
         .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
         .map(|p| refine(&p, f, s, CHORD_FRACTION * tol))
         .collect()

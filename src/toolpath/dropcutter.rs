@@ -848,14 +848,14 @@ impl MeshIndex {
     /// and counted in [`MeshIndex::skipped`].
     pub fn new(triangles: Vec<[[f64; 3]; 3]>, cell: f64) -> MeshIndex {
         let total = triangles.len();
-        let tris: Vec<Tri> = triangles
+        let finite: Vec<[[f64; 3]; 3]> = triangles
             .into_iter()
             .filter(|t| t.iter().flatten().all(|c| c.is_finite()))
             .take(MAX_TRIANGLES)
-            .map(Tri::new)
             .collect();
+        let tris: Vec<Tri> = finite.into_par_iter().map(Tri::new).collect();
         let skipped = total - tris.len();
-        let bounds: Vec<Bounds> = tris.iter().map(|t| Bounds::new(&t.v)).collect();
+        let bounds: Vec<Bounds> = tris.par_iter().map(|t| Bounds::new(&t.v)).collect();
         let mut index = MeshIndex {
             tris: Vec::new(),
             bounds: Vec::new(),
@@ -948,10 +948,18 @@ impl MeshIndex {
                 }
             }
         }
+        let mut rest: &mut [u32] = &mut items;
+        let mut cells: Vec<&mut [u32]> = Vec::with_capacity(index.nx * index.ny);
         for k in 0..index.nx * index.ny {
-            items[count[k]..count[k + 1]].sort_unstable_by_key(|&it| it & 3);
+            let (cell, tail) = std::mem::take(&mut rest).split_at_mut(count[k + 1] - count[k]);
+            cells.push(cell);
+            rest = tail;
         }
+        cells
+            .into_par_iter()
+            .for_each(|c| c.sort_unstable_by_key(|&it| it & 3));
         index.cells = (0..index.nx * index.ny)
+            .into_par_iter()
             .map(|k| {
                 Bounds::union(
                     items[count[k]..count[k + 1]]
