@@ -280,6 +280,7 @@ fn sign_surface<'a>(
         top: sign.stock.top,
         margin: sign.stock.margin,
         tol: sign.operation.tolerance,
+        stock: None,
     }
 }
 

@@ -753,6 +753,7 @@ fn finish_program(
         top: job.stock.top,
         margin: job.stock.margin,
         tol: job.operation.tolerance,
+        stock: Some(stock),
     };
     let opts = SurfaceOptions {
         resolution: FINISH_MESH,

@@ -236,6 +236,10 @@ pub struct SurfaceJob<'a> {
     pub margin: f64,
     /// The job's tolerance, mm (for the stock rectangle's contour, as the planner).
     pub tol: f64,
+    /// The stock rectangle when the caller has it (the level planner's,
+    /// `LevelParams::stock_lo`/`stock_hi`), else `None`: [`stock_rectangle`]
+    /// computes the same rectangle.
+    pub stock: Option<(Vec2, Vec2)>,
 }
 
 /// z (absolute, mm) of S2 where u = `s`, with the stock top at `top`: a
@@ -334,6 +338,7 @@ pub fn job_surface(
         top: job.stock.top,
         margin: job.stock.margin,
         tol: job.operation.tolerance,
+        stock: None,
     };
     let surface = build(&sj, opts, progress)?;
     Ok(JobSurface {
@@ -934,12 +939,18 @@ pub fn build(
             "the resolution must be a positive number of mm, got {res}"
         )));
     }
-    progress(Progress::Stage {
-        name: "finding the stock".into(),
-        total: 1,
-    });
-    let (slo, shi) = stock_rectangle(sj)?;
-    progress(Progress::Step);
+    let (slo, shi) = match sj.stock {
+        Some(stock) => stock,
+        None => {
+            progress(Progress::Stage {
+                name: "finding the stock".into(),
+                total: 1,
+            });
+            let stock = stock_rectangle(sj)?;
+            progress(Progress::Step);
+            stock
+        }
+    };
     let levels = level_values(sj.profile);
     let level_z: Vec<f64> = levels.iter().map(|&s| sj.z_of(s)).collect();
     let mut grid = StockGrid::over(slo, shi, res)?;
