@@ -11,7 +11,7 @@ use pfcam::job::{load_job, Job, JobError};
 use pfcam::output::{check_target, check_writable, write_atomic, OutputError};
 use pfcam::pipeline::{self, Progress, RunOutput};
 use pfcam::preview::colormap::ColourMap;
-use pfcam::preview::{field_png, preview_svg, PreviewOptions};
+use pfcam::preview::{field_png, preview_svg, section_svg, PreviewOptions};
 use pfcam::report::RunReport;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -371,7 +371,7 @@ fn cmd_sections(
         .with_context(|| path.display().to_string())?;
     match output {
         Some(target) => {
-            write_atomic(&target, view.svg().as_bytes(), force)?;
+            write_atomic(&target, section_svg(&view).as_bytes(), force)?;
             stdout_line(&format!(
                 "wrote {}: {}, net area {:.3} mm²",
                 target.display(),

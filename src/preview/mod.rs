@@ -27,6 +27,7 @@ mod header;
 mod legend;
 mod marker;
 mod polyline;
+mod section;
 mod stock;
 mod svgfmt;
 mod travel;
@@ -36,6 +37,7 @@ pub use colours::depth_colour;
 pub use cut::BAND_LEVELS;
 pub use frame::drawing_area;
 pub use marker::{is_pfcam_svg, svg_marker, SVG_MARKER_PREFIX};
+pub use section::section_svg;
 
 use crate::field::contour::ContourError;
 use crate::geometry::Vec2;
