@@ -55,7 +55,7 @@ pub struct Job {
     /// Machine settings that only the G-code writer and time estimates read.
     pub machine: Machine,
     /// The depth profile φ(s) of a boss or cavity (`None` for a profile).
-    pub profile: Option<crate::levels::DepthProfile>,
+    pub profile: Option<crate::profile::DepthProfile>,
     /// What the G-code may contain (arcs).
     pub output: Output,
     /// The finishing tool of a boss or cavity (`[finish]`): with it the job

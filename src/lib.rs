@@ -19,6 +19,7 @@ pub mod output;
 pub mod patch;
 pub mod pipeline;
 pub mod preview;
+pub mod profile;
 pub mod report;
 pub mod simulate;
 pub mod sources;

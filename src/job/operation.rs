@@ -6,7 +6,7 @@ use super::{
     defaults, invalid, limits, one_of, show, Direction, Finish, JobError, Operation, OperationKind,
     RawOperation, RawProfile, Side, Stock, Tool, DIRECTIONS, OPERATION_KINDS, SIDES,
 };
-use crate::levels::DepthProfile;
+use crate::profile::DepthProfile;
 
 /// The resolved `[operation]` and the tables it governs.
 pub(super) struct Resolved {

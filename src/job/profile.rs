@@ -3,7 +3,7 @@
 //! kind takes only its own keys.
 
 use super::{defaults, invalid, limits, one_of, show, JobError, RawProfile, PROFILE_KINDS};
-use crate::levels::DepthProfile;
+use crate::profile::DepthProfile;
 
 /// `[profile]` with `depth` = `operation.depth`, which spline and table
 /// points must agree with (their lowest z is −depth).
