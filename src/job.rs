@@ -32,6 +32,7 @@ mod svgfile;
 mod text;
 mod tool;
 mod tube;
+mod tube_trim;
 
 pub use composition::PART_OPS;
 pub use finish::{CutterShape, Finish};
@@ -545,6 +546,20 @@ pub struct RawShape {
     pub modes: Option<i64>,
     /// `samples` (PDE tube): K
     pub samples: Option<i64>,
+    /// `[[shape.trim]]` (PDE tube): the trims cut out of the tube
+    pub trim: Option<Vec<RawTrim>>,
+}
+
+/// `[[shape.trim]]`: one trim of a PDE tube, a rectangle in (angle, z).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTrim {
+    /// `angles`, degrees: [from, to] counter-clockwise from +x
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub angles: Option<[f64; 2]>,
+    /// `z`, mm (machine z): [bottom, top]
+    #[serde(default, deserialize_with = "exact::opt")]
+    pub z: Option<[f64; 2]>,
 }
 
 /// `[[shape.part]]`: one part of a composition, in design units.
@@ -2271,6 +2286,8 @@ mod doc_tests {
             "shape.part.op",
             "shape.part.level",
             "shape.part.singularities",
+            "shape.trim.angles",
+            "shape.trim.z",
         ];
         // The text of the section `## `heading``, up to the next `## `.
         let section = |heading: &str| -> &str {
@@ -2285,6 +2302,7 @@ mod doc_tests {
             // `shape.part.level` in `[[shape.part]]`, `shape.result` in `[shape]`.
             let (text, key) = match k.rsplit_once('.') {
                 Some(("shape.part", key)) => (section("[[shape.part]]"), key),
+                Some(("shape.trim", key)) => (section("[[shape.trim]]"), key),
                 Some((table, key)) => (section(&format!("[{table}]")), key),
                 None => (DOC, k),
             };
@@ -2293,7 +2311,11 @@ mod doc_tests {
                 "{k} is not in docs/job-format.md"
             );
         }
-        for t in SECTIONS.iter().copied().chain(["[shape.part]"]) {
+        for t in SECTIONS
+            .iter()
+            .copied()
+            .chain(["[shape.part]", "[shape.trim]"])
+        {
             assert!(
                 DOC.contains(&format!("## `[{t}]`")),
                 "[{t}] is not documented"

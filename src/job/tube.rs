@@ -27,7 +27,7 @@ const DEFAULT_SAMPLES: i64 = 128;
 const DEFAULT_EXPONENT: f64 = 2.0;
 
 /// The tube's own keys and whether each is given.
-fn tube_keys(s: &RawShape) -> [(&'static str, bool); 9] {
+fn tube_keys(s: &RawShape) -> [(&'static str, bool); 10] {
     [
         ("shape.bottom_size", s.bottom_size.is_some()),
         ("shape.bottom_exponent", s.bottom_exponent.is_some()),
@@ -38,6 +38,7 @@ fn tube_keys(s: &RawShape) -> [(&'static str, bool); 9] {
         ("shape.a", s.a.is_some()),
         ("shape.modes", s.modes.is_some()),
         ("shape.samples", s.samples.is_some()),
+        ("shape.trim", s.trim.is_some()),
     ]
 }
 
@@ -118,7 +119,7 @@ fn end(prefix: &str, size: Option<[f64; 2]>, exponent: Option<f64>) -> Result<Tu
 /// spec, its surface solved once (kind and tolerance are filled in by
 /// [`check`]).
 pub(super) fn resolve(
-    s: RawShape,
+    mut s: RawShape,
     origin: Vec2,
     height: Option<f64>,
 ) -> Result<ShapeSource, JobError> {
@@ -170,7 +171,7 @@ pub(super) fn resolve(
         origin,
         kind: TubeKind::Boss,
         tolerance: crate::job::defaults::TOLERANCE,
-        trims: Vec::new(),
+        trims: super::tube_trim::resolve(s.trim.take())?,
     };
     spec.surface().map_err(pde_error)?;
     Ok(ShapeSource::PdeTube(spec))
@@ -214,9 +215,43 @@ pub(super) fn check(
         _ => TubeKind::Boss,
     };
     spec.tolerance = op.tolerance;
-    spec.tube()
-        .map(|_| ())
-        .map_err(|e| tube_error(e, spec, top))
+    super::tube_trim::check(
+        &mut spec.trims,
+        top,
+        spec.height,
+        spec.kind == TubeKind::Boss,
+    )?;
+    match spec.tube() {
+        Ok(_) => Ok(()),
+        Err(e @ TubeError::Overhang { .. }) if !spec.trims.is_empty() => {
+            let plain = TubeSpec {
+                trims: Vec::new(),
+                ..spec.clone()
+            };
+            match plain.tube() {
+                Ok(_) => Err(trim_overhang(e, spec, top)),
+                Err(e) => Err(tube_error(e, spec, top)),
+            }
+        }
+        Err(e) => Err(tube_error(e, spec, top)),
+    }
+}
+
+/// An overhang that only the trim makes (the untrimmed tube nests): its
+/// sides, the rays from the spine to the wall at its angles, lean out of
+/// the section below (the wall's polar angle is not quite v).
+fn trim_overhang(e: TubeError, spec: &TubeSpec, top: f64) -> JobError {
+    let TubeError::Overhang { z, by, .. } = e else {
+        return tube_error(e, spec, top);
+    };
+    invalid(
+        "shape.trim[1].angles",
+        format!(
+            "makes the part overhang at z = {:.4} mm: the trim's sides (rays from the tube's spine to its wall at these angles) reach outside the section below by {by:.2e} mm (tolerance {} mm), and a 3-axis mill cannot reach under them; try other angles, or a larger operation.tolerance",
+            top + z,
+            show(spec.tolerance)
+        ),
+    )
 }
 
 /// A [`TubeError`] as a job error naming the key (heights in machine z).

@@ -144,6 +144,25 @@ fn check_flat(curves: &BoundaryCurves) -> Result<(), TubeError> {
     Ok(())
 }
 
+/// The checks before the solve: flat z data, `points` in 16 to
+/// [`MAX_POINTS`], `tol` finite and > 0.
+fn check_inputs(curves: &BoundaryCurves, points: usize, tol: f64) -> Result<(), TubeError> {
+    check_flat(curves)?;
+    if !(tol.is_finite() && tol > 0.0) {
+        return Err(TubeError::Invalid {
+            key: "tol",
+            reason: format!("{tol}; must be finite and > 0 (mm)"),
+        });
+    }
+    if !(16..=MAX_POINTS).contains(&points) {
+        return Err(TubeError::Invalid {
+            key: "points",
+            reason: format!("{points}; must be 16 to {MAX_POINTS}"),
+        });
+    }
+    Ok(())
+}
+
 impl PdeTube {
     /// Solves the surface (a > 0, N = `modes`), checks that it is a tube (flat
     /// z data, monotone A₀z), and that its sections, with `points` samples each
@@ -157,32 +176,48 @@ impl PdeTube {
         trims: Vec<Vec<[f64; 2]>>,
         (points, tol): (usize, f64),
     ) -> Result<PdeTube, TubeError> {
-        check_flat(curves)?;
-        if !(tol.is_finite() && tol > 0.0) {
-            return Err(TubeError::Invalid {
-                key: "tol",
-                reason: format!("{tol}; must be finite and > 0 (mm)"),
-            });
-        }
-        if !(16..=MAX_POINTS).contains(&points) {
-            return Err(TubeError::Invalid {
-                key: "points",
-                reason: format!("{points}; must be 16 to {MAX_POINTS}"),
-            });
-        }
+        check_inputs(curves, points, tol)?;
         trim::check(&trims)?;
+        Self::new_with(curves, a, modes, kind, (points, tol), |_| trims)
+    }
+
+    /// As [`PdeTube::new`], the trims given by `trims` from the untrimmed
+    /// tube (e.g. trims given by heights, through its [`PdeTube::u_of`]);
+    /// they are checked as `new`'s are.
+    pub fn new_with(
+        curves: &BoundaryCurves,
+        a: f64,
+        modes: usize,
+        kind: TubeKind,
+        (points, tol): (usize, f64),
+        trims: impl FnOnce(&PdeTube) -> Vec<Vec<[f64; 2]>>,
+    ) -> Result<PdeTube, TubeError> {
+        check_inputs(curves, points, tol)?;
         let surface = PdeSurface::solve(curves, a, modes)?;
         let sp = surface.spine();
-        let tube = PdeTube {
+        let mut tube = PdeTube {
             z_ends: (sp.p1[2], sp.p2[2]),
             surface,
             kind,
-            trims,
+            trims: Vec::new(),
             points,
         };
         tube.check_monotone()?;
+        tube.trims = trims(&tube);
+        trim::check(&tube.trims)?;
         tube.check_nesting(tol)?;
         Ok(tube)
+    }
+
+    /// The trim polygons in the (u, v) plane.
+    pub fn trims(&self) -> &[Vec<[f64; 2]>] {
+        &self.trims
+    }
+
+    /// The kept arcs (a, b) of v at u, a < b (b possibly past 2π): `None`
+    /// where no trim applies, empty where the whole curve is trimmed.
+    pub fn kept_arcs(&self, u: f64) -> Option<Vec<(f64, f64)>> {
+        trim::kept_arcs(&self.trims, u)
     }
 
     /// The solved surface.

@@ -50,8 +50,9 @@ fn ring_points(tube: &PdeTube, resolution: f64) -> usize {
 
 /// The closed mesh of the tube's part (module doc), `top` the stock top
 /// (mm, where the tube's top goes), vertices at most about `resolution` mm
-/// apart, `stock` the stock rectangle. An error is a pfcam bug (a ring whose
-/// polar angle does not increase).
+/// apart, `stock` the stock rectangle. A trimmed boss is meshed by
+/// [`super::mesh_slot`]. An error is a pfcam bug (a ring whose polar angle
+/// does not increase), or a trim the mesh cannot carry.
 pub fn tube_mesh(
     tube: &PdeTube,
     top: f64,
@@ -61,18 +62,44 @@ pub fn tube_mesh(
     let p = ring_points(tube, resolution);
     let (bottom, _) = tube.z_range();
     let n = ((-bottom / resolution).ceil() as usize).max(2);
+    let slot = super::mesh_slot::Slot::of(tube)?;
     let mut m = Mesh::default();
     // Rings from the bottom up: ring i's vertex j is i·p + j.
-    for i in 0..=n {
-        let z = bottom * (1.0 - i as f64 / n as f64);
-        let ring = tube.surface().ring(tube.u_of(z), p);
-        m.vertices
-            .extend(ring.iter().map(|q| [q[0], q[1], top + z]));
-    }
+    let rows = match &slot {
+        Some(s) => s.rows(tube, n),
+        None => (0..=n)
+            .map(|i| {
+                let z = bottom * (1.0 - i as f64 / n as f64);
+                (tube.u_of(z), z)
+            })
+            .collect(),
+    };
+    let p = match &slot {
+        Some(s) => {
+            let vs = s.columns(p);
+            for &(u, z) in &rows {
+                m.vertices.extend(vs.iter().map(|&v| {
+                    let q = tube.surface().point(u, v);
+                    [q[0], q[1], top + z]
+                }));
+            }
+            vs.len()
+        }
+        None => {
+            for &(u, z) in &rows {
+                let ring = tube.surface().ring(u, p);
+                m.vertices
+                    .extend(ring.iter().map(|q| [q[0], q[1], top + z]));
+            }
+            p
+        }
+    };
+    let n = rows.len() - 1;
     let at = |i: usize, j: usize| (i * p + j % p) as u32;
     let boss = tube.kind() == TubeKind::Boss;
+    let in_slot = |i: usize, j: usize| slot.as_ref().is_some_and(|s| s.cuts(i, j));
     for i in 0..n {
-        for j in 0..p {
+        for j in (0..p).filter(|&j| !in_slot(i, j)) {
             let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
             if boss {
                 m.triangles.push([a, b, c]);
@@ -86,11 +113,13 @@ pub fn tube_mesh(
     let (cap, wide) = if boss { (n, 0) } else { (0, n) };
     let ring = |i: usize| -> Vec<u32> { (0..p).map(|j| at(i, j)).collect() };
     let centre = |i: usize| {
-        let z = bottom * (1.0 - i as f64 / n as f64);
-        let c = tube.surface().spine().point(tube.u_of(z));
+        let c = tube.surface().spine().point(rows[i].0);
         Vec2::new(c[0], c[1])
     };
-    add_cap(&mut m, &ring(cap), centre(cap));
+    match &slot {
+        Some(s) => s.add_faces(&mut m, tube, (&rows, p, top)),
+        None => add_cap(&mut m, &ring(cap), centre(cap)),
+    }
     let z_wide = m.vertices[at(wide, 0) as usize][2];
     let z_bottom = top + bottom - BASE_THICKNESS;
     let border = add_annulus(&mut m, &ring(wide), centre(wide), stock)?;

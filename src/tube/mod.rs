@@ -7,6 +7,8 @@
 //! `[finish]` a ring of the finishing tool follows each section ([`rings`]).
 
 pub mod mesh;
+mod mesh_slot;
+pub mod ring_contacts;
 pub mod rings;
 
 use crate::count::{set_stage, Stage};
@@ -110,11 +112,14 @@ fn finish_tube(
         .collect();
     let area = crate::finish::wall_area(&tris);
     let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
+    let contacts = ring_contacts::Rings::new(tube, tube.points(), f.radius())
+        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
     let part = rings::RingPart {
         tube,
         mesh: &index,
         area,
         top: job.stock.top,
+        rings: &contacts,
     };
     let done = rings::ring_finish(job, f, &part)
         .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;

@@ -26,13 +26,13 @@
 //! - **Direction.** Climb milling (`operation.direction`): clockwise seen
 //!   from above round a boss, counter-clockwise round a mould's pocket.
 
+use super::ring_contacts::{Contact, Rings};
 use crate::finish::{cutter_of, passes::pass_width, Finished};
 use crate::job::{CutterShape, Direction, Finish, Job};
 use crate::levels::sections::Sections;
 use crate::sources::pde_tube::{PdeTube, TubeKind};
 use crate::toolpath::dropcutter::{Cutter, MeshIndex};
 use crate::toolpath::{Move, Section, Toolpath, Vec3};
-use std::f64::consts::TAU;
 
 /// Most rings of a finish.
 pub const MAX_RINGS: usize = 20_000;
@@ -49,6 +49,10 @@ const LINK_STEP: f64 = 0.05;
 /// How far off the first ring's start the cutter comes down, mm.
 const APPROACH: f64 = 1.0;
 
+/// The steepest descent along a ring with a slot (tan 40°: `simulate`
+/// calls a descent over 45° into material a plunge).
+const MAX_DESCENT: f64 = 0.839;
+
 /// Bisections of a ring's height.
 const BISECTIONS: usize = 40;
 
@@ -63,6 +67,8 @@ pub struct RingPart<'a> {
     pub area: f64,
     /// Machine z of the tube's top (the stock top), mm.
     pub top: f64,
+    /// Where the rings touch ([`ring_contacts::Rings`]).
+    pub rings: &'a Rings,
 }
 
 /// The ring heights z (relative to the top), from −H up to 0, neighbours'
@@ -109,13 +115,13 @@ fn ring_heights(tube: &PdeTube, w: f64) -> Result<Vec<f64>, String> {
     Ok(zs)
 }
 
-/// The cutter's tip (x, y, z relative to the curves' frame) touching the
-/// contact X(u, v) alone, and the horizontal direction of the unit normal
-/// into free space there; `None` where the normal is not defined.
-fn axis(tube: &PdeTube, f: &Finish, u: f64, v: f64) -> Option<([f64; 3], [f64; 2])> {
+/// The point X(u, v) and the unit normal into free space there (±Xᵤ × Xᵥ:
+/// away from the axis for a boss, toward it for a mould); `None` where the
+/// normal is not defined.
+pub(super) fn wall_normal(tube: &PdeTube, u: f64, v: f64) -> Option<([f64; 3], [f64; 3])> {
     let s = tube.surface();
     let (p, xu, xv) = (s.point(u, v), s.du(u, v), s.dv(u, v));
-    let mut n = [
+    let n = [
         xu[1] * xv[2] - xu[2] * xv[1],
         xu[2] * xv[0] - xu[0] * xv[2],
         xu[0] * xv[1] - xu[1] * xv[0],
@@ -129,7 +135,13 @@ fn axis(tube: &PdeTube, f: &Finish, u: f64, v: f64) -> Option<([f64; 3], [f64; 2
         return None;
     }
     let sign = if flip { -1.0 } else { 1.0 } / len;
-    n = n.map(|x| x * sign);
+    Some((p, n.map(|x| x * sign)))
+}
+
+/// The cutter's tip (x, y, z relative to the curves' frame) touching the
+/// contact p alone, n the unit normal into free space there, and the
+/// horizontal direction of n.
+fn tip_at(p: [f64; 3], n: [f64; 3], f: &Finish) -> ([f64; 3], [f64; 2]) {
     // The horizontal direction of n (none where the wall is flat).
     let h = n[0].hypot(n[1]);
     let hz = if h > 1e-12 {
@@ -142,7 +154,7 @@ fn axis(tube: &PdeTube, f: &Finish, u: f64, v: f64) -> Option<([f64; 3], [f64; 2
     let y = p[1] + rc * n[1] + (r - rc) * hz[1];
     // The tip touching at p alone: the corner circle's lowest point.
     let z = p[2] + rc * n[2] - rc;
-    Some(([x, y, z], hz))
+    ([x, y, z], hz)
 }
 
 /// The drop-cutter against the tube's part.
@@ -193,12 +205,14 @@ impl Dropper<'_> {
     }
 }
 
-/// One ring at height `z` (relative): the tip over every sample vⱼ, j = 0..P
-/// (the first again at the end), in the cutting direction (`None` where
-/// the normal or the drop is not defined), and the free-space direction
-/// at its start.
+/// One ring at height `z` (relative): the tip over every contact
+/// ([`ring_contacts`]: the curve's samples, with a slot its sides and
+/// corners), in the cutting direction (`None` where the normal or the drop
+/// is not defined), each with its contact's key, and the free-space
+/// direction at its start.
 struct Ring {
     z: f64,
+    keys: Vec<i64>,
     tips: Vec<Option<Vec3>>,
     start_dir: [f64; 2],
     /// At each sample, whether the drop lifted the tip more than the
@@ -207,47 +221,74 @@ struct Ring {
     lifted: Vec<bool>,
 }
 
+/// The tip touching `c` alone (curves' frame) and the horizontal direction
+/// of its normal.
+fn contact_tip(tube: &PdeTube, f: &Finish, u: f64, c: Contact) -> Option<([f64; 3], [f64; 2])> {
+    match c {
+        Contact::Wall(v) => wall_normal(tube, u, v).map(|(p, n)| tip_at(p, n, f)),
+        Contact::At(p, n) => Some(tip_at(p, n, f)),
+        Contact::Drop(q) => Some(([q[0], q[1], f64::NEG_INFINITY], [0.0, 0.0])),
+    }
+}
+
 fn ring_at(
     part: &RingPart,
     f: &Finish,
     dropper: &Dropper,
     (z, reverse, tol): (f64, bool, f64),
-) -> Ring {
+) -> Result<Ring, String> {
     let tube = part.tube;
     let u = tube.u_of(z);
-    let p = tube.points();
+    let contacts = part.rings.contacts(tube, u, reverse)?;
     let mut start_dir = [0.0, 0.0];
-    let mut lifted = vec![false; p + 1];
+    let mut lifted = vec![false; contacts.len()];
     // Machine z of the curves' frame: the tube's top is the stock top.
     let shift = part.top - tube.top_z();
-    let tips = (0..=p)
-        .map(|j| {
-            let k = if reverse { (p - j % p) % p } else { j % p };
-            let (tip, dir) = axis(tube, f, u, TAU * k as f64 / p as f64)?;
+    let tips = contacts
+        .iter()
+        .enumerate()
+        .map(|(j, &(_, c))| {
+            let (tip, dir) = contact_tip(tube, f, u, c)?;
             if j == 0 {
                 start_dir = dir;
             }
-            let at = dropper.at(tip[0], tip[1])?;
+            let mut at = dropper.at(tip[0], tip[1])?;
+            // Beside a vertical side the drop finds the floor: the tip is
+            // the contact's own, unless the drop is higher.
+            if let Contact::At(..) = c {
+                at.z = at.z.max(tip[2] + shift);
+            }
             lifted[j] = at.z > tip[2] + shift + tol;
             Some(at)
         })
         .collect();
-    Ring {
+    Ok(Ring {
         z,
+        keys: contacts.iter().map(|c| c.0).collect(),
         tips,
         start_dir,
         lifted,
-    }
+    })
 }
 
-/// The largest ratio, over the samples, of the distance between two rings'
-/// tips there (the balls' centres are the tips raised by r: the same
-/// distance) to its limit (see [`rings_spaced`]).
+/// The largest ratio, over the contacts the two rings share (by key), of
+/// the distance between their tips there (the balls' centres are the tips
+/// raised by r: the same distance) to its limit (see [`rings_spaced`]).
 fn tip_gap(a: &Ring, b: &Ring, (w, tol): (f64, f64)) -> f64 {
-    (0..a.tips.len().min(b.tips.len()))
-        .filter_map(|j| {
-            let d = a.tips[j].as_ref()?.dist(*b.tips[j].as_ref()?);
-            let limit = match (a.lifted[j], b.lifted[j]) {
+    let pairs: Vec<(usize, usize)> = if a.keys == b.keys {
+        (0..a.keys.len()).map(|j| (j, j)).collect()
+    } else {
+        let index: std::collections::HashMap<i64, usize> =
+            b.keys.iter().enumerate().map(|(j, &k)| (k, j)).collect();
+        (0..a.keys.len())
+            .filter_map(|j| Some((j, *index.get(&a.keys[j])?)))
+            .collect()
+    };
+    pairs
+        .into_iter()
+        .filter_map(|(i, j)| {
+            let d = a.tips[i].as_ref()?.dist(*b.tips[j].as_ref()?);
+            let limit = match (a.lifted[i], b.lifted[j]) {
                 (false, false) => w,
                 (true, true) => 0.5 * w,
                 _ => tol,
@@ -279,7 +320,7 @@ fn rings_spaced(
     let mut rings: Vec<Ring> = zs
         .par_iter()
         .map(|&z| ring_at(part, f, dropper, (z, reverse, tol)))
-        .collect();
+        .collect::<Result<_, _>>()?;
     let mut k = 0;
     while k + 1 < rings.len() {
         let (za, zb) = (rings[k].z, rings[k + 1].z);
@@ -289,7 +330,7 @@ fn rings_spaced(
             }
             rings.insert(
                 k + 1,
-                ring_at(part, f, dropper, (0.5 * (za + zb), reverse, tol)),
+                ring_at(part, f, dropper, (0.5 * (za + zb), reverse, tol))?,
             );
         } else {
             k += 1;
@@ -310,6 +351,23 @@ fn refined(ring: &Ring, dropper: &Dropper, tol: f64) -> Vec<Vec3> {
     out
 }
 
+/// Descents steeper than [`MAX_DESCENT`] (Δz over the XY length) raised to
+/// it, each point at least the previous one's z less the slope times their
+/// XY distance: round a slot's corner near its floor the drop lifts the
+/// ball onto the edge of the wall below, and the next contact, on the
+/// slot's side, rests on its floor; going straight down there would enter
+/// the side's stock as a plunge. Raising a point never takes it under the
+/// drop.
+fn limit_descent(tips: &mut [Vec3]) {
+    for j in 1..tips.len() {
+        let (a, b) = (tips[j - 1], tips[j]);
+        let floor = a.z - MAX_DESCENT * (b.x - a.x).hypot(b.y - a.y);
+        if b.z < floor {
+            tips[j].z = floor;
+        }
+    }
+}
+
 /// The finishing program of a tube job (module doc).
 pub fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, String> {
     use rayon::prelude::*;
@@ -318,7 +376,13 @@ pub fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, S
     }
     let tol = job.operation.tolerance;
     let w = pass_width(f.corner, f.scallop);
-    let zs = ring_heights(part.tube, w)?;
+    let mut zs = ring_heights(part.tube, w)?;
+    for z in part.rings.extra_heights(part.tube) {
+        if zs.iter().all(|&y| (y - z).abs() > 1e-4) {
+            zs.push(z);
+        }
+    }
+    zs.sort_by(f64::total_cmp);
     if zs.len().saturating_mul(part.tube.points()) > MAX_SAMPLES {
         return Err(format!(
             "the finish would take {} rings of {} samples (at most {MAX_SAMPLES} samples): raise finish.scallop or use a larger finishing tool",
@@ -335,7 +399,13 @@ pub fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, S
     let spaced = rings_spaced(part, f, &dropper, &zs, (w, reverse, tol))?;
     let rings: Vec<(Vec<Vec3>, [f64; 2])> = spaced
         .par_iter()
-        .map(|r| (refined(r, &dropper, 0.5 * tol), r.start_dir))
+        .map(|r| {
+            let mut tips = refined(r, &dropper, 0.5 * tol);
+            if part.rings.has_slot() {
+                limit_descent(&mut tips);
+            }
+            (tips, r.start_dir)
+        })
         .collect();
     let zs: Vec<f64> = spaced.iter().map(|r| r.z).collect();
     let mut sections = Vec::with_capacity(rings.len());
@@ -432,11 +502,13 @@ mod tests {
                 .fold(0.0, f64::max);
             assert!(d <= w + 1e-9, "z {pair:?}: {d} > {w}");
         }
+        let contacts = Rings::new(&tube, tube.points(), f.radius()).unwrap();
         let part = RingPart {
             tube: &tube,
             mesh: &mesh,
             area: 1.0,
             top: 0.0,
+            rings: &contacts,
         };
         let dropper = Dropper {
             cutter: cutter_of(&f),

@@ -400,7 +400,7 @@ fn readme_jobs_table_levels_match_the_samples() {
 #[test]
 fn readme_jobs_table_times_are_the_headers() {
     let readme = doc_figures::read("README.md");
-    let rows: [(&str, &[&str]); 8] = [
+    let rows: [(&str, &[&str]); 9] = [
         ("`jobs/mfs-sign.toml`", &["mfs-sign"]),
         (
             "`jobs/mfs-mould.toml`",
@@ -415,6 +415,10 @@ fn readme_jobs_table_times_are_the_headers() {
         ("`jobs/q-mould.toml`", &["q-mould.rough", "q-mould.finish"]),
         ("`jobs/svg-logo.toml`", &["svg-logo"]),
         ("`jobs/dxf-plate.toml`", &["dxf-plate"]),
+        (
+            "`jobs/pde-trimmed.toml`",
+            &["pde-trimmed.rough", "pde-trimmed.finish"],
+        ),
     ];
     for (key, names) in rows {
         let cells = doc_figures::table_row(&readme, "README.md", key);

@@ -44,6 +44,7 @@ mod inputs;
 mod levels;
 mod pde;
 mod pde_job;
+mod pde_trim_job;
 mod polyharmonic;
 mod preview;
 mod sections;

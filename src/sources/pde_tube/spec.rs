@@ -60,6 +60,32 @@ impl TubeEnd {
     }
 }
 
+/// A trim as a job gives it: the angles and heights between which the
+/// tube's skin is cut away (down to the spine, `sources::pde_tube`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrimRect {
+    /// [from, to], radians, from < to: the parameter v, the polar angle
+    /// about the axis on the end curves (module doc).
+    pub angles: [f64; 2],
+    /// [bottom, top], mm relative to the part's top (z ≤ 0).
+    pub z: [f64; 2],
+}
+
+impl TrimRect {
+    /// The rectangle in the (u, v) plane, counter-clockwise (u along the
+    /// first axis): u = u(z) at the two heights (`u_of`, the tube's inverse
+    /// of A₀z), v the two angles. A top at the part's top (z = 0) is u = 1
+    /// for a rising tube.
+    pub fn polygon(&self, u_of: impl Fn(f64) -> f64) -> Vec<[f64; 2]> {
+        let (mut u0, mut u1) = (u_of(self.z[0]), u_of(self.z[1]));
+        if u0 > u1 {
+            std::mem::swap(&mut u0, &mut u1);
+        }
+        let [a, b] = self.angles;
+        vec![[u0, a], [u1, a], [u1, b], [u0, b]]
+    }
+}
+
 /// The job's description of a PDE tube (validated when the job is resolved:
 /// [`TubeSpec::tube`] succeeds on every resolved spec).
 #[derive(Clone, Debug, PartialEq)]
@@ -83,8 +109,9 @@ pub struct TubeSpec {
     /// Chords of a section stay within [`CHORD_FRACTION`] of this (mm); the
     /// nesting check allows a vertex this far out (`operation.tolerance`).
     pub tolerance: f64,
-    /// Trim polygons in the (u, v) plane (`sources::pde_tube`'s trims).
-    pub trims: Vec<Vec<[f64; 2]>>,
+    /// Trims given by heights and angles (`[[shape.trim]]`), cut out as
+    /// `sources::pde_tube`'s (u, v) trims ([`TrimRect::polygon`]).
+    pub trims: Vec<TrimRect>,
 }
 
 impl TubeSpec {
@@ -134,13 +161,18 @@ impl TubeSpec {
     pub fn tube(&self) -> Result<PdeTube, TubeError> {
         let surface = self.surface()?;
         let p = self.points(&surface);
-        PdeTube::new(
+        PdeTube::new_with(
             &self.curves(),
             self.a,
             self.modes,
             self.kind,
-            self.trims.clone(),
             (p, self.tolerance),
+            |t| {
+                self.trims
+                    .iter()
+                    .map(|r| r.polygon(|z| t.u_of(z)))
+                    .collect()
+            },
         )
     }
 

@@ -69,10 +69,16 @@ fn trimmed(trims: &[Vec<[f64; 2]>], u: f64) -> Vec<(f64, f64)> {
     merged
 }
 
+/// Where the top ring u = 1 takes its trims: a trim is cut out of the section
+/// at u where the line just above u crosses it (so a trim's floor u₀ is cut at
+/// u₀ itself, as a roughing level there must cut it); above u = 1 there is no
+/// line, and the top ring takes the state just below it.
+const TOP_U: f64 = 1.0 - 1e-9;
+
 /// The kept arcs (a, b), a < b, b possibly past 2π, at u: `None` when no trim
 /// applies there, empty when the whole curve is trimmed.
 pub(super) fn kept_arcs(trims: &[Vec<[f64; 2]>], u: f64) -> Option<Vec<(f64, f64)>> {
-    let cut = trimmed(trims, u);
+    let cut = trimmed(trims, u.min(TOP_U));
     let (first, last) = (cut.first()?, cut.last()?);
     let mut kept: Vec<(f64, f64)> = cut.windows(2).map(|w| (w[0].1, w[1].0)).collect();
     kept.push((last.1, first.0 + TAU));
