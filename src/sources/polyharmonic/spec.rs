@@ -8,7 +8,9 @@
 //! The box part of T₁ is interpolated on nodes a fifth of the smallest
 //! element side apart (4-point stencils). max h is the best coarse ray
 //! refined by a pattern search (steps from the coarse spacing halved to
-//! 1e-7 mm); min h is the base (the block's foot).
+//! 1e-7 mm); min h is the base (the block's foot). A closed solid
+//! (`Solid::Closed`) also gets its region (`closed::Region`), checked
+//! closed here; its surface is meshed on demand ([`PolySpec::closed_mesh`]).
 
 use super::closed::{closed_mesh, Region};
 use super::error::{invalid, PolyError};
