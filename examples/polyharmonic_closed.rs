@@ -50,7 +50,11 @@ fn main() {
     let exact = 4.0 / 3.0 * std::f64::consts::PI;
     for spacing in [0.1, 0.05, 0.04, 0.02] {
         let t0 = Instant::now();
-        let m = closed_mesh(&sol, 6, region, spacing).expect("a mesh");
+        let iso = closed_mesh(&sol, 6, region, spacing).expect("a mesh");
+        let m = pfcam::surface::Mesh {
+            vertices: iso.vertices,
+            triangles: iso.triangles,
+        };
         let dt = t0.elapsed().as_secs_f64();
         m.check().expect("closed and oriented");
         let r: Vec<f64> = m

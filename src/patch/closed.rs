@@ -8,7 +8,7 @@
 use super::{patch_stock, placement, HeightSource};
 use crate::job::Job;
 use crate::sources::polyharmonic::PolySpec;
-use crate::surface::{Surface, SurfaceError};
+use crate::surface::{Mesh, Surface, SurfaceError};
 
 /// The closed solid's mesh at `resolution` mm (a grid of that spacing over
 /// the region round the points), or None for a relief.
@@ -21,7 +21,11 @@ pub fn closed_surface(
     Some(
         built
             .map_err(|e| SurfaceError::Invalid(e.to_string()))
-            .map(|mut mesh| {
+            .map(|iso| {
+                let mut mesh = Mesh {
+                    vertices: iso.vertices,
+                    triangles: iso.triangles,
+                };
                 let dz = placement(job).top - spec.range().max;
                 for v in &mut mesh.vertices {
                     v[2] += dz;

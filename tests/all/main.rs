@@ -45,6 +45,7 @@ mod levels;
 mod pde;
 mod pde_job;
 mod polyharmonic;
+mod polyharmonic_closed;
 mod preview;
 mod sections;
 mod simulate;

@@ -15,11 +15,11 @@
 use super::closed::{closed_mesh, Region};
 use super::error::{invalid, PolyError};
 use super::fast::FastField;
+use super::iso::IsoMesh;
 use super::relief::{Relief, ReliefSpec};
 use super::system::{solve, GivenPoint, Model};
 use super::{Kernel, Quadrature};
 use crate::sources::harmonic_bezier::HeightRange;
-use crate::surface::Mesh;
 use nalgebra::Vector3;
 use std::sync::Arc;
 
@@ -212,7 +212,7 @@ impl PolySpec {
     /// The closed solid's surface T₁ = 0 on a grid at most `spacing` mm
     /// apart, in the points' coordinates (`closed::closed_mesh`); None for
     /// a relief.
-    pub fn closed_mesh(&self, spacing: f64) -> Option<Result<Mesh, PolyError>> {
+    pub fn closed_mesh(&self, spacing: f64) -> Option<Result<IsoMesh, PolyError>> {
         let region = self.built.2?;
         let sol = self.relief().field().solution();
         Some(closed_mesh(sol, self.per_edge, region, spacing))
