@@ -1,10 +1,11 @@
 //! Speed of Ochiai's polyharmonic solid (`sources::polyharmonic`, issue 19):
-//! the l = 2 solve and the top envelope. Run:
+//! the l = 2 solve, the top envelope and the closed solid's surface. Run:
 //! `cargo bench --bench polyharmonic`. Figures in docs/method.md §17 are the
 //! medians criterion prints.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
+use pfcam::sources::polyharmonic::closed::{closed_mesh, Region};
 use pfcam::sources::polyharmonic::{
     solve, Envelope, GivenPoint, Kernel, Model, PointKind, Quadrature,
 };
@@ -71,6 +72,12 @@ fn polyharmonic(c: &mut Criterion) {
                 hits
             })
         },
+    );
+    let model = sphere(6);
+    let region = Region::of(&model.points, model.kernel, &sol, 6).unwrap();
+    g.bench_function(
+        "sphere of 40 points: closed surface, spacing 0.04, N = 216",
+        |b| b.iter(|| closed_mesh(black_box(&sol), 6, region, 0.04).unwrap()),
     );
     g.finish();
 }

@@ -526,6 +526,8 @@ pub struct RawShape {
     pub elements: Option<i64>,
     /// `base` (polyharmonic), mm: the height of the block's foot
     pub base: Option<f64>,
+    /// `solid` (polyharmonic): `"relief"` or `"closed"`
+    pub solid: Option<String>,
     /// `bottom_size` (PDE tube), mm: [X, Y] of the curve at u = 0
     #[serde(default, deserialize_with = "exact::opt")]
     pub bottom_size: Option<[f64; 2]>,
@@ -2268,6 +2270,7 @@ mod doc_tests {
             "shape.box",
             "shape.elements",
             "shape.base",
+            "shape.solid",
             "shape.bottom_size",
             "shape.bottom_exponent",
             "shape.top_size",

@@ -350,13 +350,19 @@ pub fn job_surface(
 }
 
 /// The part of any boss or cavity job as a closed mesh at `opts.resolution`:
-/// a height field's block (`patch::patch_surface`), a PDE tube's part
+/// a closed polyharmonic solid itself (`patch::closed::closed_surface`), a
+/// height field's block (`patch::patch_surface`), a PDE tube's part
 /// (`tube::tube_surface`), else [`job_surface`]'s.
 pub fn job_part_surface(
     job: &Job,
     opts: &SurfaceOptions,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Surface, SurfaceError> {
+    if let crate::geometry::ShapeSource::Polyharmonic(spec) = &job.shape {
+        if let Some(s) = crate::patch::closed::closed_surface(job, spec, opts.resolution) {
+            return s;
+        }
+    }
     if let Some(spec) = job.shape.height_source() {
         return Ok(crate::patch::patch_surface(job, spec, opts.resolution)?);
     }

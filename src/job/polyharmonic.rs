@@ -1,13 +1,15 @@
 //! `[shape] kind = "polyharmonic"`: a solid from scattered points (Ochiai,
 //! docs/method.md §17) milled from above as its top envelope over the `size`
 //! rectangle. Points inline (`points`, `inside`, `outside`) or from
-//! `points_file` (CSV or XYZ); `kernel`, `a`, `box`, `elements`, `base`.
+//! `points_file` (CSV or XYZ); `kernel`, `a`, `box`, `elements`, `base`,
+//! `solid` (`"relief"` or `"closed"`: whether `pfcam surface` meshes the
+//! closed solid itself, checked closed here).
 //! The relief is solved and built here (`PolySpec::build_cached`), so the
 //! job's depth, max h − base, is known when the job is.
 
 use super::{invalid, limits, one_of, show, JobError, RawShape};
 use crate::geometry::{ShapeSource, Vec2};
-use crate::sources::polyharmonic::{GivenPoint, Kernel, PointKind, PolyInputs, PolySpec};
+use crate::sources::polyharmonic::{GivenPoint, Kernel, PointKind, PolyInputs, PolySpec, Solid};
 use nalgebra::Vector3;
 use std::path::Path;
 
@@ -19,7 +21,7 @@ pub const MAX_ELEMENTS: i64 = 12;
 pub const MAX_FILE_BYTES: u64 = 4_000_000;
 
 /// The polyharmonic keys and whether each is given.
-pub(super) fn poly_keys(s: &RawShape) -> [(&'static str, bool); 8] {
+pub(super) fn poly_keys(s: &RawShape) -> [(&'static str, bool); 9] {
     [
         ("shape.points", s.points.is_some()),
         ("shape.inside", s.inside.is_some()),
@@ -29,6 +31,7 @@ pub(super) fn poly_keys(s: &RawShape) -> [(&'static str, bool); 8] {
         ("shape.a", s.a.is_some()),
         ("shape.box", s.box_.is_some()),
         ("shape.elements", s.elements.is_some()),
+        ("shape.solid", s.solid.is_some()),
     ]
 }
 
@@ -53,7 +56,7 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
     match others.iter().chain(&more).find(|k| k.1) {
         Some((key, _)) => Err(invalid(
             key,
-            "does not apply to shape.kind = \"polyharmonic\": the solid is given by shape.points (or shape.points_file), shape.box, shape.size and shape.base (and shape.inside, shape.outside, shape.kernel, shape.a, shape.elements, shape.origin)",
+            "does not apply to shape.kind = \"polyharmonic\": the solid is given by shape.points (or shape.points_file), shape.box, shape.size and shape.base (and shape.inside, shape.outside, shape.kernel, shape.a, shape.elements, shape.solid, shape.origin)",
         )),
         None => Ok(()),
     }
@@ -106,6 +109,7 @@ pub(super) fn resolve(s: RawShape, origin: Vec2, base_dir: &Path) -> Result<Shap
     let base = required(s.base, "shape.base", "the height of the block's foot, mm")?;
     limits::ORIGIN.check("shape.base", base)?;
     check_inside_box(&points, lo, hi, origin, size, base)?;
+    let solid = solid(&s)?;
     PolySpec::build_cached(PolyInputs {
         points: points.into_iter().map(|p| p.1).collect(),
         kernel,
@@ -115,9 +119,21 @@ pub(super) fn resolve(s: RawShape, origin: Vec2, base_dir: &Path) -> Result<Shap
         origin: [origin.x, origin.y],
         size,
         base,
+        solid,
     })
     .map(ShapeSource::Polyharmonic)
     .map_err(poly_error)
+}
+
+/// `solid`: `"relief"` (default) or `"closed"`.
+fn solid(s: &RawShape) -> Result<Solid, JobError> {
+    let name = s.solid.as_deref().unwrap_or("relief");
+    one_of("shape.solid", name, &["relief", "closed"])?;
+    Ok(if name == "closed" {
+        Solid::Closed
+    } else {
+        Solid::Relief
+    })
 }
 
 /// `kernel` (default `T2A`) and `a`.

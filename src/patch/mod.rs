@@ -6,6 +6,7 @@
 //! level against its section), as a boss's. The stock top is max h; the
 //! part's foot, min h, is `operation.depth` below it.
 
+pub mod closed;
 pub mod mesh;
 pub mod raster;
 
@@ -20,7 +21,7 @@ use crate::pipeline::{
     OUTER_RADIUS_FACTOR,
 };
 use crate::sources::harmonic_bezier::PatchSpec;
-use crate::sources::polyharmonic::PolySpec;
+use crate::sources::polyharmonic::{PolySpec, Solid};
 
 /// A shape source that is a height field over a rectangle.
 #[derive(Clone, Copy, Debug)]
@@ -48,6 +49,17 @@ impl HeightSource<'_> {
         match self {
             HeightSource::Bezier(s) => s.origin,
             HeightSource::Poly(s) => Vec2::new(s.origin[0], s.origin[1]),
+        }
+    }
+
+    /// What the run summary calls the part (`glyphs: ...`, the preview's
+    /// solve): `patch`, `polyharmonic relief` or `polyharmonic solid`
+    /// (`shape.solid = "closed"`).
+    pub fn label(&self) -> &'static str {
+        match self {
+            HeightSource::Bezier(_) => "patch",
+            HeightSource::Poly(s) if s.solid == Solid::Closed => "polyharmonic solid",
+            HeightSource::Poly(_) => "polyharmonic relief",
         }
     }
 
@@ -115,7 +127,7 @@ pub fn run_patch(
     set_stage(Stage::Other);
     sections_output(
         job,
-        "patch",
+        spec.label(),
         shape,
         solves,
         planned,

@@ -381,7 +381,14 @@ fn gcode_doc_program_is_the_sample() {
 fn readme_jobs_table_levels_match_the_samples() {
     let readme = doc_figures::read("README.md");
     let mut checked = 0;
-    for name in ["mfs-sign", "mfs-mould", "q-sign", "q-mould"] {
+    for name in [
+        "mfs-sign",
+        "mfs-mould",
+        "q-sign",
+        "q-mould",
+        "polyharmonic-face",
+        "polyharmonic-pebble",
+    ] {
         let cells = doc_figures::table_row(&readme, "README.md", &format!("`jobs/{name}.toml`"));
         let stated: usize = cells[2].parse().expect("a level count");
         assert_eq!(
@@ -391,7 +398,7 @@ fn readme_jobs_table_levels_match_the_samples() {
         );
         checked += 1;
     }
-    assert_eq!(checked, 4);
+    assert_eq!(checked, 6);
 }
 
 /// The README's jobs table gives each shipped job's machining time: the
@@ -400,7 +407,7 @@ fn readme_jobs_table_levels_match_the_samples() {
 #[test]
 fn readme_jobs_table_times_are_the_headers() {
     let readme = doc_figures::read("README.md");
-    let rows: [(&str, &[&str]); 9] = [
+    let rows: [(&str, &[&str]); 11] = [
         ("`jobs/mfs-sign.toml`", &["mfs-sign"]),
         (
             "`jobs/mfs-mould.toml`",
@@ -418,6 +425,14 @@ fn readme_jobs_table_times_are_the_headers() {
         (
             "`jobs/pde-trimmed.toml`",
             &["pde-trimmed.rough", "pde-trimmed.finish"],
+        ),
+        (
+            "`jobs/polyharmonic-face.toml`",
+            &["polyharmonic-face.rough", "polyharmonic-face.finish"],
+        ),
+        (
+            "`jobs/polyharmonic-pebble.toml`",
+            &["polyharmonic-pebble.rough", "polyharmonic-pebble.finish"],
         ),
     ];
     for (key, names) in rows {

@@ -46,6 +46,7 @@ mod pde;
 mod pde_job;
 mod pde_trim_job;
 mod polyharmonic;
+mod polyharmonic_closed;
 mod preview;
 mod sections;
 mod simulate;

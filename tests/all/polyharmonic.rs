@@ -211,3 +211,132 @@ fn the_face_block_is_closed_and_has_its_volume() {
     let v = s.mesh.volume();
     assert!((v - exact).abs() < 2e-3 * exact, "{v} against {exact}");
 }
+
+fn pebble() -> Job {
+    load_job(&crate::common::shipped("polyharmonic-pebble.toml")).expect("the shipped pebble")
+}
+
+/// jobs/polyharmonic-pebble.toml (a closed solid, `shape.solid =
+/// "closed"`), roughed then finished, simulated by the binary against its
+/// top envelope: no finding, the largest gouge within the tolerance, the
+/// material the ball can reach left within the scallop plus 0.01 mm; the
+/// run's summary calls the part a polyharmonic solid.
+#[test]
+fn the_shipped_pebble_simulates_clean() {
+    use crate::common::{pfcam as bin, scratch, shipped, text};
+    let dir = scratch("polyharmonic", "pebble");
+    let job = shipped("polyharmonic-pebble.toml");
+    let job = job.to_str().unwrap();
+    let out = bin(&["run", job, "-o", "."], &dir);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("glyphs: polyharmonic solid\n"),
+        "{}",
+        text(&out.stdout)
+    );
+    let out = bin(
+        &[
+            "simulate",
+            "polyharmonic-pebble.rough.nc",
+            "polyharmonic-pebble.finish.nc",
+            "--job",
+            job,
+            "--json",
+        ],
+        &dir,
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["clean"], true, "{v}");
+    let part = &v["part"];
+    let gouge = part["max_gouge"]["value"].as_f64().unwrap();
+    let left = part["max_left_reachable"]["value"].as_f64().unwrap();
+    assert!(gouge <= 0.01, "max gouge {gouge}");
+    assert!(left <= 0.01 + 0.01, "material left {left}");
+    assert_eq!(part["gouged_cells"], 0);
+}
+
+/// The pebble's `pfcam surface` is the closed solid itself, not the block
+/// under its envelope: watertight and facing out; its top at `stock.top`
+/// (max h placed there); every 20th vertex on the zero set of the exact
+/// field (the full element sum, not the interpolant the mesher uses), by
+/// the distance estimate |T₁|/|∇T₁|: the median within 1e-3 mm (2.5e-5
+/// measured: the interpolant's error), the largest within the clamp of a
+/// vertex to 2 % of its grid edge from the nodes, 0.02·0.4·√3 = 0.0139 mm,
+/// plus 1e-3 (0.0121 measured); its volume within 2 % of the egg the points
+/// were taken from, (2/3)π·12·8·(16 + 20) mm³ (the interpolant is not the
+/// egg between the points: +0.95 % measured).
+#[test]
+fn the_pebble_surface_is_the_closed_solid() {
+    use pfcam::surface::{job_part_surface, SurfaceOptions};
+    let j = pebble();
+    let ShapeSource::Polyharmonic(spec) = &j.shape else {
+        panic!("not a polyharmonic job")
+    };
+    let s = job_part_surface(&j, &SurfaceOptions { resolution: 0.4 }, &mut |_| {}).unwrap();
+    s.mesh.check().unwrap();
+    let (lo, hi) = s.mesh.bbox().unwrap();
+    assert!((hi[2] - j.stock.top).abs() < 0.02, "top {}", hi[2]);
+    assert!(
+        lo[2] < j.stock.top - j.operation.depth - 5.0,
+        "bottom {}",
+        lo[2]
+    );
+    let exact = spec.relief().field().solution();
+    let dz = spec.range().max - j.stock.top;
+    let mut d: Vec<f64> = s
+        .mesh
+        .vertices
+        .iter()
+        .step_by(20)
+        .map(|p| {
+            let x = nalgebra::Vector3::new(p[0], p[1], p[2] + dz);
+            (exact.value(x).unwrap() / exact.gradient(x).unwrap().norm()).abs()
+        })
+        .collect();
+    d.sort_by(f64::total_cmp);
+    let (median, max) = (d[d.len() / 2], d[d.len() - 1]);
+    eprintln!(
+        "pebble surface: {} vertices, distance median {median:.2e}, max {max:.2e}",
+        d.len()
+    );
+    let clamp = pfcam::sources::polyharmonic::iso::T_MIN * 0.4 * 3f64.sqrt();
+    assert!(
+        median < 1e-3 && max < clamp + 1e-3,
+        "median {median:.2e}, max {max:.2e}"
+    );
+    let egg = 2.0 / 3.0 * std::f64::consts::PI * 12.0 * 8.0 * 36.0;
+    let v = s.mesh.volume();
+    eprintln!("pebble surface: volume {v:.1} mm³, the egg's {egg:.1}");
+    assert!(
+        (v - egg).abs() < 0.02 * egg,
+        "volume {v} against the egg's {egg}"
+    );
+}
+
+/// `shape.solid`: a value other than relief or closed, and "closed" for the
+/// face (a relief, open underneath), are errors naming the key.
+#[test]
+fn solid_errors_name_the_key() {
+    let e = parse_job(
+        &poly_job(&format!("{DOME}a = 2.0\nsolid = \"open\"")),
+        "dome",
+        Path::new("."),
+    )
+    .map(|_| ())
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("shape.solid"), "{e}");
+    let face = std::fs::read_to_string(crate::common::shipped("polyharmonic-face.toml")).unwrap();
+    let closed = face.replace(
+        "kind = \"polyharmonic\"\n",
+        "kind = \"polyharmonic\"\nsolid = \"closed\"\n",
+    );
+    assert_ne!(closed, face);
+    let dir = crate::common::root().join("jobs");
+    let e = parse_job(&closed, "face", &dir)
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("shape.solid = \"closed\", but"), "{e}");
+}

@@ -5,12 +5,14 @@
 //! equations as implemented, the corrections to the printed ones and the
 //! measured figures.
 
+pub mod closed;
 pub mod elements;
 pub mod envelope;
 mod error;
 pub mod fast;
 mod field;
 mod gauss;
+pub mod iso;
 pub mod kernels;
 pub mod lagrange;
 pub mod quadrature;
@@ -26,5 +28,5 @@ pub use gauss::GaussRule;
 pub use kernels::{Kernel, Radial};
 pub use quadrature::{QuadRule, Quadrature};
 pub use relief::{Relief, ReliefSpec};
-pub use spec::{PolyInputs, PolySpec};
+pub use spec::{PolyInputs, PolySpec, Solid};
 pub use system::{solve, solve_dirichlet, GivenPoint, Model, PointKind, Solution};

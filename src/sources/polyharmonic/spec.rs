@@ -8,10 +8,14 @@
 //! The box part of T₁ is interpolated on nodes a fifth of the smallest
 //! element side apart (4-point stencils). max h is the best coarse ray
 //! refined by a pattern search (steps from the coarse spacing halved to
-//! 1e-7 mm); min h is the base (the block's foot).
+//! 1e-7 mm); min h is the base (the block's foot). A closed solid
+//! (`Solid::Closed`) also gets its region (`closed::Region`), checked
+//! closed here; its surface is meshed on demand ([`PolySpec::closed_mesh`]).
 
+use super::closed::{closed_mesh, Region};
 use super::error::{invalid, PolyError};
 use super::fast::FastField;
+use super::iso::IsoMesh;
 use super::relief::{Relief, ReliefSpec};
 use super::system::{solve, GivenPoint, Model};
 use super::{Kernel, Quadrature};
@@ -51,7 +55,19 @@ pub struct PolySpec {
     pub size: [f64; 2],
     /// The lowest height (the block's foot), mm.
     pub base: f64,
-    built: Arc<(Relief, HeightRange)>,
+    /// A relief, or a closed solid (milled alike; `pfcam surface` meshes
+    /// the closed solid itself).
+    pub solid: Solid,
+    built: Arc<(Relief, HeightRange, Option<Region>)>,
+}
+
+/// What the points describe (`shape.solid`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Solid {
+    /// A relief: only its top envelope is meant (the face).
+    Relief,
+    /// A closed solid: T₁ > 0 all round it within the box (checked).
+    Closed,
 }
 
 impl std::fmt::Debug for PolySpec {
@@ -64,6 +80,7 @@ impl std::fmt::Debug for PolySpec {
             .field("origin", &self.origin)
             .field("size", &self.size)
             .field("base", &self.base)
+            .field("solid", &self.solid)
             .finish()
     }
 }
@@ -73,7 +90,8 @@ impl PartialEq for PolySpec {
     fn eq(&self, o: &Self) -> bool {
         (&self.points, self.kernel, self.lo, self.hi, self.per_edge)
             == (&o.points, o.kernel, o.lo, o.hi, o.per_edge)
-            && (self.origin, self.size, self.base) == (o.origin, o.size, o.base)
+            && (self.origin, self.size, self.base, self.solid)
+                == (o.origin, o.size, o.base, o.solid)
     }
 }
 
@@ -96,6 +114,8 @@ pub struct PolyInputs {
     pub size: [f64; 2],
     /// The base height.
     pub base: f64,
+    /// Relief or closed solid.
+    pub solid: Solid,
 }
 
 impl PolySpec {
@@ -110,6 +130,14 @@ impl PolySpec {
             quadrature: Quadrature::default(),
         };
         let sol = solve(&model)?;
+        let region = match i.solid {
+            Solid::Relief => None,
+            Solid::Closed => {
+                let r = Region::of(&i.points, i.kernel, &sol, i.per_edge)?;
+                r.check_closed(&sol)?;
+                Some(r)
+            }
+        };
         let zmax = i.points.iter().map(|p| p.p.z).fold(f64::MIN, f64::max);
         let start = zmax + 0.25 * (i.hi.z - zmax);
         if start <= i.base + RAY_STEP {
@@ -144,7 +172,8 @@ impl PolySpec {
             origin: i.origin,
             size: i.size,
             base: i.base,
-            built: Arc::new((relief, range)),
+            solid: i.solid,
+            built: Arc::new((relief, range, region)),
         })
     }
 
@@ -158,7 +187,7 @@ impl PolySpec {
         let same = |s: &PolySpec| {
             (&s.points, s.kernel, s.lo, s.hi, s.per_edge)
                 == (&i.points, i.kernel, i.lo, i.hi, i.per_edge)
-                && (s.origin, s.size, s.base) == (i.origin, i.size, i.base)
+                && (s.origin, s.size, s.base, s.solid) == (i.origin, i.size, i.base, i.solid)
         };
         if let Ok(cache) = BUILT.lock() {
             if let Some(s) = cache.iter().find(|s| same(s)) {
@@ -178,6 +207,20 @@ impl PolySpec {
     /// The relief.
     pub fn relief(&self) -> &Relief {
         &self.built.0
+    }
+
+    /// The closed solid's surface T₁ = 0 on a grid at most `spacing` mm
+    /// apart, in the points' coordinates (`closed::closed_mesh`); None for
+    /// a relief.
+    pub fn closed_mesh(&self, spacing: f64) -> Option<Result<IsoMesh, PolyError>> {
+        let region = self.built.2?;
+        let sol = self.relief().field().solution();
+        Some(closed_mesh(sol, self.per_edge, region, spacing))
+    }
+
+    /// The region the closed solid is meshed over (None for a relief).
+    pub fn closed_region(&self) -> Option<Region> {
+        self.built.2
     }
 
     /// max h (and where, relative to the origin) and min h = base.

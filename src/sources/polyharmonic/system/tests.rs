@@ -93,7 +93,7 @@ fn greens_identity_converges_like_h_squared() {
     );
 }
 
-fn sphere_model(per_edge: usize) -> Model {
+pub(crate) fn sphere_model(per_edge: usize) -> Model {
     let (lo, hi) = cube(2.0);
     let mut points: Vec<GivenPoint> = fibonacci(40, 0.0)
         .into_iter()
