@@ -1,7 +1,9 @@
 //! Where material is left: `cargo run --release --example left_map -- JOB.toml A.nc [B.nc ...]`
 //! prints the cells farthest above what the last program's tool can reach of
-//! the part (simulate::reach) after the programs, with x, y.
-use pfcam::simulate::part::part_heights;
+//! the part (simulate::reach) after the programs, with x, y; measured along
+//! the part's normal, as `pfcam simulate` measures it, with the part's
+//! height and slope there.
+use pfcam::simulate::part::part_surface;
 use pfcam::simulate::{job_facts, simulate_programs, SimOptions};
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
@@ -21,7 +23,7 @@ fn main() {
         ..SimOptions::default()
     };
     let seq = simulate_programs(&progs, &opts).expect("sim");
-    let h = part_heights(&seq.map, &part);
+    let (h, cos) = part_surface(&seq.map, &part);
     // Over what the last program's tool can reach of the part.
     let last = texts
         .last()
@@ -30,18 +32,20 @@ fn main() {
         .flatten()
         .map(|t| pfcam::simulate::reach::envelope(&seq.map.grid, &h, &t));
     let g = seq.map.grid;
-    let mut v: Vec<(f64, f64, f64)> = Vec::new();
+    let mut v: Vec<(f64, f64, f64, f64, f64)> = Vec::new();
     for j in 0..g.ny {
         for i in 0..g.nx {
             let p = h[j * g.nx + i];
             let e = env.as_ref().map_or(p, |e| e[j * g.nx + i].max(p));
             if p.is_finite() {
-                v.push((seq.map.at(i, j) - e, g.cx(i), g.cy(j)));
+                let k = j * g.nx + i;
+                v.push(((seq.map.at(i, j) - e) * cos[k], g.cx(i), g.cy(j), p, cos[k]));
             }
         }
     }
     v.sort_by(|a, b| b.0.total_cmp(&a.0));
-    for (d, x, y) in v.iter().take(12) {
-        println!("{d:.4} at X{x:.2} Y{y:.2}");
+    for (d, x, y, z, c) in v.iter().take(12) {
+        let deg = c.clamp(-1.0, 1.0).acos().to_degrees();
+        println!("{d:.4} at X{x:.2} Y{y:.2} (part z {z:.3}, slope {deg:.0} deg)");
     }
 }

@@ -723,12 +723,15 @@ pub fn section_view(
     ))
 }
 
-/// S2's mesh is built this fine (mm) for the finisher's drop-cutter: half the
-/// planner's grid. A 0.1 mm mesh changed no figure of q-sign's finish that
-/// `pfcam simulate` measures; on near-vertical walls (mfs-sign's power wall)
-/// the marching-squares chords at the letters' corners stray by up to about
-/// 0.1 mm across, over a millimetre in z (docs/method.md §13).
-pub const FINISH_MESH: f64 = 0.2;
+/// S2's mesh is built this fine (mm) for the finisher's drop-cutter: as fine
+/// as the part `pfcam simulate` measures against (its default resolution).
+/// On near-vertical walls (mfs-sign's power wall) a 0.2 mm mesh stood up to
+/// about 0.012 mm inside the 0.1 mm one along the normal near the top edge,
+/// and the ball touching the coarser one cut that far into the finer: 0.0119
+/// mm on a copy of mfs-sign with `[finish]`, 0.022 mm on the letter I of
+/// `tests/all/finish.rs`; with this mesh 0.0078 and 0.0069 mm (docs/method.md
+/// §13).
+pub const FINISH_MESH: f64 = 0.1;
 
 /// The finishing program of a boss or cavity (`crate::finish`): S2's mesh,
 /// u on the planner's grid over the stock, the passes and their path.

@@ -45,9 +45,22 @@ pub struct FinishParams<'a> {
     pub entry: f64,
     /// Chord tolerance, mm.
     pub tol: f64,
+    /// The stock the roughing leaves on the walls (`operation.stock_to_leave`), mm.
+    pub leave: f64,
 }
 
 impl FinishParams<'_> {
+    /// The cutter grown by `d` in every direction (radius and corner both
+    /// r + d, rc + d: the points within d of the cutter): where it touches
+    /// the mesh with its tip at z, the cutter's own tip at z + d lies d off
+    /// the mesh everywhere.
+    pub fn grown(&self, d: f64) -> Cutter {
+        Cutter {
+            radius: self.cutter.radius + d,
+            corner: self.cutter.corner + d,
+        }
+    }
+
     /// z (absolute, mm) of S2 where u = `s` ([`crate::surface::surface_z`]).
     pub fn z_of(&self, s: f64) -> f64 {
         crate::surface::surface_z(self.profile, self.cavity, self.top, s)
@@ -163,6 +176,7 @@ pub fn finish(
         top: job.stock.top,
         entry: job.tool.stepdown + job.operation.stock_to_leave + 0.5,
         tol: job.operation.tolerance,
+        leave: job.operation.stock_to_leave,
     };
     let curves = passes::Curves {
         field,

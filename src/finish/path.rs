@@ -462,6 +462,23 @@ fn surface_link(a: Vec3, b: Vec3, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec
     out
 }
 
+/// The height above which an entry's ramp starts `p.entry` up, at the first
+/// tip `first` of a loop: the higher of that tip and the tip of the cutter
+/// grown by the stock to leave, dropped on S2 there. The cutter at the grown
+/// one's tip plus `leave` lies `leave` off S2 in every direction, out of
+/// what the roughing left across the walls, and `entry` = stepdown +
+/// `leave` + 0.5 mm then puts it a stepdown and 0.5 mm over that, as over a
+/// flat floor (where the two tips are one). On a gentle slope the grown
+/// cutter's tip lies only `leave`·(sec θ − 1) over the cutter's; beside a
+/// near-vertical wall the cutter's side stands at the wall all the way up,
+/// and only the grown cutter, resting on the wall's top edge, finds where the
+/// stock left on the wall ends (mfs-sign's power wall: a rapid 0.24 mm into
+/// it, docs/method.md §13).
+fn entry_base(first: Vec3, p: &FinishParams, mesh: &MeshIndex) -> f64 {
+    let grown = p.grown(p.leave).drop(mesh, first.x, first.y);
+    grown.map_or(first.z, |z| first.z.max(z))
+}
+
 /// The XY length of the move from `a` to `b`, mm.
 fn run_xy(a: Vec3, b: Vec3) -> f64 {
     ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt()
@@ -516,7 +533,7 @@ pub fn moves(
             mv.push(Move::Rapid {
                 to: Vec3::new(first.x, first.y, over),
             });
-            let top = (first.z + p.entry).min(over);
+            let top = (entry_base(first, p, mesh) + p.entry).min(over);
             mv.push(Move::Rapid {
                 to: Vec3::new(first.x, first.y, top),
             });
@@ -698,6 +715,7 @@ mod tests {
             top: 0.0,
             entry: 1.7,
             tol: 0.01,
+            leave: 0.2,
         };
         let at = |x: f64, y: f64| Vec3::new(x, y, p.cutter.drop(&mesh, x, y).unwrap());
         let (a, b) = (at(-2.03, 0.0), at(-0.47, 0.2));
@@ -723,6 +741,66 @@ mod tests {
             worst <= p.tol,
             "a move passes {worst} mm under the drop height"
         );
+    }
+
+    /// An entry beside a vertical wall whose roughing left `leave` across it:
+    /// the ball, its axis 0.01 mm beyond r from the wall, rests on the floor,
+    /// and a rapid down to a ramp start `leave` over that tip drove its side
+    /// through the band the roughing left. The entry's base is where the
+    /// cutter grown by `leave` rests on the wall's top edge; `leave` over it
+    /// (the entry with no stepdown and no margin) the ball clears the band,
+    /// as the circle of the ball's section shows: its section at the wall's
+    /// top reaches no farther than r − leave + 0.01 from the axis. On the
+    /// open floor the base is the tip itself.
+    #[test]
+    fn an_entry_beside_a_vertical_wall_stays_over_the_stock_left_on_it() {
+        let tri = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| [a, b, c];
+        let tris = vec![
+            tri([-10.0, -5.0, -3.0], [1.0, -5.0, -3.0], [1.0, 5.0, -3.0]),
+            tri([-10.0, -5.0, -3.0], [1.0, 5.0, -3.0], [-10.0, 5.0, -3.0]),
+            tri([1.0, -5.0, 0.0], [5.0, -5.0, 0.0], [5.0, 5.0, 0.0]),
+            tri([1.0, -5.0, 0.0], [5.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
+            tri([1.0, -5.0, 0.0], [1.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
+        ];
+        let mesh = MeshIndex::new(tris, 0.8);
+        let profile = crate::levels::DepthProfile::Linear {
+            s_bottom: 0.9,
+            depth: 3.0,
+        };
+        let leave = 0.2;
+        let p = FinishParams {
+            cutter: Cutter::ball(1.5875),
+            profile: &profile,
+            cavity: false,
+            climb: true,
+            feed: 1000.0,
+            plunge_feed: 200.0,
+            ramp_angle: 3.0,
+            safe_z: 5.0,
+            retract_z: 1.0,
+            top: 0.0,
+            entry: leave,
+            tol: 0.01,
+            leave,
+        };
+        let r = p.cutter.radius;
+        let x = 1.0 - r - 0.01;
+        let first = Vec3::new(x, 0.0, p.cutter.drop(&mesh, x, 0.0).unwrap());
+        assert_eq!(first.z, -3.0);
+        let tip = entry_base(first, &p, &mesh) + p.entry;
+        // The band of stock lies (r + 0.01 − leave) .. (r + 0.01) from the
+        // axis up to z = 0; the ball's section at height z has radius
+        // √(r² − (tip + r − z)²).
+        let reach = r + 0.01 - leave;
+        let need = 0.0 - r + (r * r - reach * reach).sqrt();
+        assert!(tip >= need - 1e-9, "tip {tip} under {need}");
+        assert!(
+            first.z + p.entry < need,
+            "the test needs the old entry to fail"
+        );
+        // Out on the floor the entry starts over the tip, as before.
+        let far = Vec3::new(-6.0, 0.0, -3.0);
+        assert_eq!(entry_base(far, &p, &mesh), -3.0);
     }
 
     #[test]
