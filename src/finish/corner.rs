@@ -81,7 +81,6 @@ pub fn corner_axes(
 mod tests {
     use super::*;
     use crate::levels::DepthProfile;
-    use crate::toolpath::dropcutter::Cutter;
 
     /// A round boss: top disk of radius `rt` at z = 0, a conical wall down
     /// to the foot circle of radius `rf` at z = −3, the floor out to rf + 10
@@ -103,23 +102,7 @@ mod tests {
         tris
     }
 
-    fn params(profile: &DepthProfile) -> FinishParams<'_> {
-        FinishParams {
-            cutter: Cutter::ball(1.5875),
-            profile,
-            cavity: false,
-            climb: true,
-            feed: 1000.0,
-            plunge_feed: 200.0,
-            ramp_angle: 3.0,
-            safe_z: 5.0,
-            retract_z: 1.0,
-            top: 0.0,
-            entry: 1.7,
-            tol: 0.01,
-            leave: 0.2,
-        }
-    }
+    use crate::finish::testing::params;
 
     /// Against the ball in the section through the axis of a round boss
     /// (the closest point of a surface of revolution lies in that plane):

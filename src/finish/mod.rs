@@ -289,3 +289,54 @@ fn without_floor_bound(
     }
     (levels, kept)
 }
+
+/// Fixtures of the finisher's unit tests.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::FinishParams;
+    use crate::levels::DepthProfile;
+    use crate::toolpath::dropcutter::{Cutter, MeshIndex};
+
+    /// A 3.175 mm ball over a boss of `profile` (feeds 1000 / 200 mm/min,
+    /// ramps at 3°, safe z 5, retract 1, top 0, entry 1.7, tolerance 0.01,
+    /// 0.2 mm left by the roughing).
+    pub(crate) fn params(profile: &DepthProfile) -> FinishParams<'_> {
+        FinishParams {
+            cutter: Cutter::ball(1.5875),
+            profile,
+            cavity: false,
+            climb: true,
+            feed: 1000.0,
+            plunge_feed: 200.0,
+            ramp_angle: 3.0,
+            safe_z: 5.0,
+            retract_z: 1.0,
+            top: 0.0,
+            entry: 1.7,
+            tol: 0.01,
+            leave: 0.2,
+        }
+    }
+
+    /// A step: the floor at z = −3 for x ≤ 1, the top at z = 0 for x ≥ 1
+    /// (y from −5 to 5), the wall's top edge as a segment.
+    pub(crate) fn step_mesh() -> MeshIndex {
+        let tri = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| [a, b, c];
+        let tris = vec![
+            tri([-10.0, -5.0, -3.0], [1.0, -5.0, -3.0], [1.0, 5.0, -3.0]),
+            tri([-10.0, -5.0, -3.0], [1.0, 5.0, -3.0], [-10.0, 5.0, -3.0]),
+            tri([1.0, -5.0, 0.0], [5.0, -5.0, 0.0], [5.0, 5.0, 0.0]),
+            tri([1.0, -5.0, 0.0], [5.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
+            tri([1.0, -5.0, 0.0], [1.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
+        ];
+        MeshIndex::new(tris, 0.8)
+    }
+
+    /// φ(s) of the step's tests: linear from −3 mm at s = 0.9.
+    pub(crate) fn step_profile() -> DepthProfile {
+        DepthProfile::Linear {
+            s_bottom: 0.9,
+            depth: 3.0,
+        }
+    }
+}

@@ -688,35 +688,9 @@ mod tests {
     /// stays above the drop height at 20 points along it.
     #[test]
     fn a_link_climbing_a_wall_stays_above_the_drop_height() {
-        let tri = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| [a, b, c];
-        let mut tris = vec![
-            // Floor at z = −3 for x ≤ 1, the top at z = 0 for x ≥ 1.
-            tri([-10.0, -5.0, -3.0], [1.0, -5.0, -3.0], [1.0, 5.0, -3.0]),
-            tri([-10.0, -5.0, -3.0], [1.0, 5.0, -3.0], [-10.0, 5.0, -3.0]),
-            tri([1.0, -5.0, 0.0], [5.0, -5.0, 0.0], [5.0, 5.0, 0.0]),
-            tri([1.0, -5.0, 0.0], [5.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
-        ];
-        tris.push(tri([1.0, -5.0, 0.0], [1.0, 5.0, 0.0], [1.0, 5.0, 0.0]));
-        let mesh = MeshIndex::new(tris, 0.8);
-        let profile = crate::levels::DepthProfile::Linear {
-            s_bottom: 0.9,
-            depth: 3.0,
-        };
-        let p = FinishParams {
-            cutter: Cutter::ball(1.5875),
-            profile: &profile,
-            cavity: false,
-            climb: true,
-            feed: 1000.0,
-            plunge_feed: 200.0,
-            ramp_angle: 3.0,
-            safe_z: 5.0,
-            retract_z: 1.0,
-            top: 0.0,
-            entry: 1.7,
-            tol: 0.01,
-            leave: 0.2,
-        };
+        let mesh = crate::finish::testing::step_mesh();
+        let profile = crate::finish::testing::step_profile();
+        let p = crate::finish::testing::params(&profile);
         let at = |x: f64, y: f64| Vec3::new(x, y, p.cutter.drop(&mesh, x, y).unwrap());
         let (a, b) = (at(-2.03, 0.0), at(-0.47, 0.2));
         assert!(b.z > -1.2 && a.z == -3.0, "{a:?} {b:?}");
@@ -754,34 +728,13 @@ mod tests {
     /// open floor the base is the tip itself.
     #[test]
     fn an_entry_beside_a_vertical_wall_stays_over_the_stock_left_on_it() {
-        let tri = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| [a, b, c];
-        let tris = vec![
-            tri([-10.0, -5.0, -3.0], [1.0, -5.0, -3.0], [1.0, 5.0, -3.0]),
-            tri([-10.0, -5.0, -3.0], [1.0, 5.0, -3.0], [-10.0, 5.0, -3.0]),
-            tri([1.0, -5.0, 0.0], [5.0, -5.0, 0.0], [5.0, 5.0, 0.0]),
-            tri([1.0, -5.0, 0.0], [5.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
-            tri([1.0, -5.0, 0.0], [1.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
-        ];
-        let mesh = MeshIndex::new(tris, 0.8);
-        let profile = crate::levels::DepthProfile::Linear {
-            s_bottom: 0.9,
-            depth: 3.0,
-        };
+        let mesh = crate::finish::testing::step_mesh();
+        let profile = crate::finish::testing::step_profile();
         let leave = 0.2;
         let p = FinishParams {
-            cutter: Cutter::ball(1.5875),
-            profile: &profile,
-            cavity: false,
-            climb: true,
-            feed: 1000.0,
-            plunge_feed: 200.0,
-            ramp_angle: 3.0,
-            safe_z: 5.0,
-            retract_z: 1.0,
-            top: 0.0,
             entry: leave,
-            tol: 0.01,
             leave,
+            ..crate::finish::testing::params(&profile)
         };
         let r = p.cutter.radius;
         let x = 1.0 - r - 0.01;
