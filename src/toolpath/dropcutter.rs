@@ -948,26 +948,8 @@ impl MeshIndex {
                 }
             }
         }
-        let mut rest: &mut [u32] = &mut items;
-        let mut cells: Vec<&mut [u32]> = Vec::with_capacity(index.nx * index.ny);
-        for k in 0..index.nx * index.ny {
-            let (cell, tail) = std::mem::take(&mut rest).split_at_mut(count[k + 1] - count[k]);
-            cells.push(cell);
-            rest = tail;
-        }
-        cells
-            .into_par_iter()
-            .for_each(|c| c.sort_unstable_by_key(|&it| it & 3));
-        index.cells = (0..index.nx * index.ny)
-            .into_par_iter()
-            .map(|k| {
-                Bounds::union(
-                    items[count[k]..count[k + 1]]
-                        .iter()
-                        .map(|&it| &bounds[(it >> 2) as usize]),
-                )
-            })
-            .collect();
+        sort_cells(&mut items, &count);
+        index.cells = cell_bounds(&items, &count, &bounds);
         index.start = count;
         index.items = items;
         index.tris = tris;
@@ -1091,6 +1073,35 @@ impl MeshIndex {
             }
         }
     }
+}
+
+/// Each cell's items (`items[count[k]..count[k + 1]]`) sorted by their
+/// [`rank`], the cells in parallel.
+fn sort_cells(items: &mut [u32], count: &[usize]) {
+    let mut rest: &mut [u32] = items;
+    let mut cells: Vec<&mut [u32]> = Vec::with_capacity(count.len().saturating_sub(1));
+    for k in 0..count.len().saturating_sub(1) {
+        let (cell, tail) = std::mem::take(&mut rest).split_at_mut(count[k + 1] - count[k]);
+        cells.push(cell);
+        rest = tail;
+    }
+    cells
+        .into_par_iter()
+        .for_each(|c| c.sort_unstable_by_key(|&it| it & 3));
+}
+
+/// Each cell's box round its triangles' boxes, and their highest corner.
+fn cell_bounds(items: &[u32], count: &[usize], bounds: &[Bounds]) -> Vec<Bounds> {
+    (0..count.len().saturating_sub(1))
+        .into_par_iter()
+        .map(|k| {
+            Bounds::union(
+                items[count[k]..count[k + 1]]
+                    .iter()
+                    .map(|&it| &bounds[(it >> 2) as usize]),
+            )
+        })
+        .collect()
 }
 
 /// Rank of a triangle's entry in a cell, from whether the cell lies right of
