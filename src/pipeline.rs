@@ -723,6 +723,12 @@ pub fn section_view(
     ))
 }
 
+/// The finisher's drop-cutter index over the part's triangles (built at
+/// [`FINISH_MESH`]): cells of four mesh spacings.
+pub(crate) fn finish_index(tris: Vec<[[f64; 3]; 3]>) -> crate::toolpath::dropcutter::MeshIndex {
+    crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * FINISH_MESH)
+}
+
 /// S2's mesh is built this fine (mm) for the finisher's drop-cutter: as fine
 /// as the part `pfcam simulate` measures against (its default resolution).
 /// On near-vertical walls (mfs-sign's power wall) a 0.2 mm mesh stood up to
@@ -766,11 +772,7 @@ fn finish_program(
         name: "finishing passes".into(),
         total: 1,
     });
-    let mesh = &surface.mesh;
-    let up: Vec<[[f64; 3]; 3]> = (0..mesh.triangles.len())
-        .map(|t| mesh.corners(t))
-        .filter(|c| crate::surface::up_area(c) > 1e-12)
-        .collect();
+    let up = surface.mesh.up_triangles();
     let walls = crate::finish::wall_area(&up);
     let h = crate::levels::plan::GRID_SPACING;
     let grid = field::isolines::Grid::sample(field, stock.0, stock.1, h, glyphs);
@@ -784,7 +786,7 @@ fn finish_program(
         job.stock.top,
         job.operation.tolerance,
     ));
-    let index = crate::toolpath::dropcutter::MeshIndex::new(up, 4.0 * FINISH_MESH);
+    let index = finish_index(up);
     let done = crate::finish::finish(job, f, field, glyphs, grid, h, &index, walls)
         .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
     progress(Progress::Step);

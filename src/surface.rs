@@ -137,6 +137,15 @@ impl Mesh {
         ]
     }
 
+    /// The corners of every triangle that faces up ([`up_area`] > 1e-12):
+    /// what a cutter lowered from above can touch, for the drop-cutter.
+    pub fn up_triangles(&self) -> Vec<[[f64; 3]; 3]> {
+        (0..self.triangles.len())
+            .map(|t| self.corners(t))
+            .filter(|c| up_area(c) > 1e-12)
+            .collect()
+    }
+
     /// Area of triangle `t`, mm².
     pub fn area(&self, t: usize) -> f64 {
         triangle_area(&self.corners(t))

@@ -160,7 +160,7 @@ fn finish_patch(
         .filter(|c| c.iter().any(|v| v[2] > z_floor + 1e-9))
         .map(crate::surface::triangle_area)
         .sum();
-    let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
+    let index = crate::pipeline::finish_index(tris);
     // A patch's floor is only round it; a relief's base is also its own flat
     // top between the rectangle's edges and the solid's rim, which the
     // levels leave stepped: the ball finishes it too, so only below the base
@@ -227,10 +227,7 @@ pub fn patch_part_triangles(
 ) -> Result<Vec<[[f64; 3]; 3]>, PipelineError> {
     let s = patch_surface(job, spec, resolution)?;
     let m = &s.mesh;
-    let mut tris: Vec<[[f64; 3]; 3]> = (0..m.triangles.len())
-        .map(|t| m.corners(t))
-        .filter(|c| crate::surface::up_area(c) > 1e-12)
-        .collect();
+    let mut tris = m.up_triangles();
     let size = Vec2::new(spec.size()[0], spec.size()[1]);
     tris.extend(mesh::floor_triangles(
         (spec.origin(), spec.origin() + size),

@@ -106,12 +106,9 @@ fn finish_tube(
     let fine = crate::pipeline::FINISH_MESH;
     let stock = tube_stock(job, tube);
     let s = mesh::tube_mesh(tube, job.stock.top, fine, stock).map_err(PipelineError::Internal)?;
-    let tris: Vec<[[f64; 3]; 3]> = (0..s.mesh.triangles.len())
-        .map(|t| s.mesh.corners(t))
-        .filter(|c| crate::surface::up_area(c) > 1e-12)
-        .collect();
+    let tris = s.mesh.up_triangles();
     let area = crate::finish::wall_area(&tris);
-    let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * fine);
+    let index = crate::pipeline::finish_index(tris);
     let contacts = ring_contacts::Rings::new(tube, tube.points(), f.radius())
         .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
     let part = rings::RingPart {
@@ -147,8 +144,5 @@ pub fn tube_part_triangles(
 ) -> Result<Vec<[[f64; 3]; 3]>, PipelineError> {
     let s = tube_surface(job, spec, resolution)?;
     let m = &s.mesh;
-    Ok((0..m.triangles.len())
-        .map(|t| m.corners(t))
-        .filter(|c| crate::surface::up_area(c) > 1e-12)
-        .collect())
+    Ok(m.up_triangles())
 }
