@@ -272,26 +272,7 @@ fn the_part_mesh_is_closed_and_has_the_blocks_volume() {
 /// and the material the ball can reach left within the scallop + 0.01 mm.
 #[test]
 fn the_shipped_patch_simulates_clean() {
-    use crate::common::{pfcam as bin, scratch, shipped, text};
-    let dir = scratch("harmonic_patch", "shipped");
-    let job = shipped("harmonic-patch.toml");
-    let job = job.to_str().unwrap();
-    let out = bin(&["run", job, "-o", ".", "-q"], &dir);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let out = bin(
-        &[
-            "simulate",
-            "harmonic-patch.rough.nc",
-            "harmonic-patch.finish.nc",
-            "--job",
-            job,
-            "--json",
-        ],
-        &dir,
-    );
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["clean"], true, "{v}");
+    let v = crate::common::run_and_simulate("harmonic_patch", "harmonic-patch");
     let part = &v["part"];
     assert_eq!(part["model"], "harmonic patch");
     let gouge = part["max_gouge"]["value"].as_f64().unwrap();

@@ -327,21 +327,14 @@ fn the_part_mesh_is_closed_with_the_tubes_volume() {
 /// left within finish.scallop + 0.01 mm.
 #[test]
 fn the_shipped_vase_simulates_clean() {
-    use crate::common::{pfcam as bin, root, text};
-    let out = bin(
+    let v = crate::common::simulate_report(
         &[
-            "simulate",
             "gcode-samples/pde-vase.rough.nc",
             "gcode-samples/pde-vase.finish.nc",
-            "--job",
-            "jobs/pde-vase.toml",
-            "--json",
         ],
-        root(),
+        "jobs/pde-vase.toml",
+        crate::common::root(),
     );
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["clean"], true, "{v}");
     let part = &v["part"];
     assert_eq!(part["model"], "PDE tube");
     let gouge = part["max_gouge"]["value"].as_f64().unwrap();

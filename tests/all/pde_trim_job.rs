@@ -164,21 +164,14 @@ fn trim_errors_name_their_keys() {
 /// the material the ball can reach left within finish.scallop + 0.01 mm.
 #[test]
 fn the_shipped_trimmed_vase_simulates_clean() {
-    use crate::common::{pfcam as bin, root, text};
-    let out = bin(
+    let v = crate::common::simulate_report(
         &[
-            "simulate",
             "gcode-samples/pde-trimmed.rough.nc",
             "gcode-samples/pde-trimmed.finish.nc",
-            "--job",
-            "jobs/pde-trimmed.toml",
-            "--json",
         ],
-        root(),
+        "jobs/pde-trimmed.toml",
+        crate::common::root(),
     );
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["clean"], true, "{v}");
     let part = &v["part"];
     let gouge = part["max_gouge"]["value"].as_f64().unwrap();
     assert!((0.0..=0.01).contains(&gouge), "max gouge {gouge}");

@@ -154,26 +154,7 @@ fn errors_name_their_keys() {
 /// docs/method.md §17, "As a part").
 #[test]
 fn the_shipped_face_simulates_clean() {
-    use crate::common::{pfcam as bin, scratch, shipped, text};
-    let dir = scratch("polyharmonic", "shipped");
-    let job = shipped("polyharmonic-face.toml");
-    let job = job.to_str().unwrap();
-    let out = bin(&["run", job, "-o", ".", "-q"], &dir);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let out = bin(
-        &[
-            "simulate",
-            "polyharmonic-face.rough.nc",
-            "polyharmonic-face.finish.nc",
-            "--job",
-            job,
-            "--json",
-        ],
-        &dir,
-    );
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["clean"], true, "{v}");
+    let v = crate::common::run_and_simulate("polyharmonic", "polyharmonic-face");
     let part = &v["part"];
     assert_eq!(part["model"], "polyharmonic relief");
     let gouge = part["max_gouge"]["value"].as_f64().unwrap();
@@ -234,20 +215,14 @@ fn the_shipped_pebble_simulates_clean() {
         "{}",
         text(&out.stdout)
     );
-    let out = bin(
+    let v = crate::common::simulate_report(
         &[
-            "simulate",
             "polyharmonic-pebble.rough.nc",
             "polyharmonic-pebble.finish.nc",
-            "--job",
-            job,
-            "--json",
         ],
+        job,
         &dir,
     );
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["clean"], true, "{v}");
     let part = &v["part"];
     let gouge = part["max_gouge"]["value"].as_f64().unwrap();
     let left = part["max_left_reachable"]["value"].as_f64().unwrap();

@@ -33,3 +33,30 @@ pub fn scratch(module: &str, name: &str) -> PathBuf {
     fs::create_dir_all(&d).expect("create scratch dir");
     d
 }
+
+/// `pfcam simulate PROGRAMS... --job JOB --json` in `dir`, asserted to
+/// succeed and report `clean: true`; the whole report (its `part`: the
+/// gouge and the material left, for the caller to hold to its bounds).
+pub fn simulate_report(programs: &[&str], job: &str, dir: &Path) -> serde_json::Value {
+    let mut args = vec!["simulate"];
+    args.extend_from_slice(programs);
+    args.extend_from_slice(&["--job", job, "--json"]);
+    let out = pfcam(&args, dir);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["clean"], true, "{v}");
+    v
+}
+
+/// The shipped job `name` (jobs/`name`.toml) run into a scratch directory
+/// of `module`, then its rough and finish programs simulated
+/// ([`simulate_report`]).
+pub fn run_and_simulate(module: &str, name: &str) -> serde_json::Value {
+    let dir = scratch(module, "shipped");
+    let job = super::shipped(&format!("{name}.toml"));
+    let job = job.to_str().unwrap();
+    let out = pfcam(&["run", job, "-o", ".", "-q"], &dir);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let (rough, finish) = (format!("{name}.rough.nc"), format!("{name}.finish.nc"));
+    simulate_report(&[&rough, &finish], job, &dir)
+}

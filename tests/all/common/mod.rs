@@ -7,7 +7,8 @@
 //!   extension), `shipped` and `shipped_jobs` (`jobs/`), `test_data`
 //!   (`tests/data/`).
 //! - [`bin`]: the `pfcam` binary run as a user runs it (`pfcam`, `text`) and
-//!   `scratch` directories to run it in.
+//!   `scratch` directories to run it in; `simulate_report` and `run_and_simulate`
+//!   (a clean `pfcam simulate --json` of programs, its `part`).
 //! - [`oracle`]: geometry measured independently of pfcam, to hold pfcam's to:
 //!   `seg_dist`, `sample_pline` (cavalier_contours' polylines), and a shape's
 //!   `area`, `holes` and `perimeter`.
@@ -18,7 +19,7 @@ pub mod files;
 pub mod oracle;
 pub mod rng;
 
-pub use bin::{pfcam, scratch, text, PFCAM};
+pub use bin::{pfcam, run_and_simulate, scratch, simulate_report, text, PFCAM};
 pub use files::{files, root, shipped, shipped_jobs, test_data};
 pub use oracle::{area, holes, perimeter, sample_pline, seg_dist};
 pub use rng::Rng;
