@@ -35,7 +35,7 @@ mod tube;
 mod tube_trim;
 
 pub use composition::PART_OPS;
-pub use finish::{CutterShape, Finish};
+pub use finish::{CutterShape, Finish, Pattern};
 pub use font::{Fonts, Sources};
 
 /// A resolved job: units in mm, mm/min and rev/min, defaults applied, validated.
@@ -2250,6 +2250,9 @@ mod doc_tests {
             "ramp_angle",
             "margin",
             "max_scallop",
+            "scallop",
+            "pattern",
+            "corner_radius",
             "s_bottom",
             "s1",
             "s2",

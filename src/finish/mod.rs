@@ -7,6 +7,7 @@
 //! simulate` checks the two programs against the part independently.
 
 pub mod corner;
+pub mod geodesic;
 pub mod passes;
 pub mod path;
 
@@ -72,8 +73,6 @@ impl FinishParams<'_> {
 pub struct Finished {
     /// The tool path (tip coordinates).
     pub toolpath: Toolpath,
-    /// The passes' s, from the floor up.
-    pub levels: Vec<f64>,
     /// The pass width on the surface, mm.
     pub width: f64,
     /// The lower bound of its machining time: S2's sloped area (the walls) ÷
@@ -186,8 +185,11 @@ pub fn finish(
         tol: job.operation.tolerance,
     };
     let width = passes::pass_width(f.corner, f.scallop);
+    let dist = (f.pattern == crate::job::Pattern::Geodesic)
+        .then(|| curves.distance(profile, cavity, &|s| p.z_of(s)));
     let cands = passes::pass_levels(
         &curves,
+        dist.as_ref(),
         profile,
         cavity,
         width,
@@ -195,8 +197,11 @@ pub fn finish(
     )?;
     let cands = with_corner(cands, width, field, &p, mesh);
     let loops = tip_loops(&cands.passes, field, &p, mesh)?;
-    let floor_z = cands.passes.get(cands.floor).map_or(p.top, |f| p.z_of(f.0));
-    let (levels, loops) = without_floor_bound(&cands.passes, loops, cands.floor + 1, floor_z);
+    let floor_z = match cands.passes.get(cands.floor) {
+        Some((passes::At::S(s), _)) => p.z_of(*s),
+        _ => p.top,
+    };
+    let loops = without_floor_bound(loops, cands.passes.len(), cands.floor + 1, floor_z);
     let order = path::order(
         &loops,
         2.0 * width,
@@ -205,7 +210,6 @@ pub fn finish(
     let toolpath = path::moves(&loops, &order, &p, mesh);
     Ok(Finished {
         toolpath,
-        levels,
         width,
         lower_bound_s: wall_area / width / f.feed * 60.0,
     })
@@ -220,14 +224,14 @@ fn tip_loops(
     mesh: &MeshIndex,
 ) -> Result<Vec<path::Loop>, String> {
     use rayon::prelude::*;
-    let jobs: Vec<(usize, f64, &Vec<Vec2>)> = passes
+    let jobs: Vec<(usize, passes::At, &geodesic::Curve)> = passes
         .iter()
         .enumerate()
-        .flat_map(|(k, (s, polys))| polys.iter().map(move |poly| (k, *s, poly)))
+        .flat_map(|(k, (at, curves))| curves.iter().map(move |c| (k, *at, c)))
         .collect();
     let each: Vec<Result<path::Loop, String>> = jobs
         .par_iter()
-        .map(|&(k, s, poly)| path::tip_loop(poly, k, s, field, p, mesh))
+        .map(|&(k, at, c)| path::tip_loop(c, k, at, field, p, mesh))
         .collect();
     each.into_iter().collect()
 }
@@ -242,17 +246,17 @@ fn with_corner(
     p: &FinishParams,
     mesh: &MeshIndex,
 ) -> passes::Planned {
-    let Some((s_foot, foot)) = cands.passes.get(cands.floor) else {
+    let Some((passes::At::S(s_foot), foot)) = cands.passes.get(cands.floor) else {
         return cands;
     };
     let floor_z = p.z_of(*s_foot);
-    let s_floor = cands.passes.first().map_or(*s_foot, |f| f.0);
+    let s_floor = cands.passes.first().map_or(passes::At::S(*s_foot), |f| f.0);
     let reach = (width, 2.0 * p.cutter.radius);
-    let loops: Vec<Vec<Vec2>> = {
+    let loops: Vec<geodesic::Curve> = {
         use rayon::prelude::*;
         foot.par_iter()
-            .filter_map(|l| corner::corner_axes(l, field, p, mesh, floor_z, reach))
-            .map(|c| c.axes)
+            .filter_map(|l| corner::corner_axes(&l.pts, field, p, mesh, floor_z, reach))
+            .map(|c| geodesic::Curve::closed(c.axes))
             .collect()
     };
     if !loops.is_empty() {
@@ -266,28 +270,28 @@ fn with_corner(
 /// within [`corner::SETTLE`] of it: where the foot bends tighter than the
 /// cutter, passes whose contact lies in the bend leave the cutter on the
 /// floor, where the corner pass and the floor's passes cut), their passes
-/// renumbered from the floor up; with each pass's s. `wall` is the first
+/// (`passes` of them) renumbered from the floor up. `wall` is the first
 /// pass above the foot's.
 fn without_floor_bound(
-    passes: &[passes::Pass],
     loops: Vec<path::Loop>,
+    passes: usize,
     wall: usize,
     floor_z: f64,
-) -> (Vec<f64>, Vec<path::Loop>) {
+) -> Vec<path::Loop> {
     let mut kept: Vec<path::Loop> = loops
         .into_iter()
         .filter(|l| l.pass < wall || l.tip.iter().any(|t| t.z > floor_z + corner::SETTLE))
         .collect();
-    let mut number = vec![usize::MAX; passes.len()];
-    let mut levels = Vec::new();
+    let mut number = vec![usize::MAX; passes];
+    let mut next = 0;
     for l in &mut kept {
         if number[l.pass] == usize::MAX {
-            number[l.pass] = levels.len();
-            levels.push(passes[l.pass].0);
+            number[l.pass] = next;
+            next += 1;
         }
         l.pass = number[l.pass];
     }
-    (levels, kept)
+    kept
 }
 
 /// Fixtures of the finisher's unit tests.

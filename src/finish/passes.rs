@@ -1,17 +1,16 @@
-//! The finishing passes: the level curves Γ(s_k) of the shape's field that the
-//! finisher follows, spaced so that the cutter's scallop stays under the bound.
+//! The finishing passes: the curves the finisher's contact points follow,
+//! spaced so that the cutter's scallop stays under the bound.
 //!
-//! Contact points on neighbouring passes lie on S2 along the field's gradient:
-//! between Γ(s) and Γ(s + Δs) the horizontal step is Δs/|∇u| and the vertical
-//! one φ'(s)·Δs, so their distance on the surface is Δs·√(1/|∇u|² + φ'(s)²).
-//! Candidate levels lie (w/[`REFINE`]) / max over Γ(s) of that root apart,
-//! and each wall (a loop and its continuation up the wall) is cut only at
-//! the candidates its own spread needs ([`thin`]), where w is the cutter's
-//! pass width for the scallop bound
-//! ([`pass_width`]). Past the foot of the wall (where the roughing left
-//! `stock_to_leave` on the floor) the foot's loops are offset over the flat
-//! floor, w apart, until the last one lies `leave` out.
+//! The wall's own passes are the levels σ = k·w of the distance on S2 from
+//! the top edge ([`super::geodesic`]), w the cutter's pass width for the
+//! scallop bound ([`pass_width`]): w apart on the surface everywhere, closed
+//! where the wall is taller than k·w all round, open arcs ending on the foot
+//! where it is not. The foot Γ(s_foot) and the top edge Γ(s_top) are
+//! equipotentials, cut whole. Past the foot of the wall (where the roughing
+//! left `stock_to_leave` on the floor) the foot's loops are offset over the
+//! flat floor, w apart, until the last one lies `leave` out.
 
+use super::geodesic::{self, Curve, Distance};
 use crate::field::isolines::Grid;
 use crate::field::Field;
 use crate::geometry::{DistanceIndex, Vec2};
@@ -82,45 +81,55 @@ impl Curves<'_> {
         }
         m.is_finite().then_some(m)
     }
+
+    /// σ, the distance on S2 from the top edge ([`geodesic::Distance`]), on
+    /// a grid of [`geodesic::SPACING`] over this grid's box; `z_of(s)` is
+    /// S2's height where u = s.
+    pub fn distance(
+        &self,
+        profile: &DepthProfile,
+        cavity: bool,
+        z_of: &dyn Fn(f64) -> f64,
+    ) -> Distance {
+        let g = &self.grid;
+        let hi = g.origin + Vec2::new(g.h * (g.nx - 1) as f64, g.h * (g.ny - 1) as f64);
+        let fine = Grid::sample(self.field, g.origin, hi, geodesic::SPACING, self.glyphs);
+        Distance::from_top_edge(&fine, profile, cavity, z_of)
+    }
 }
 
-/// Distance on S2 per unit of s where |∇u| = g and φ' = dphi, mm.
-fn spread(g: f64, dphi: f64) -> f64 {
-    (1.0 / (g * g) + dphi * dphi).sqrt()
+/// Where a pass lies: on an equipotential Γ(s) (the floor's, the foot's and
+/// the top edge's), or at distance σ = d (mm) on S2 from the top edge
+/// ([`super::geodesic`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum At {
+    /// On Γ(s).
+    S(f64),
+    /// σ = d, mm.
+    D(f64),
 }
 
-/// One pass: its s and its loops.
-pub type Pass = (f64, Vec<Vec<Vec2>>);
-
-/// Candidate levels per pass width: the wall's candidate levels Γ(s) lie
-/// w/REFINE apart where Γ(s) is most spread, and each wall (each loop of
-/// Γ(s) and its continuation up the wall) is cut only at the candidates it
-/// needs ([`thin`]).
-pub const REFINE: usize = 2;
-
-/// A candidate level of the wall: s, the loops of Γ(s) and the least |∇u|
-/// over each loop.
-struct Level {
-    s: f64,
-    loops: Vec<Vec<Vec2>>,
-    grad: Vec<f64>,
-}
+/// One pass: where it lies and its curves.
+pub type Pass = (At, Vec<Curve>);
 
 /// The passes from the floor up, the floor's first.
 pub struct Planned {
-    /// s_k in the order the finisher cuts them (ascending z), each with the
-    /// loops of Γ(s_k) cut there (over the floor: the foot's loops offset).
+    /// The passes in the order the finisher cuts them (ascending z).
     pub passes: Vec<Pass>,
     /// How many of `passes` lie over the floor; the next is the foot's.
     pub floor: usize,
 }
 
 /// The passes from the floor up (see [`Planned`]): the floor's, then the
-/// wall's candidate levels ([`candidate_levels`]) with each loop kept only
-/// where its wall's spacing needs it ([`thin`]). `cavity` mirrors the
-/// profile (its floor is at the high end of s). Errors name what failed.
+/// wall's. With `geodesic` (σ of [`geodesic::Distance`]) the wall's are the
+/// foot Γ(s_foot), the levels of σ from the deepest ([`geodesic::passes`])
+/// and the top edge Γ(s_top); without, the wall's candidate levels
+/// ([`candidate_levels`]) with each loop kept only where its wall's spacing
+/// needs it ([`thin`]). `cavity` mirrors the profile (its floor is at the
+/// high end of s). Errors name what failed.
 pub fn pass_levels(
     curves: &Curves,
+    geodesic: Option<&Distance>,
     profile: &DepthProfile,
     cavity: bool,
     w: f64,
@@ -134,19 +143,71 @@ pub fn pass_levels(
     }
     let mut passes = floor_passes(curves.field, (foot, &foot_loops), cavity, w, leave);
     let floor = passes.len();
-    let levels = candidate_levels(curves, profile, (foot, top), foot_loops, w, floor)?;
-    let cut = thin(&levels, profile, w);
-    passes.extend(levels.into_iter().zip(cut).filter_map(|(l, keep)| {
-        let loops: Vec<Vec<Vec2>> = l
-            .loops
-            .into_iter()
-            .zip(keep)
-            .filter_map(|(lp, k)| k.then_some(lp))
-            .collect();
-        (!loops.is_empty()).then_some((l.s, loops))
-    }));
+    let wall = match geodesic {
+        Some(dist) => geodesic_wall(curves, dist, (foot, top), foot_loops, w)?,
+        None => equipotential_wall(curves, profile, (foot, top), foot_loops, (w, floor))?,
+    };
+    passes.extend(wall);
     Ok(Planned { passes, floor })
 }
+
+/// The wall's passes along equipotentials: the candidate levels, each loop
+/// kept where [`thin`] says; `w` the pass width, `before` the passes already
+/// planned.
+fn equipotential_wall(
+    curves: &Curves,
+    profile: &DepthProfile,
+    ends: (f64, f64),
+    foot_loops: Vec<Vec<Vec2>>,
+    (w, before): (f64, usize),
+) -> Result<Vec<Pass>, String> {
+    let levels = candidate_levels(curves, profile, ends, foot_loops, w, before)?;
+    let cut = thin(&levels, profile, w);
+    Ok(levels
+        .into_iter()
+        .zip(cut)
+        .filter_map(|(l, keep)| {
+            let loops: Vec<Curve> = l
+                .loops
+                .into_iter()
+                .zip(keep)
+                .filter_map(|(lp, k)| k.then_some(Curve::closed(lp)))
+                .collect();
+            (!loops.is_empty()).then_some((At::S(l.s), loops))
+        })
+        .collect())
+}
+
+/// The wall's passes along the levels of σ: the foot, the levels from the
+/// deepest, the top edge.
+fn geodesic_wall(
+    curves: &Curves,
+    dist: &Distance,
+    (foot, top): (f64, f64),
+    foot_loops: Vec<Vec<Vec2>>,
+    w: f64,
+) -> Result<Vec<Pass>, String> {
+    let closed =
+        |loops: Vec<Vec<Vec2>>| -> Vec<Curve> { loops.into_iter().map(Curve::closed).collect() };
+    let foot_curves = closed(foot_loops);
+    let wall = geodesic::passes(dist, &foot_curves, w, MIN_CURVE, MAX_PASSES).map_err(|n| {
+        format!(
+            "the wall needs {n} finishing passes, more than {MAX_PASSES}: raise finish.scallop or use a larger finishing tool"
+        )
+    })?;
+    let mut passes = vec![(At::S(foot), foot_curves)];
+    passes.extend(wall.into_iter().map(|(d, c)| (At::D(d), c)));
+    let top_loops = curves.at(top);
+    if !top_loops.is_empty() {
+        passes.push((At::S(top), closed(top_loops)));
+    }
+    Ok(passes)
+}
+
+/// Shortest curve of σ a pass keeps, mm: shorter ones are the grid's
+/// crumbs round a maximum of σ within a cell or two, which the passes on
+/// either side cover.
+pub const MIN_CURVE: f64 = 1.0;
 
 /// Over the floor, outwards from the foot Γ(`foot`): the foot's loops
 /// offset along the field's downhill direction by k·w (k = 1, 2, ...) until
@@ -174,14 +235,35 @@ fn floor_passes(
                 .1
                 .iter()
                 .map(|l| {
-                    l.iter()
-                        .map(|&p| p + field.grad(p).normalized() * (away * d))
-                        .collect()
+                    Curve::closed(
+                        l.iter()
+                            .map(|&p| p + field.grad(p).normalized() * (away * d))
+                            .collect(),
+                    )
                 })
                 .collect();
-            (s_floor, loops)
+            (At::S(s_floor), loops)
         })
         .collect()
+}
+
+/// Distance on S2 per unit of s where |∇u| = g and φ' = dphi, mm.
+fn spread(g: f64, dphi: f64) -> f64 {
+    (1.0 / (g * g) + dphi * dphi).sqrt()
+}
+
+/// Candidate levels per pass width: the wall's candidate levels Γ(s) lie
+/// w/REFINE apart where Γ(s) is most spread, and each wall (each loop of
+/// Γ(s) and its continuation up the wall) is cut only at the candidates it
+/// needs ([`thin`]).
+pub const REFINE: usize = 2;
+
+/// A candidate level of the wall: s, the loops of Γ(s) and the least |∇u|
+/// over each loop.
+struct Level {
+    s: f64,
+    loops: Vec<Vec<Vec2>>,
+    grad: Vec<f64>,
 }
 
 /// The candidate levels up the wall, from the foot to the top edge

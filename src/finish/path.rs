@@ -20,6 +20,8 @@
 //!   stock to leave) and ramps down along the loop at `ramp_angle`, then cuts
 //!   the whole loop at depth.
 
+use super::geodesic::Curve;
+use super::passes::At;
 use super::FinishParams;
 use crate::field::Field;
 use crate::geometry::{densify, DistanceIndex, Vec2};
@@ -32,6 +34,11 @@ pub const SAMPLE: f64 = 0.1;
 /// Longest feed link between a loop and its first child, in pass widths; a
 /// farther child is reached by a retract.
 pub const LINK_WIDTHS: f64 = 6.0;
+/// Longest feed link to an open arc, mm: arcs end on the wall's foot, and
+/// the next arc's end lies along the foot, over a floor the roughing cut to
+/// size; a retract and an entry's ramp (a stepdown and more at the ramp
+/// angle and the plunge feed) take as long as a feed link of well over this.
+pub const ARC_LINK: f64 = 25.0;
 /// Most contact points added between two neighbours so their axes lie at
 /// most [`SAMPLE`] apart.
 const MAX_SPLIT: usize = 64;
@@ -46,10 +53,12 @@ const DESCENT_SLOPE: f64 = 0.839_099_631_177_280_1;
 pub struct Loop {
     /// The pass (index into the passes, from the floor up).
     pub pass: usize,
-    /// s of the pass.
-    pub s: f64,
-    /// The contact curve (closed, first point not repeated), oriented for the
-    /// cutting direction.
+    /// Where the pass lies.
+    pub at: At,
+    /// Whether the curve is closed (else an open arc, cut from either end).
+    pub closed: bool,
+    /// The contact curve (first point not repeated), a closed one oriented
+    /// for the cutting direction.
     pub contact: Vec<Vec2>,
     /// The tip positions, one per contact point.
     pub tip: Vec<Vec3>,
@@ -68,36 +77,53 @@ fn material_side(pts: &[Vec2], away: &[Vec2]) -> f64 {
     sum.signum()
 }
 
-/// The loop of Γ(s) at `s` with its tip positions (see the module docs);
-/// `Err` names a point no triangle lies under.
+/// The pass curve `curve` of pass `pass` (lying where `at` says) with its
+/// tip positions (see the module docs); `Err` names a point no triangle lies
+/// under. On Γ(s) the slope φ′ is φ′(s); elsewhere it is φ′(u) at each
+/// contact point.
 pub fn tip_loop(
-    poly: &[Vec2],
+    curve: &Curve,
     pass: usize,
-    s: f64,
+    at: At,
     field: &Field,
     p: &FinishParams,
     mesh: &MeshIndex,
 ) -> Result<Loop, String> {
-    let mut contact = densify(poly, SAMPLE, true);
+    let closed = curve.closed;
+    let mut contact = densify(&curve.pts, SAMPLE, closed);
     let sign = if p.cavity { 1.0 } else { -1.0 };
-    let dphi = super::passes::dphi_ds(p.profile, s).abs();
+    let (lo, hi) = p.profile.s_range();
+    let s_at = |q: Vec2| match at {
+        At::S(s) => s,
+        At::D(_) => field.value(q).clamp(lo, hi),
+    };
     // ∇u once per contact point: its direction is `away`, its length the slope.
     let mut grads: Vec<Vec2> = contact.iter().map(|&q| field.grad(q)).collect();
     let mut away: Vec<Vec2> = grads.iter().map(|g| g.normalized() * sign).collect();
-    // Climb: the material on the right; conventional: on the left.
+    // Climb: the material on the right; conventional: on the left. An open
+    // arc is cut from whichever end the cutter reaches first.
     let want = if p.climb { 1.0 } else { -1.0 };
-    if material_side(&contact, &away) != want {
+    if closed && material_side(&contact, &away) != want {
         contact.reverse();
         away.reverse();
         grads.reverse();
     }
-    let (contact, axes, sags) = spread_axes(contact, &away, &grads, dphi, p.cutter, field, sign);
-    let tips = drop_tips(&axes, &sags, p, mesh, s)?;
-    let tip = limit_descent(chord_safe(tips, p, mesh), DESCENT_SLOPE);
+    let axes = spread_axes(
+        (contact, closed),
+        &away,
+        &grads,
+        &|q| (s_at(q), super::passes::dphi_ds(p.profile, s_at(q)).abs()),
+        p.cutter,
+        field,
+        sign,
+    );
+    let tips = drop_tips(&axes, p, mesh)?;
+    let tip = limit_descent(chord_safe(tips, closed, p, mesh), closed, DESCENT_SLOPE);
     Ok(Loop {
         pass,
-        s,
-        contact,
+        at,
+        closed,
+        contact: axes.contact,
         tip,
     })
 }
@@ -115,43 +141,66 @@ fn axis_at(q: Vec2, d: Vec2, g: Vec2, dphi: f64, cutter: Cutter) -> (Vec2, f64) 
     )
 }
 
+/// Contact points with their cutter axes.
+struct Axes {
+    /// The contact points.
+    contact: Vec<Vec2>,
+    /// The axis of each.
+    axes: Vec<Vec2>,
+    /// The corner's sag of [`axis_at`] at each.
+    sags: Vec<f64>,
+    /// S2's height at each contact point, mm (absolute).
+    z: Vec<f64>,
+}
+
 /// The axes of the contact points, with contact points added (between
 /// neighbours, on their chord) wherever two neighbouring axes lie more than
 /// [`SAMPLE`] apart: round a sharp convex corner of Γ(s) the axes fan out on
 /// a circle of radius r about it, and a chord between axes a radian apart
-/// would cut into the wall. Returns the contact points, their axes and the
-/// sags of [`axis_at`].
+/// would cut into the wall. `slope(q)` is (s, |φ′(s)|) at contact point q.
 fn spread_axes(
-    contact: Vec<Vec2>,
+    (contact, closed): (Vec<Vec2>, bool),
     away: &[Vec2],
     grads: &[Vec2],
-    dphi: f64,
+    slope: &(dyn Fn(Vec2) -> (f64, f64) + Sync),
     cutter: Cutter,
     field: &Field,
     sign: f64,
-) -> (Vec<Vec2>, Vec<Vec2>, Vec<f64>) {
+) -> Axes {
     let n = contact.len();
+    let at: Vec<(f64, f64)> = contact.iter().map(|&q| slope(q)).collect();
     let axes: Vec<(Vec2, f64)> = (0..n)
-        .map(|i| axis_at(contact[i], away[i], grads[i], dphi, cutter))
+        .map(|i| axis_at(contact[i], away[i], grads[i], at[i].1, cutter))
         .collect();
-    let (mut cs, mut ax) = (Vec::with_capacity(n), Vec::with_capacity(n));
-    let mut sags = Vec::with_capacity(n);
+    let mut out = Axes {
+        contact: Vec::with_capacity(n),
+        axes: Vec::with_capacity(n),
+        sags: Vec::with_capacity(n),
+        z: Vec::with_capacity(n),
+    };
+    let chords = if closed { n } else { n.saturating_sub(1) };
     for i in 0..n {
+        out.contact.push(contact[i]);
+        out.axes.push(axes[i].0);
+        out.sags.push(axes[i].1);
+        out.z.push(at[i].0);
+        if i >= chords {
+            continue;
+        }
         let j = (i + 1) % n;
-        cs.push(contact[i]);
-        ax.push(axes[i].0);
-        sags.push(axes[i].1);
         let k = ((axes[i].0.dist(axes[j].0) / SAMPLE).ceil() as usize).clamp(1, MAX_SPLIT);
         for m in 1..k {
             let q = contact[i].lerp(contact[j], m as f64 / k as f64);
             let g = field.grad(q);
-            cs.push(q);
+            let (s, dphi) = slope(q);
             let (a, sag) = axis_at(q, g.normalized() * sign, g, dphi, cutter);
-            ax.push(a);
-            sags.push(sag);
+            out.contact.push(q);
+            out.axes.push(a);
+            out.sags.push(sag);
+            out.z.push(s);
         }
     }
-    (cs, ax, sags)
+    out
 }
 
 /// How far under the tip the contact geometry predicts (the pass's height
@@ -162,26 +211,21 @@ const HINT_MARGIN: f64 = 0.05;
 
 /// The drop-cutter's tip at each axis; `Err` names a point no triangle lies
 /// under.
-fn drop_tips(
-    axes: &[Vec2],
-    sags: &[f64],
-    p: &FinishParams,
-    mesh: &MeshIndex,
-    s: f64,
-) -> Result<Vec<Vec3>, String> {
-    let z = p.z_of(s);
-    let pts: Vec<(f64, f64, f64)> = axes
-        .iter()
-        .zip(sags)
-        .map(|(a, sag)| (a.x, a.y, z - sag - HINT_MARGIN))
+fn drop_tips(axes: &Axes, p: &FinishParams, mesh: &MeshIndex) -> Result<Vec<Vec3>, String> {
+    let pts: Vec<(f64, f64, f64)> = (0..axes.axes.len())
+        .map(|i| {
+            let a = axes.axes[i];
+            (a.x, a.y, p.z_of(axes.z[i]) - axes.sags[i] - HINT_MARGIN)
+        })
         .collect();
     let zs = p.cutter.drop_many_hinted(mesh, &pts);
-    axes.iter()
+    axes.axes
+        .iter()
         .zip(zs)
         .map(|(a, z)| {
             z.map(|z| Vec3::new(a.x, a.y, z)).ok_or_else(|| {
                 format!(
-                    "no part of the surface lies under the finishing tool at X{:.3} Y{:.3} (pass s = {s:.5})",
+                    "no part of the surface lies under the finishing tool at X{:.3} Y{:.3}",
                     a.x, a.y
                 )
             })
@@ -189,7 +233,7 @@ fn drop_tips(
         .collect()
 }
 
-/// The closed tip loop with points added where the straight move between two
+/// The tip loop (or arc) with points added where the straight move between two
 /// tips would pass below the drop-cutter's height by more than a quarter of
 /// the tolerance (the drop height is not linear between samples, above all
 /// where the cutter turns round a corner or rides up a wall). A chord is
@@ -197,13 +241,17 @@ fn drop_tips(
 /// along it (a ball reaching the top of a wall late in the move passes the
 /// middle in the clear); it is split at its worst point and each half tested
 /// again, at most [`CHORD_DEPTH`] deep.
-fn chord_safe(tips: Vec<Vec3>, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec3> {
+fn chord_safe(tips: Vec<Vec3>, closed: bool, p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec3> {
     let n = tips.len();
-    let chords: Vec<(Vec3, Vec3)> = (0..n).map(|i| (tips[i], tips[(i + 1) % n])).collect();
+    let m = if closed { n } else { n.saturating_sub(1) };
+    let chords: Vec<(Vec3, Vec3)> = (0..m).map(|i| (tips[i], tips[(i + 1) % n])).collect();
     let mut out = Vec::with_capacity(n);
     for (&(a, _), added) in chords.iter().zip(split_chords(&chords, p, mesh)) {
         out.push(a);
         out.extend(added);
+    }
+    if !closed {
+        out.extend(tips.last());
     }
     out
 }
@@ -312,21 +360,36 @@ fn order_between(a: Vec3, mut pts: Vec<(usize, Vec3)>) -> Vec<Vec3> {
     pts.into_iter().map(|(_, q)| q).collect()
 }
 
-/// The closed tip loop raised where it would descend steeper than `slope`
-/// (Δz over XY length) in the cutting direction: a ball entering the wall the
+/// The tip loop raised where it would descend steeper than `slope` (Δz
+/// over XY length) in the cutting direction: a ball entering the wall the
 /// roughing left that steeply is a plunge. Raising only lifts the cutter off
-/// the surface (it never enters the part); the cycle is walked twice so the
-/// result does not depend on where the loop starts.
-fn limit_descent(mut tips: Vec<Vec3>, slope: f64) -> Vec<Vec3> {
+/// the surface (it never enters the part). A closed loop is walked twice so
+/// the result does not depend on where it starts; an open arc, cut from
+/// either end, is walked forwards and then backwards (a backward raise never
+/// undoes a forward one: it lifts a tip to at most the next one's height
+/// plus the slope's rise).
+fn limit_descent(mut tips: Vec<Vec3>, closed: bool, slope: f64) -> Vec<Vec3> {
     let n = tips.len();
     if n < 2 {
         return tips;
     }
-    for k in 1..=2 * n {
-        let (a, b) = (tips[(k - 1) % n], tips[k % n]);
+    let raise = |tips: &mut Vec<Vec3>, from: usize, to: usize| {
+        let (a, b) = (tips[from], tips[to]);
         let floor = a.z - slope * run_xy(a, b);
         if b.z < floor {
-            tips[k % n].z = floor;
+            tips[to].z = floor;
+        }
+    };
+    if closed {
+        for k in 1..=2 * n {
+            raise(&mut tips, (k - 1) % n, k % n);
+        }
+    } else {
+        for k in 1..n {
+            raise(&mut tips, k - 1, k);
+        }
+        for k in (1..n).rev() {
+            raise(&mut tips, k, k - 1);
         }
     }
     tips
@@ -345,7 +408,9 @@ fn parents(loops: &[Loop], reach: f64) -> Vec<Option<usize>> {
         .map(|m| DistanceIndex::new(std::slice::from_ref(&m.contact)))
         .collect();
     for (i, l) in loops.iter().enumerate() {
-        let probe = l.contact[0];
+        // An arc's middle: its ends lie on the foot, beyond the shorter
+        // arc of the pass below.
+        let probe = l.contact[if l.closed { 0 } else { l.contact.len() / 2 }];
         let mut best: Option<(usize, (bool, usize, f64))> = None;
         for (j, m) in loops.iter().enumerate() {
             if m.pass >= l.pass {
@@ -386,33 +451,58 @@ pub fn order(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
     let mut stack: Vec<(usize, bool)> = roots.iter().rev().map(|&i| (i, false)).collect();
     let mut at = Vec2::new(f64::INFINITY, f64::INFINITY);
     while let Some((i, linked)) = stack.pop() {
-        let near = loops[i]
-            .contact
-            .iter()
-            .map(|q| q.dist(at))
-            .fold(f64::INFINITY, f64::min);
-        out.push((i, linked && near <= max_link));
-        let end = loops[i].tip.first().map(|t| Vec2::new(t.x, t.y));
-        at = end.unwrap_or(at);
+        let most = if loops[i].closed {
+            max_link
+        } else {
+            ARC_LINK.max(max_link)
+        };
+        out.push((i, linked && reach_of(&loops[i], at) <= most));
+        let tips = oriented(&loops[i], Vec3::new(at.x, at.y, 0.0));
+        let end = if loops[i].closed {
+            tips.first()
+        } else {
+            tips.last()
+        };
+        at = end.map_or(at, |t| Vec2::new(t.x, t.y));
         // The nearest child is cut next (pushed last); the others follow by
         // retracts once its subtree is done.
         let mut kids = children[i].clone();
-        kids.sort_by(|&a, &b| {
-            let d = |k: usize| {
-                loops[k]
-                    .contact
-                    .iter()
-                    .map(|q| q.dist(at))
-                    .fold(f64::INFINITY, f64::min)
-            };
-            d(b).total_cmp(&d(a))
-        });
+        kids.sort_by(|&a, &b| reach_of(&loops[b], at).total_cmp(&reach_of(&loops[a], at)));
         let last = kids.len().saturating_sub(1);
         for (k, &c) in kids.iter().enumerate() {
             stack.push((c, k == last));
         }
     }
     out
+}
+
+/// How far from `at` the cutter starts `l`: its nearest contact point, or an
+/// arc's nearer end.
+fn reach_of(l: &Loop, at: Vec2) -> f64 {
+    if l.closed {
+        l.contact
+            .iter()
+            .map(|q| q.dist(at))
+            .fold(f64::INFINITY, f64::min)
+    } else {
+        let (a, b) = (l.contact[0], l.contact[l.contact.len() - 1]);
+        a.dist(at).min(b.dist(at))
+    }
+}
+
+/// The tips of `l` in cutting order from `at`: a closed loop rotated to start
+/// at the tip nearest `at` (XY), an arc from its nearer end.
+fn oriented(l: &Loop, at: Vec3) -> Vec<Vec3> {
+    if l.closed {
+        return starting_near(l, at);
+    }
+    let d = |t: &Vec3| (t.x - at.x).powi(2) + (t.y - at.y).powi(2);
+    let (first, last) = (&l.tip[0], &l.tip[l.tip.len() - 1]);
+    if d(last) < d(first) {
+        l.tip.iter().rev().copied().collect()
+    } else {
+        l.tip.clone()
+    }
 }
 
 /// The tips of `l` rotated to start at the tip nearest `at` (XY).
@@ -506,7 +596,7 @@ pub fn moves(
     let tan = p.ramp_angle.to_radians().tan();
     for &(i, linked) in order {
         let l = &loops[i];
-        let tips = starting_near(l, at);
+        let tips = oriented(l, at);
         let at_start = at;
         let mut mv = Vec::with_capacity(tips.len() + 8);
         let first = tips[0];
@@ -537,51 +627,26 @@ pub fn moves(
             mv.push(Move::Rapid {
                 to: Vec3::new(first.x, first.y, top),
             });
-            // Ramp along the loop until the ramp line is below every tip.
-            let zmin = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
-            let (mut z, mut prev) = (top, Vec3::new(first.x, first.y, top));
-            let mut k = 1;
-            while z > zmin && k < 64 * tips.len() {
-                let q = tips[k % tips.len()];
-                z -= prev.dist(Vec3::new(q.x, q.y, prev.z)) * tan;
-                let to = Vec3::new(q.x, q.y, q.z.max(z));
-                mv.push(Move::Linear {
-                    to,
-                    feed: p.plunge_feed,
-                });
-                prev = to;
-                k += 1;
-            }
-            // Back to the loop's start at depth, along the loop.
-            let back = k % tips.len();
-            if back != 0 {
-                for q in &tips[back..] {
-                    mv.push(Move::Linear {
-                        to: *q,
-                        feed: p.feed,
-                    });
-                }
-            }
-            mv.push(Move::Linear {
-                to: first,
-                feed: p.feed,
-            });
+            mv.extend(ramp(&tips, l.closed, top, tan, p));
         }
-        for q in tips.iter().skip(1).chain(std::iter::once(&first)) {
+        let back = l.closed.then_some(&first);
+        for q in tips.iter().skip(1).chain(back) {
             mv.push(Move::Linear {
                 to: *q,
                 feed: p.feed,
             });
         }
-        at = first;
+        at = if l.closed {
+            first
+        } else {
+            tips[tips.len() - 1]
+        };
         let z = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
         sections.push(Section {
-            label: format!(
-                "{} {} s {:.5}",
-                crate::toolpath::FINISH_PASS,
-                l.pass + 1,
-                l.s
-            ),
+            label: match l.at {
+                At::S(s) => format!("{} {} s {s:.5}", crate::toolpath::FINISH_PASS, l.pass + 1),
+                At::D(d) => format!("{} {} d {d:.3}", crate::toolpath::FINISH_PASS, l.pass + 1),
+            },
             z,
             moves: simplify(at_start, mv, p.tol),
         });
@@ -592,6 +657,74 @@ pub fn moves(
         });
     }
     Toolpath { start, sections }
+}
+
+/// The entry's ramp from `top` over the first of `tips` down to the pass at
+/// `tan` (the ramp angle's tangent), then back at depth to the first tip:
+/// along a closed loop round and round until the ramp line is below every
+/// tip, then on round to the start; along an arc to and fro, then back.
+fn ramp(tips: &[Vec3], closed: bool, top: f64, tan: f64, p: &FinishParams) -> Vec<Move> {
+    let n = tips.len();
+    let mut mv = Vec::new();
+    if n < 2 {
+        mv.push(Move::Linear {
+            to: tips[0],
+            feed: p.plunge_feed,
+        });
+        return mv;
+    }
+    // The k-th tip of the ramp's walk.
+    let period = 2 * (n - 1);
+    let index = |k: usize| {
+        if closed {
+            k % n
+        } else if k % period < n {
+            k % period
+        } else {
+            period - k % period
+        }
+    };
+    let zmin = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
+    let first = tips[0];
+    // Enough steps to descend from `top` to `zmin` at `tan` (each walk of
+    // the pass runs its XY length), with one walk to spare.
+    let walk: f64 = (1..=period.min(n))
+        .map(|k| run_xy(tips[index(k - 1)], tips[index(k)]))
+        .sum();
+    let walks = ((top - zmin) / tan / walk.max(1e-3)).ceil().min(1e4) as usize + 1;
+    let (mut z, mut prev) = (top, Vec3::new(first.x, first.y, top));
+    let mut k = 1;
+    while z > zmin && k <= walks * n {
+        let q = tips[index(k)];
+        z -= prev.dist(Vec3::new(q.x, q.y, prev.z)) * tan;
+        let to = Vec3::new(q.x, q.y, q.z.max(z));
+        mv.push(Move::Linear {
+            to,
+            feed: p.plunge_feed,
+        });
+        prev = to;
+        k += 1;
+    }
+    // Back to the start at depth, along the pass.
+    let at = index(k - 1);
+    let back: Vec<Vec3> = if closed {
+        tips[at..].iter().skip(1).copied().collect()
+    } else {
+        tips[..at].iter().rev().copied().collect()
+    };
+    for q in back {
+        mv.push(Move::Linear {
+            to: q,
+            feed: p.feed,
+        });
+    }
+    if closed || at != 0 {
+        mv.push(Move::Linear {
+            to: first,
+            feed: p.feed,
+        });
+    }
+    mv
 }
 
 /// Runs of feed moves at one feed thinned where a point lies within `tol`/4 of
@@ -798,7 +931,7 @@ mod tests {
             })
             .collect();
         let slope = DESCENT_SLOPE;
-        let out = limit_descent(tips.clone(), slope);
+        let out = limit_descent(tips.clone(), true, slope);
         for (a, b) in tips.iter().zip(&out) {
             assert!(b.z >= a.z && (a.x, a.y) == (b.x, b.y));
         }
@@ -815,7 +948,7 @@ mod tests {
         // Starting the loop elsewhere gives the same heights.
         let mut cycled = tips.clone();
         cycled.rotate_left(17);
-        let mut again = limit_descent(cycled, slope);
+        let mut again = limit_descent(cycled, true, slope);
         again.rotate_right(17);
         assert_eq!(again, out);
     }

@@ -47,7 +47,21 @@ pub struct Finish {
     pub spindle: f64,
     /// Largest scallop height the passes may leave on the surface, mm.
     pub scallop: f64,
+    /// How a boss's or cavity's wall passes are laid out.
+    pub pattern: Pattern,
 }
+
+/// `finish.pattern`: the curves a boss's or cavity's wall passes follow.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pattern {
+    /// Equipotentials Γ(s), whole, spaced for each wall's widest place.
+    Equipotential,
+    /// Levels of the distance on S2 from the top edge (`finish::geodesic`).
+    Geodesic,
+}
+
+/// The accepted `finish.pattern` words.
+pub const PATTERNS: &[&str] = &["equipotential", "geodesic"];
 
 impl Finish {
     /// Radius, mm.
@@ -74,6 +88,8 @@ pub struct RawFinish {
     pub spindle: Option<f64>,
     /// `scallop`, mm
     pub scallop: Option<f64>,
+    /// `pattern`: equipotential or geodesic
+    pub pattern: Option<String>,
 }
 
 /// Defaults of `[finish]`.
@@ -92,6 +108,17 @@ pub const SHAPES: &[&str] = &["ball", "flat", "bull"];
 impl RawFinish {
     /// Checks `[finish]`; the feeds and spindle default to `[tool]`'s.
     pub fn resolve(self, tool: &super::Tool) -> Result<Finish, JobError> {
+        let pattern = match self.pattern.as_deref() {
+            None => Pattern::Equipotential,
+            Some(p) => {
+                super::one_of("finish.pattern", p, PATTERNS)?;
+                if p == "geodesic" {
+                    Pattern::Geodesic
+                } else {
+                    Pattern::Equipotential
+                }
+            }
+        };
         let word = self.shape.unwrap_or_else(|| defaults::SHAPE.into());
         super::one_of("finish.shape", &word, SHAPES)?;
         let diameter = limits::TOOL_DIAMETER.check(
@@ -142,6 +169,7 @@ impl RawFinish {
                 .check("finish.spindle", self.spindle.unwrap_or(tool.spindle))?,
             scallop: limits::SCALLOP
                 .check("finish.scallop", self.scallop.unwrap_or(defaults::SCALLOP))?,
+            pattern,
         })
     }
 }
@@ -173,6 +201,9 @@ mod tests {
         assert_eq!(f.corner, 1.0);
         assert_eq!(f.feed, 700.0);
         assert_eq!(f.scallop, defaults::SCALLOP);
+        assert_eq!(f.pattern, Pattern::Equipotential);
+        let geo = job("[finish]\ndiameter = 2.0\npattern = \"geodesic\"\n").unwrap();
+        assert_eq!(geo.finish.unwrap().pattern, Pattern::Geodesic);
         assert_eq!(j.operation.stock_to_leave, defaults::STOCK_TO_LEAVE);
         let fj = j.finishing().unwrap();
         assert_eq!((fj.tool.diameter, fj.tool.shape), (2.0, CutterShape::Ball));
@@ -200,6 +231,10 @@ mod tests {
             (
                 "[finish]\nshape = \"cone\"\ndiameter = 4.0\n",
                 "finish.shape",
+            ),
+            (
+                "[finish]\ndiameter = 4.0\npattern = \"spiral\"\n",
+                "finish.pattern",
             ),
             ("[finish]\nfeed = 100.0\n", "finish.diameter"),
             (

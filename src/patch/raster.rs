@@ -320,7 +320,6 @@ pub fn raster_finish(job: &Job, f: &Finish, part: &RasterPart) -> Result<Finishe
             start: Vec3::new(0.0, 0.0, job.stock.safe_z),
             sections,
         },
-        levels: passes.iter().map(|p| p.0).collect(),
         width,
         lower_bound_s: part.area / width / f.feed * 60.0,
     })

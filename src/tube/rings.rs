@@ -454,7 +454,6 @@ pub fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, S
             start: Vec3::new(0.0, 0.0, job.stock.safe_z),
             sections,
         },
-        levels: zs.iter().map(|&z| part.tube.u_of(z)).collect(),
         width: w,
         lower_bound_s: part.area / w / f.feed * 60.0,
     })

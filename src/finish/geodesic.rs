@@ -1,0 +1,593 @@
+//! Constant-scallop passes: the level sets of the distance on S2 from the
+//! wall's top edge.
+//!
+//! Passes along equipotentials Γ(s) lie Δs/|∇u| apart across the wall, and
+//! |∇u| varies along one Γ(s) by a factor of 3 to 13 on a lettered sign (its
+//! bays and the saddles of u between letters, where |∇u| → 0): spaced for
+//! the widest place, whole equipotentials cut most of the wall several times
+//! over. The distance σ(p) on S2 from the top edge (the shortest path on the
+//! surface) has |∇_S σ| = 1, so its level sets σ = k·w lie exactly w apart on
+//! the surface everywhere: every point of the wall between levels k and k + 1
+//! is at most w/2 from one of them, and the scallop between them is the
+//! bound's. Where the wall is shorter than k·w a level ends on the wall's
+//! foot: such a pass is an open arc.
+//!
+//! σ is computed by Dijkstra's algorithm on a grid of S2's heights z =
+//! φ(u(x, y)) with 16 neighbours (steps (1, 0), (1, 1) and (2, 1) and their
+//! turns), each edge the straight chord between two nodes in 3-D. A path
+//! along grid edges is never shorter than the geodesic it stands for, so σ is
+//! over-estimated (by at most 2.7 % on a plane, the 16-neighbour stencil's
+//! worst direction) and the levels lie at most w apart: the scallop errs on
+//! the side of the bound.
+
+use crate::field::isolines::Grid;
+use crate::geometry::Vec2;
+use crate::levels::DepthProfile;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap};
+
+/// Grid spacing of σ, mm (the finishing mesh's, so the level sets place the
+/// passes to a few micrometres).
+pub const SPACING: f64 = 0.1;
+
+/// The 16 neighbours of a node: (1, 0), (1, 1), (2, 1) and their turns and
+/// reflections.
+const STEPS: [(i64, i64); 16] = [
+    (1, 0),
+    (-1, 0),
+    (0, 1),
+    (0, -1),
+    (1, 1),
+    (1, -1),
+    (-1, 1),
+    (-1, -1),
+    (2, 1),
+    (2, -1),
+    (-2, 1),
+    (-2, -1),
+    (1, 2),
+    (1, -2),
+    (-1, 2),
+    (-1, -2),
+];
+
+/// Where a node of the grid lies on S2.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Part {
+    /// The flat top (a boss's letters, a mould's rim and beyond): σ = 0.
+    Top,
+    /// The wall between the top edge and the foot.
+    Wall,
+    /// The floor past the foot: no σ.
+    Floor,
+}
+
+/// σ on a grid: the distance on S2 from the top edge, +∞ on the floor.
+#[derive(Clone, Debug)]
+pub struct Distance {
+    origin: Vec2,
+    h: f64,
+    nx: usize,
+    ny: usize,
+    d: Vec<f64>,
+}
+
+/// One pass curve: closed (the first point not repeated) or an open arc.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    /// The points in order.
+    pub pts: Vec<Vec2>,
+    /// Whether the last point joins the first.
+    pub closed: bool,
+}
+
+impl Curve {
+    /// A closed curve.
+    pub fn closed(pts: Vec<Vec2>) -> Curve {
+        Curve { pts, closed: true }
+    }
+
+    /// Its length in XY, mm.
+    pub fn length(&self) -> f64 {
+        let n = self.pts.len();
+        let chords = if self.closed { n } else { n.saturating_sub(1) };
+        (0..chords)
+            .map(|i| self.pts[i].dist(self.pts[(i + 1) % n]))
+            .sum()
+    }
+}
+
+impl Distance {
+    /// σ over `grid` (u at its nodes, 1 inside the material), for the wall
+    /// of φ = `profile` from its top edge: z at a node is `z_of(u)` with u
+    /// held to φ's range; `cavity` mirrors which end of the range is the top.
+    pub fn from_top_edge(
+        grid: &Grid,
+        profile: &DepthProfile,
+        cavity: bool,
+        z_of: &dyn Fn(f64) -> f64,
+    ) -> Distance {
+        let (lo, hi) = profile.s_range();
+        let part = |u: f64| {
+            let (top, floor) = if cavity {
+                (u <= lo, u >= hi)
+            } else {
+                (u >= hi, u <= lo)
+            };
+            if top {
+                Part::Top
+            } else if floor {
+                Part::Floor
+            } else {
+                Part::Wall
+            }
+        };
+        let parts: Vec<Part> = grid.values.iter().map(|&u| part(u)).collect();
+        let z: Vec<f64> = grid.values.iter().map(|&u| z_of(u.clamp(lo, hi))).collect();
+        let d = dijkstra(grid.nx, grid.ny, grid.h, &parts, &z);
+        Distance {
+            origin: grid.origin,
+            h: grid.h,
+            nx: grid.nx,
+            ny: grid.ny,
+            d,
+        }
+    }
+
+    /// The largest σ on the wall, mm (0 if it has none).
+    pub fn max(&self) -> f64 {
+        self.d
+            .iter()
+            .copied()
+            .filter(|d| d.is_finite())
+            .fold(0.0, f64::max)
+    }
+
+    fn point(&self, i: usize, j: usize) -> Vec2 {
+        Vec2::new(
+            self.origin.x + self.h * i as f64,
+            self.origin.y + self.h * j as f64,
+        )
+    }
+
+    /// The level set σ = `c` in the cells whose four corners have a σ (top or
+    /// wall), by marching squares with linear interpolation along the cell
+    /// edges: closed curves, and open arcs that end where the level meets a
+    /// cell with a corner on the floor.
+    pub fn level(&self, c: f64) -> Vec<Curve> {
+        let segs = self.segments(c);
+        chain(&segs)
+            .into_iter()
+            .map(|(edges, closed)| Curve {
+                pts: edges.iter().map(|&e| self.crossing(e, c)).collect(),
+                closed,
+            })
+            .collect()
+    }
+
+    /// Where the level crosses grid edge `e` (see [`Distance::edge`]).
+    fn crossing(&self, e: usize, c: f64) -> Vec2 {
+        let (a, b) = self.edge(e);
+        let (da, db) = (self.d[a.1 * self.nx + a.0], self.d[b.1 * self.nx + b.0]);
+        let t = if db != da { (c - da) / (db - da) } else { 0.5 };
+        self.point(a.0, a.1)
+            .lerp(self.point(b.0, b.1), t.clamp(0.0, 1.0))
+    }
+
+    /// The nodes at the ends of edge `e`: 2k is the horizontal edge from node
+    /// k, 2k + 1 the vertical one.
+    fn edge(&self, e: usize) -> ((usize, usize), (usize, usize)) {
+        let k = e / 2;
+        let (i, j) = (k % self.nx, k / self.nx);
+        if e % 2 == 0 {
+            ((i, j), (i + 1, j))
+        } else {
+            ((i, j), (i, j + 1))
+        }
+    }
+
+    /// The level's segments, each a pair of the edges it joins, cell by cell
+    /// in row order (a saddle cell split as its centre's average says).
+    fn segments(&self, c: f64) -> Vec<[usize; 2]> {
+        let nx = self.nx;
+        let mut out = Vec::new();
+        for j in 0..self.ny.saturating_sub(1) {
+            for i in 0..nx.saturating_sub(1) {
+                let k = j * nx + i;
+                let v = [self.d[k], self.d[k + 1], self.d[k + nx + 1], self.d[k + nx]];
+                if v.iter().any(|x| !x.is_finite()) {
+                    continue;
+                }
+                // Edges a-b, b-c, c-d, d-a of the cell's corners a, b, c, d
+                // (counter-clockwise from (i, j)).
+                let e = [2 * k, 2 * (k + 1) + 1, 2 * (k + nx), 2 * k + 1];
+                out.extend(cell_segments(v, c, e));
+            }
+        }
+        out
+    }
+}
+
+/// The segments of level `c` in one cell with corner values `v` (counter-
+/// clockwise) and edges `e` (e[m] joins corners m and m + 1).
+fn cell_segments(v: [f64; 4], c: f64, e: [usize; 4]) -> Vec<[usize; 2]> {
+    let above: Vec<bool> = v.iter().map(|&x| x >= c).collect();
+    let crossed: Vec<usize> = (0..4).filter(|&m| above[m] != above[(m + 1) % 4]).collect();
+    match crossed.len() {
+        2 => vec![[e[crossed[0]], e[crossed[1]]]],
+        4 => {
+            // Corners a and c on one side, b and d on the other: the centre
+            // joins the pair on its own side, and the other two are cut off.
+            let centre = 0.25 * v.iter().sum::<f64>() >= c;
+            if centre == above[0] {
+                vec![[e[0], e[1]], [e[2], e[3]]]
+            } else {
+                vec![[e[3], e[0]], [e[1], e[2]]]
+            }
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// Segments joined at their shared edges into chains of edges: open chains
+/// (from an edge only one segment touches) first, then closed ones, each
+/// with whether it is closed. Deterministic: in the order of the segments.
+fn chain(segs: &[[usize; 2]]) -> Vec<(Vec<usize>, bool)> {
+    let mut at: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (s, pair) in segs.iter().enumerate() {
+        for &e in pair {
+            at.entry(e).or_default().push(s);
+        }
+    }
+    let mut used = vec![false; segs.len()];
+    let mut out = Vec::new();
+    let walk = |start: usize, first: usize, used: &mut Vec<bool>| -> (Vec<usize>, bool) {
+        let mut edges = vec![start];
+        let (mut e, mut s) = (start, first);
+        loop {
+            used[s] = true;
+            let next = if segs[s][0] == e {
+                segs[s][1]
+            } else {
+                segs[s][0]
+            };
+            if next == start {
+                return (edges, true);
+            }
+            edges.push(next);
+            match at[&next].iter().find(|&&t| !used[t]) {
+                Some(&t) => (e, s) = (next, t),
+                None => return (edges, false),
+            }
+        }
+    };
+    // Open chains from their ends, in segment order.
+    for s in 0..segs.len() {
+        for &e in &segs[s] {
+            if !used[s] && at[&e].len() == 1 {
+                out.push(walk(e, s, &mut used));
+            }
+        }
+    }
+    for s in 0..segs.len() {
+        if !used[s] {
+            out.push(walk(segs[s][0], s, &mut used));
+        }
+    }
+    out
+}
+
+/// Dijkstra's algorithm from every top node (σ = 0) over the wall nodes; a
+/// floor node keeps +∞. Ties are settled by node index, so the result does
+/// not depend on anything but the grid.
+fn dijkstra(nx: usize, ny: usize, h: f64, parts: &[Part], z: &[f64]) -> Vec<f64> {
+    let mut d: Vec<f64> = parts
+        .iter()
+        .map(|&p| if p == Part::Top { 0.0 } else { f64::INFINITY })
+        .collect();
+    // σ ≥ 0, so its bits order as its values.
+    let mut heap: BinaryHeap<Reverse<(u64, usize)>> = (0..nx * ny)
+        .filter(|&k| parts[k] == Part::Top)
+        .map(|k| Reverse((0u64, k)))
+        .collect();
+    let steps: Vec<(i64, i64, f64)> = STEPS
+        .iter()
+        .map(|&(a, b)| (a, b, h * ((a * a + b * b) as f64).sqrt()))
+        .collect();
+    while let Some(Reverse((bits, k))) = heap.pop() {
+        let dk = f64::from_bits(bits);
+        if dk > d[k] {
+            continue;
+        }
+        let (i, j) = ((k % nx) as i64, (k / nx) as i64);
+        for &(a, b, run) in &steps {
+            let (x, y) = (i + a, j + b);
+            if x < 0 || y < 0 || x >= nx as i64 || y >= ny as i64 {
+                continue;
+            }
+            let m = y as usize * nx + x as usize;
+            if parts[m] != Part::Wall {
+                continue;
+            }
+            let rise = z[m] - z[k];
+            let nd = dk + (run * run + rise * rise).sqrt();
+            if nd < d[m] {
+                d[m] = nd;
+                heap.push(Reverse((nd.to_bits(), m)));
+            }
+        }
+    }
+    d
+}
+
+/// The passes of the wall between its top edge and its foot: the levels σ =
+/// k·`w` for k = 1, 2, ... below the largest σ, the deepest first (the
+/// finisher cuts from the floor up), each with its curves (none shorter than
+/// `min_len`, mm), and between levels k + 1 and k the pieces of σ = (k + ½)·w
+/// that neither level k + 1 nor the wall's foot `foot` comes near
+/// ([`ridge_pieces`]). `max_passes` bounds the work: `Err` names the count.
+pub fn passes(
+    dist: &Distance,
+    foot: &[Curve],
+    w: f64,
+    min_len: f64,
+    max_passes: usize,
+) -> Result<Vec<(f64, Vec<Curve>)>, usize> {
+    use rayon::prelude::*;
+    let k_max = (dist.max() / w).floor() as usize;
+    if k_max > max_passes {
+        return Err(k_max);
+    }
+    let long = |c: &Curve| c.length() >= min_len;
+    let levels: Vec<Vec<Curve>> = (0..=k_max + 1)
+        .into_par_iter()
+        .map(|k| {
+            if k == 0 || k > k_max {
+                return Vec::new();
+            }
+            dist.level(k as f64 * w).into_iter().filter(long).collect()
+        })
+        .collect();
+    let halves: Vec<Vec<Curve>> = (0..=k_max)
+        .into_par_iter()
+        .map(|k| {
+            if k == 0 {
+                return Vec::new();
+            }
+            let half = dist.level((k as f64 + 0.5) * w);
+            let near: Vec<Curve> = levels[k + 1].iter().chain(foot).cloned().collect();
+            ridge_pieces(&half, &near, w)
+                .into_iter()
+                .filter(|c| c.length() >= w)
+                .collect()
+        })
+        .collect();
+    let mut out = Vec::new();
+    for k in (1..=k_max).rev() {
+        out.push(((k as f64 + 0.5) * w, halves[k].clone()));
+        out.push((k as f64 * w, levels[k].clone()));
+    }
+    Ok(out.into_iter().filter(|(_, c)| !c.is_empty()).collect())
+}
+
+/// How near (XY, in pass widths) level k + 1 must come to a point of σ =
+/// (k + ½)·w for the point to count as covered: on a gentle wall the level
+/// lies w/2 off along the surface; a wall up to 40° steep brings that to
+/// 0.38·w in XY, and a point whose neighbour level lies farther is a ridge's.
+pub const COVERED: f64 = 0.75;
+
+/// The pieces of the half level `half` (σ = (k + ½)·w) farther than
+/// [`COVERED`]·w from every curve of `next` (level k + 1 and the foot,
+/// which the half level nears where the wall ends), each grown by
+/// a few points at either end. Where fronts from two parts of the top edge
+/// meet (a ridge of σ: the col between two letters, the bottom of a pit)
+/// level k + 1 lies only beyond the ridge, and a ridge point up to w from
+/// level k would be left with a scallop up to four times the bound; the
+/// half level runs w/2 from level k there.
+pub fn ridge_pieces(half: &[Curve], next: &[Curve], w: f64) -> Vec<Curve> {
+    let segs: Vec<Vec<Vec2>> = next
+        .iter()
+        .flat_map(|c| {
+            let n = c.pts.len();
+            let m = if c.closed { n } else { n.saturating_sub(1) };
+            (0..m).map(move |i| vec![c.pts[i], c.pts[(i + 1) % n]])
+        })
+        .collect();
+    let index = (!segs.is_empty()).then(|| crate::geometry::DistanceIndex::new(&segs));
+    let far = |q: Vec2| index.as_ref().is_none_or(|ix| ix.distance(q) > COVERED * w);
+    half.iter()
+        .flat_map(|c| uncovered_runs(c, &c.pts.iter().map(|&q| far(q)).collect::<Vec<_>>()))
+        .collect()
+}
+
+/// Points either side of an uncovered run that are kept with it.
+const GROW: usize = 3;
+
+/// The runs of `c` whose points are marked in `open` (each grown by [`GROW`]
+/// points), as curves: the whole curve if every point is marked.
+fn uncovered_runs(c: &Curve, open: &[bool]) -> Vec<Curve> {
+    let n = c.pts.len();
+    if n == 0 || !open.iter().any(|&o| o) {
+        return Vec::new();
+    }
+    if open.iter().all(|&o| o) {
+        return vec![c.clone()];
+    }
+    let at = |i: isize| -> usize {
+        if c.closed {
+            i.rem_euclid(n as isize) as usize
+        } else {
+            i.clamp(0, n as isize - 1) as usize
+        }
+    };
+    let mut keep = vec![false; n];
+    for i in (0..n).filter(|&i| open[i]) {
+        for d in -(GROW as isize)..=GROW as isize {
+            keep[at(i as isize + d)] = true;
+        }
+    }
+    if keep.iter().all(|&k| k) {
+        return vec![c.clone()];
+    }
+    // Start the walk at a dropped point so no run of a closed curve wraps.
+    let start = if c.closed {
+        keep.iter().position(|&k| !k).unwrap_or(0)
+    } else {
+        0
+    };
+    let mut out = Vec::new();
+    let mut run = Vec::new();
+    for m in 0..n {
+        let i = (start + m) % n;
+        if keep[i] {
+            run.push(c.pts[i]);
+        } else if !run.is_empty() {
+            out.push(Curve {
+                pts: std::mem::take(&mut run),
+                closed: false,
+            });
+        }
+    }
+    if !run.is_empty() {
+        out.push(Curve {
+            pts: run,
+            closed: false,
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A grid of u over [0, 10]² from a function.
+    fn grid_of(h: f64, u: impl Fn(Vec2) -> f64) -> Grid {
+        let n = (10.0 / h) as usize + 1;
+        let values = (0..n * n)
+            .map(|k| u(Vec2::new((k % n) as f64 * h, (k / n) as f64 * h)))
+            .collect();
+        Grid {
+            origin: Vec2::ZERO,
+            h,
+            nx: n,
+            ny: n,
+            values,
+            inside: vec![false; n * n],
+        }
+    }
+
+    /// A plane wall rising along x at slope 1 (u = x/9, z = x − 9 up to the
+    /// top edge at x = 9): σ is (9 − x)·√2 within the stencil's 2.7 % and
+    /// never under it; a level is a straight line across the grid (an open
+    /// arc from border to border).
+    #[test]
+    fn on_a_plane_sigma_is_the_slanted_distance_within_the_stencil() {
+        let p = DepthProfile::Linear {
+            s_bottom: 0.0,
+            depth: 9.0,
+        };
+        let g = grid_of(0.1, |q| q.x / 9.0);
+        let z_of = |u: f64| p.z(u);
+        let d = Distance::from_top_edge(&g, &p, false, &z_of);
+        for (i, j) in [(5, 0), (30, 70), (85, 3), (50, 50)] {
+            let x = i as f64 * 0.1;
+            let exact = (9.0 - x) * 2f64.sqrt();
+            let got = d.d[j * d.nx + i];
+            assert!(
+                got >= exact - 1e-9 && got <= exact * 1.03 + 0.2,
+                "{x}: {got} vs {exact}"
+            );
+        }
+        let lv = d.level(5.0);
+        assert_eq!(lv.len(), 1);
+        assert!(!lv[0].closed);
+        let x = 9.0 - 5.0 / 2f64.sqrt();
+        for q in &lv[0].pts {
+            assert!((q.x - x).abs() < 0.15, "{q:?} vs x {x}");
+        }
+    }
+
+    /// A cone: u = 1 − (r − 2)/10, z = −(r − 2) (1 mm per mm of radius
+    /// from the top edge at r = 2 to the foot at r = 8): its levels inside
+    /// the grid are closed circles of radius 2 + σ/√2, neighbours at most w
+    /// and at least 0.9·w apart on the surface.
+    #[test]
+    fn on_a_cone_the_levels_are_circles_w_apart_on_the_surface() {
+        let p = DepthProfile::Linear {
+            s_bottom: 0.4,
+            depth: 6.0,
+        };
+        let c = Vec2::new(5.0, 5.0);
+        let g = grid_of(0.05, |q| 1.0 - (q.dist(c) - 2.0) / 10.0);
+        let z_of = |u: f64| p.z(u);
+        let d = Distance::from_top_edge(&g, &p, false, &z_of);
+        let w = 0.5;
+        let passes = passes(&d, &[], w, 0.1, 100).unwrap();
+        // r from 2 to 5 (the grid's edge) at slope 1: σ up to 3√2.
+        assert!(passes.len() >= 7, "{}", passes.len());
+        let mut radii = Vec::new();
+        for (sig, cv) in passes.iter().rev() {
+            let k = sig / w;
+            // Circles that lie inside the grid (radius under 4.9), and the
+            // half levels between them, which the next circle covers.
+            if 2.0 + (k.floor() + 1.0) * w / 2f64.sqrt() > 4.9 {
+                continue;
+            }
+            assert!(
+                (k - k.round()).abs() < 1e-9,
+                "a half level at σ {sig}: {cv:?}"
+            );
+            assert_eq!(cv.len(), 1, "σ {sig}");
+            assert!(cv[0].closed, "σ {sig}");
+            let r: f64 = cv[0].pts.iter().map(|q| q.dist(c)).sum::<f64>() / cv[0].pts.len() as f64;
+            radii.push(r);
+        }
+        assert!(radii.len() >= 5);
+        for r in radii.windows(2) {
+            let on_surface = (r[1] - r[0]) * 2f64.sqrt();
+            assert!(
+                on_surface <= w * 1.0 + 1e-3 && on_surface > 0.9 * w,
+                "{r:?}"
+            );
+        }
+    }
+
+    /// A V-shaped valley between two top edges at x = 2 and x = 8 (z =
+    /// −min(x − 2, 8 − x)): the fronts meet head-on on the ridge of σ at x =
+    /// 5, σ = 3√2 there. With w = 0.55 the last level, 7·w = 3.85, lies
+    /// 0.39 mm (more than w/2) from the ridge on either side and level 8
+    /// does not exist: the half level 7.5·w is kept, along the ridge.
+    #[test]
+    fn a_ridge_that_the_next_level_misses_gets_the_half_level() {
+        let p = DepthProfile::Linear {
+            s_bottom: 0.0,
+            depth: 4.0,
+        };
+        let g = grid_of(0.05, |q| 1.0 - (q.x - 2.0).min(8.0 - q.x) / 4.0);
+        let z_of = |u: f64| p.z(u);
+        let d = Distance::from_top_edge(&g, &p, false, &z_of);
+        let w = 0.55;
+        let passes = passes(&d, &[], w, 0.1, 100).unwrap();
+        let sigmas: Vec<f64> = passes.iter().map(|(s, _)| *s).collect();
+        let half = passes
+            .iter()
+            .find(|(s, _)| (s - 7.5 * w).abs() < 1e-9)
+            .unwrap_or_else(|| panic!("no half level: {sigmas:?}"));
+        for c in &half.1 {
+            for q in &c.pts {
+                assert!((q.x - 5.0).abs() < 0.3, "{q:?} far from the ridge");
+            }
+        }
+        // No half level where the next level comes near (the rest of the
+        // valley's walls).
+        assert_eq!(
+            sigmas
+                .iter()
+                .filter(|s| ((*s / w).fract() - 0.5).abs() < 1e-9)
+                .count(),
+            1,
+            "{sigmas:?}"
+        );
+    }
+}
