@@ -367,6 +367,11 @@ pub fn passes(
         out.push(((k as f64 + 0.5) * w, halves[k].clone()));
         out.push((k as f64 * w, levels[k].clone()));
     }
+    // Half a width under the top edge as well: where the wall meets the top
+    // in a crease the cutter on the edge touches it at the crease, tilted
+    // less than the wall, and does not reach the wall under it.
+    let first: Vec<Curve> = dist.level(0.5 * w).into_iter().filter(long).collect();
+    out.push((0.5 * w, first));
     Ok(out.into_iter().filter(|(_, c)| !c.is_empty()).collect())
 }
 
@@ -534,6 +539,11 @@ mod tests {
             if 2.0 + (k.floor() + 1.0) * w / 2f64.sqrt() > 4.9 {
                 continue;
             }
+            if k < 1.0 {
+                // Half a width under the top edge: always cut.
+                assert!((k - 0.5).abs() < 1e-9 && cv.len() == 1 && cv[0].closed);
+                continue;
+            }
             assert!(
                 (k - k.round()).abs() < 1e-9,
                 "a half level at σ {sig}: {cv:?}"
@@ -580,14 +590,15 @@ mod tests {
             }
         }
         // No half level where the next level comes near (the rest of the
-        // valley's walls).
+        // valley's walls), but for the one half a width under the top edge.
         assert_eq!(
             sigmas
                 .iter()
                 .filter(|s| ((*s / w).fract() - 0.5).abs() < 1e-9)
                 .count(),
-            1,
+            2,
             "{sigmas:?}"
         );
+        assert!((sigmas[sigmas.len() - 1] - 0.5 * w).abs() < 1e-12);
     }
 }

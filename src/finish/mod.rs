@@ -202,11 +202,11 @@ pub fn finish(
         _ => p.top,
     };
     let loops = without_floor_bound(loops, cands.passes.len(), cands.floor + 1, floor_z);
-    let order = path::order(
-        &loops,
-        2.0 * width,
-        path::LINK_WIDTHS * width + 2.0 * f.radius(),
-    );
+    let max_link = path::LINK_WIDTHS * width + 2.0 * f.radius();
+    let order = match f.pattern {
+        crate::job::Pattern::Equipotential => path::order(&loops, 2.0 * width, max_link),
+        crate::job::Pattern::Geodesic => path::order_nearest(&loops, 2.0 * width, max_link),
+    };
     let toolpath = path::moves(&loops, &order, &p, mesh);
     Ok(Finished {
         toolpath,

@@ -476,6 +476,61 @@ pub fn order(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
     out
 }
 
+/// The loops in cutting order, each with whether it is reached by a feed
+/// link: from where the cutter is, the nearest loop whose parent (as
+/// [`order`] finds it) is cut, linked when it lies within `max_link` (an
+/// open arc: [`ARC_LINK`]), else reached by a retract. With open arcs the
+/// parent tree branches at every arc that the wall's foot cuts short, and a
+/// depth-first walk retracts at every branch; this walk retracts only when
+/// nothing that may be cut lies near.
+pub fn order_nearest(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
+    let parent = parents(loops, reach);
+    // Every tenth contact point, and an arc's ends: where a loop is near.
+    let probes: Vec<Vec<Vec2>> = loops
+        .iter()
+        .map(|l| {
+            let mut p: Vec<Vec2> = l.contact.iter().step_by(10).copied().collect();
+            p.extend(l.contact.last());
+            p
+        })
+        .collect();
+    let near = |i: usize, at: Vec2| -> f64 {
+        if loops[i].closed {
+            probes[i]
+                .iter()
+                .map(|q| q.dist(at))
+                .fold(f64::INFINITY, f64::min)
+        } else {
+            reach_of(&loops[i], at)
+        }
+    };
+    let mut done = vec![false; loops.len()];
+    let mut out = Vec::with_capacity(loops.len());
+    let mut at = Vec2::new(f64::INFINITY, f64::INFINITY);
+    for _ in 0..loops.len() {
+        let next = (0..loops.len())
+            .filter(|&i| !done[i] && parent[i].is_none_or(|p| done[p]))
+            .map(|i| (i, if at.x.is_finite() { near(i, at) } else { 0.0 }))
+            .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        let Some((i, d)) = next else { break };
+        let most = if loops[i].closed {
+            max_link
+        } else {
+            ARC_LINK.max(max_link)
+        };
+        out.push((i, at.x.is_finite() && d <= most));
+        done[i] = true;
+        let tips = oriented(&loops[i], Vec3::new(at.x, at.y, 0.0));
+        let end = if loops[i].closed {
+            tips.first()
+        } else {
+            tips.last()
+        };
+        at = end.map_or(at, |t| Vec2::new(t.x, t.y));
+    }
+    out
+}
+
 /// How far from `at` the cutter starts `l`: its nearest contact point, or an
 /// arc's nearer end.
 fn reach_of(l: &Loop, at: Vec2) -> f64 {
