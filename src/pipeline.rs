@@ -592,18 +592,8 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let (solved, shape_report, outer_radius) = solve_shape(&shape, job, flat_tol, progress)?;
     set_stage(Stage::LevelGrid);
     let source = mfs_sections(&shape, job, profile, solved)?;
-    let params = level_params(job);
-    let lj = LevelJob {
-        source: &source,
-        cavity: job.operation.kind == OperationKind::Cavity,
-        top: job.stock.top,
-        stepdown: job.tool.stepdown,
-        max_scallop: job.operation.max_scallop,
-        margin: job.stock.margin,
-        outer_radius,
-        params,
-        max_hours: job.machine.max_hours,
-    };
+    let cavity = job.operation.kind == OperationKind::Cavity;
+    let lj = level_job(job, &source, cavity, outer_radius);
     let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
     set_stage(Stage::Finishing);
     let finish = match &job.finish {
@@ -815,26 +805,75 @@ pub(crate) fn cut_levels(
     Ok((planned, toolpath, min_clearance))
 }
 
-/// The run of a source whose levels were traced in their own sections'
-/// fields (a height field, a PDE tube): the outline's own field, solved
-/// only for the preview's colour map and reported as "`name` outline
-/// (preview)", then the level reports and the output, `name` standing for
-/// the glyphs.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn sections_output(
+/// A part the level planner reads through its own sections (a height
+/// field, a PDE tube), for [`run_sections`].
+pub(crate) struct SectionsPart<'a> {
+    /// The part's sections.
+    pub source: &'a dyn Sections,
+    /// True for a cavity (a tube's mould), false for a boss.
+    pub cavity: bool,
+    /// Outer radius of the level problems, mm.
+    pub outer_radius: f64,
+    /// What the run summary calls the part (`patch`, `tube`, ...).
+    pub name: &'a str,
+    /// The progress bar's name for the finishing stage.
+    pub finish_stage: &'a str,
+}
+
+/// The level planner's job for `source` under `job`'s settings.
+fn level_job<'a>(
     job: &Job,
-    name: &str,
-    shape: Shape,
-    mut solves: Vec<SolveReport>,
-    planned: crate::levels::plan::Planned,
-    toolpath: Toolpath,
-    min_clearance: f64,
-    finish: Option<crate::finish::Finished>,
+    source: &'a dyn Sections,
+    cavity: bool,
+    outer_radius: f64,
+) -> LevelJob<'a> {
+    LevelJob {
+        source,
+        cavity,
+        top: job.stock.top,
+        stepdown: job.tool.stepdown,
+        max_scallop: job.operation.max_scallop,
+        margin: job.stock.margin,
+        outer_radius,
+        params: level_params(job),
+        max_hours: job.machine.max_hours,
+    }
+}
+
+/// The run of a part whose levels are traced in its own sections' fields:
+/// the levels cut ([`cut_levels`]), the finishing program by `finish` when
+/// the job has `[finish]` (one progress stage, `part.finish_stage`), then
+/// the outline's own field (`shape`, from [`job_shape`]), solved only for
+/// the preview's colour map and reported as "`name` outline (preview)",
+/// the level reports and the output, `name` standing for the glyphs.
+pub(crate) fn run_sections(
+    job: &Job,
+    (shape, mut solves): (Shape, Vec<SolveReport>),
+    part: SectionsPart<'_>,
+    finish: &mut dyn FnMut(&crate::job::Finish) -> Result<crate::finish::Finished, PipelineError>,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<RunOutput, PipelineError> {
+    use crate::count::{set_stage, Stage};
+    let lj = level_job(job, part.source, part.cavity, part.outer_radius);
+    set_stage(Stage::LevelGrid);
+    let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
+    set_stage(Stage::Finishing);
+    let finish = match &job.finish {
+        Some(f) => {
+            progress(Progress::Stage {
+                name: part.finish_stage.into(),
+                total: 1,
+            });
+            let done = finish(f)?;
+            progress(Progress::Step);
+            Some(done)
+        }
+        None => None,
+    };
+    set_stage(Stage::Other);
     let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
     let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
-    report.label = format!("{name} outline (preview)");
+    report.label = format!("{} outline (preview)", part.name);
     solves.push(report);
     let levels = LevelsOutput {
         planned,
@@ -842,7 +881,7 @@ pub(crate) fn sections_output(
         min_clearance,
         finish,
     };
-    Ok(levels.output(solves, vec![name.into()], shape, solved.solution.field))
+    Ok(levels.output(solves, vec![part.name.into()], shape, solved.solution.field))
 }
 
 /// What a run by levels made: the plan, its tool path and least clearance,
