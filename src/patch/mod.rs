@@ -89,8 +89,9 @@ pub fn patch_sections(
     job: &Job,
     spec: HeightSource<'_>,
 ) -> Result<HeightFieldSections, PipelineError> {
+    // The job's resolve has built the patch once: an error here is a bug.
     spec.sections(job.operation.tolerance)
-        .map_err(PipelineError::Other)
+        .map_err(|e| PipelineError::Internal(format!("the height field of a resolved job: {e}")))
 }
 
 /// Rough a patch by levels (and finish it, with `[finish]`).
@@ -149,8 +150,7 @@ fn finish_patch(
         area,
         valleys: matches!(spec, HeightSource::Poly(_)),
     };
-    raster::raster_finish(job, f, &part)
-        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))
+    raster::raster_finish(job, f, &part).map_err(PipelineError::Finishing)
 }
 
 /// The stock rectangle of a patch job: the rectangle grown by `stock.margin`

@@ -82,7 +82,7 @@ fn finish_tube(
     let area = crate::finish::wall_area(&tris);
     let index = crate::pipeline::finish_index(tris);
     let contacts = ring_contacts::Rings::new(tube, tube.points(), f.radius())
-        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
+        .map_err(PipelineError::Finishing)?;
     let part = rings::RingPart {
         tube,
         mesh: &index,
@@ -90,7 +90,7 @@ fn finish_tube(
         top: job.stock.top,
         rings: &contacts,
     };
-    rings::ring_finish(job, f, &part).map_err(|e| PipelineError::Other(format!("finishing: {e}")))
+    rings::ring_finish(job, f, &part).map_err(PipelineError::Finishing)
 }
 
 /// The tube's part as a closed mesh at `resolution` mm (`pfcam surface`).
