@@ -4,40 +4,15 @@
 //! medians criterion prints.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use nalgebra::Vector3;
 use pfcam::sources::polyharmonic::closed::{closed_mesh, Region};
-use pfcam::sources::polyharmonic::{
-    solve, Envelope, GivenPoint, Kernel, Model, PointKind, Quadrature,
-};
+use pfcam::sources::polyharmonic::sphere::sphere_model;
+use pfcam::sources::polyharmonic::{solve, Envelope, Kernel, Model};
 use std::hint::black_box;
 
 /// 40 points on the unit sphere (Fibonacci lattice) + its centre inside,
 /// T2A with A = 0.3, box [−2, 2]³ with `per_edge` elements per face edge.
 fn sphere(per_edge: usize) -> Model {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    let mut points: Vec<GivenPoint> = (0..40)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / 40.0;
-            let r = (1.0 - z * z).sqrt();
-            let t = golden * i as f64;
-            GivenPoint {
-                p: Vector3::new(r * t.cos(), r * t.sin(), z),
-                kind: PointKind::Surface,
-            }
-        })
-        .collect();
-    points.push(GivenPoint {
-        p: Vector3::zeros(),
-        kind: PointKind::Inside,
-    });
-    Model {
-        lo: Vector3::new(-2.0, -2.0, -2.0),
-        hi: Vector3::new(2.0, 2.0, 2.0),
-        per_edge,
-        kernel: Kernel::T2A { a: 0.3 },
-        points,
-        quadrature: Quadrature::default(),
-    }
+    sphere_model(per_edge, Kernel::T2A { a: 0.3 })
 }
 
 fn polyharmonic(c: &mut Criterion) {

@@ -6,34 +6,12 @@
 
 use nalgebra::Vector3;
 use pfcam::sources::polyharmonic::closed::{closed_mesh, Region};
-use pfcam::sources::polyharmonic::{solve, GivenPoint, Kernel, Model, PointKind, Quadrature};
+use pfcam::sources::polyharmonic::sphere::sphere_model;
+use pfcam::sources::polyharmonic::{solve, Kernel, Model};
 use std::time::Instant;
 
 fn sphere() -> Model {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    let mut points: Vec<GivenPoint> = (0..40)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / 40.0;
-            let r = (1.0 - z * z).sqrt();
-            let t = golden * i as f64;
-            GivenPoint {
-                p: Vector3::new(r * t.cos(), r * t.sin(), z),
-                kind: PointKind::Surface,
-            }
-        })
-        .collect();
-    points.push(GivenPoint {
-        p: Vector3::zeros(),
-        kind: PointKind::Inside,
-    });
-    Model {
-        lo: Vector3::repeat(-2.0),
-        hi: Vector3::repeat(2.0),
-        per_edge: 6,
-        kernel: Kernel::T2A { a: 0.3 },
-        points,
-        quadrature: Quadrature::default(),
-    }
+    sphere_model(6, Kernel::T2A { a: 0.3 })
 }
 
 fn main() {

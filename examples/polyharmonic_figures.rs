@@ -3,6 +3,7 @@
 
 use nalgebra::Vector3;
 use pfcam::sources::polyharmonic::quadrature::influence;
+use pfcam::sources::polyharmonic::sphere::{fibonacci, sphere_model};
 use pfcam::sources::polyharmonic::{
     solve, solve_dirichlet, BoxMesh, Envelope, GivenPoint, Kernel, Model, PointKind, QuadRule,
     Quadrature, Solution,
@@ -11,18 +12,6 @@ use std::time::Instant;
 
 fn v(x: f64, y: f64, z: f64) -> Vector3<f64> {
     Vector3::new(x, y, z)
-}
-
-fn fibonacci(n: usize, phase: f64) -> Vec<Vector3<f64>> {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            let t = golden * i as f64 + phase;
-            v(r * t.cos(), r * t.sin(), z)
-        })
-        .collect()
 }
 
 /// Green's identity: T₁ = |x − c|², T₂ = −6 on [−1, 1]³, no points.
@@ -87,28 +76,6 @@ fn greens(per_edge: usize) -> (f64, f64, f64, f64, f64, usize) {
     (ev1, ev2, et1, secs, rms, ring)
 }
 
-fn sphere(per_edge: usize, kernel: Kernel) -> Model {
-    let mut points: Vec<GivenPoint> = fibonacci(40, 0.0)
-        .into_iter()
-        .map(|p| GivenPoint {
-            p,
-            kind: PointKind::Surface,
-        })
-        .collect();
-    points.push(GivenPoint {
-        p: Vector3::zeros(),
-        kind: PointKind::Inside,
-    });
-    Model {
-        lo: v(-2.0, -2.0, -2.0),
-        hi: v(2.0, 2.0, 2.0),
-        per_edge,
-        kernel,
-        points,
-        quadrature: Quadrature::default(),
-    }
-}
-
 /// First zero of T₁ from the origin along d: steps of 0.05, then bisection.
 fn radius_along(sol: &Solution, d: Vector3<f64>) -> Option<f64> {
     let (mut lo, mut hi) = (0.0, None);
@@ -155,7 +122,7 @@ fn two_bumps(separator: bool) -> Model {
             kind: PointKind::Outside,
         });
     }
-    let mut m = sphere(5, Kernel::T2A { a: 0.3 });
+    let mut m = sphere_model(5, Kernel::T2A { a: 0.3 });
     m.points = points;
     m
 }
@@ -215,7 +182,7 @@ fn main() {
         (Kernel::T2, 6),
     ] {
         let start = Instant::now();
-        let sol = solve(&sphere(n, kernel)).expect("solve");
+        let sol = solve(&sphere_model(n, kernel)).expect("solve");
         let secs = start.elapsed().as_secs_f64();
         let worst = dirs
             .iter()
@@ -228,7 +195,7 @@ fn main() {
         );
     }
 
-    let model = sphere(6, Kernel::T2A { a: 0.3 });
+    let model = sphere_model(6, Kernel::T2A { a: 0.3 });
     let sol = solve(&model).expect("solve");
     let worst = model
         .points
@@ -240,7 +207,7 @@ fn main() {
     println!(
         "\nTop envelope of the sphere (T2A, A = 0.3, 6/edge), 33 x 33 rays over [-1.2, 1.2]^2:"
     );
-    let sol = solve(&sphere(6, Kernel::T2A { a: 0.3 })).expect("solve");
+    let sol = solve(&sphere_model(6, Kernel::T2A { a: 0.3 })).expect("solve");
     let env = Envelope {
         step: 0.05,
         tol: 1e-6,

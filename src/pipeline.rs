@@ -157,12 +157,62 @@ pub enum PipelineError {
         /// The composition's own error.
         source: Box<crate::compose::ComposeError>,
     },
-    /// A broken invariant of pfcam itself.
-    #[error("internal error: {0} (please report this pfcam bug)")]
-    Internal(String),
-    /// Anything else.
+    /// The shape has no outline to cut.
+    #[error("the shape is empty: nothing to cut")]
+    EmptyShape,
+    /// A boss's or cavity's top edge needs a field more accurate than the
+    /// shape's solve reaches (the key to change is `profile.s1`).
+    #[error("{}", top_edge_message(.0))]
+    TopEdge(TopEdge),
+    /// `pfcam sections --z` outside the part.
     #[error("{0}")]
-    Other(String),
+    Section(#[from] crate::levels::sections::OutsidePart),
+    /// The finishing program (`[finish]`) could not be made.
+    #[error("finishing: {0}")]
+    Finishing(String),
+    /// S2's mesh, for the finisher, could not be built.
+    #[error("{0}")]
+    Surface(Box<crate::surface::SurfaceError>),
+    /// A broken invariant of pfcam itself, never the input's fault.
+    #[error("internal error: {0} (this is a pfcam bug, please report it)")]
+    Internal(String),
+}
+
+impl From<crate::surface::SurfaceError> for PipelineError {
+    fn from(e: crate::surface::SurfaceError) -> Self {
+        PipelineError::Surface(Box::new(e))
+    }
+}
+
+/// What [`PipelineError::TopEdge`] reports: the profile's top s, the field
+/// error it needs and the one the solve reached at N charges.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TopEdge {
+    /// The profile's top edge s1.
+    pub s1: f64,
+    /// The largest field error that edge allows.
+    pub needed: f64,
+    /// The solve's max boundary error.
+    pub reached: f64,
+    /// Its number of charges.
+    pub n: usize,
+    /// Whether `field.singularities` fixed N.
+    pub fixed_n: bool,
+}
+
+fn top_edge_message(t: &TopEdge) -> String {
+    format!(
+        "profile: its top edge s = {:.6} needs the shape's field to err by at most {:.1e} (a hundredth of 1 − s, times the bottom s), but it reaches only {:.2e} at N = {}: lower the profile's top s (profile.s1, or the last profile point){}",
+        t.s1,
+        t.needed,
+        t.reached,
+        t.n,
+        if t.fixed_n {
+            ", or raise or remove field.singularities"
+        } else {
+            ""
+        }
+    )
 }
 
 /// [`PipelineError::Compose`]'s words: the part as the job file numbers it,
@@ -225,13 +275,9 @@ pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineEr
         }
     }
     if contours.is_empty() {
-        return Err(PipelineError::Other(
-            "the shape is empty: nothing to cut".into(),
-        ));
+        return Err(PipelineError::EmptyShape);
     }
-    let (lo, hi) = shape
-        .bbox()
-        .ok_or_else(|| PipelineError::Other("the shape is empty".into()))?;
+    let (lo, hi) = shape.bbox().ok_or(PipelineError::EmptyShape)?;
     let centre = field::centroid(&contours, flat_tol);
     let radius = OUTER_RADIUS_FACTOR * (hi - lo).norm();
     Ok(Boundary {
@@ -318,16 +364,13 @@ pub fn solve_shape(
     progress(Progress::Step);
     let reached = solved.solution.max_error;
     if job.operation.kind != OperationKind::Profile && (reached > max_error || reached.is_nan()) {
-        return Err(PipelineError::Other(format!(
-            "profile: its top edge s = {:.6} needs the shape's field to err by at most {max_error:.1e} (a hundredth of 1 − s, times the bottom s), but it reaches only {reached:.2e} at N = {}: lower the profile's top s (profile.s1, or the last profile point){}",
-            job.profile.as_ref().map_or(1.0, |p| p.s_range().1),
-            solved.layout.n_total,
-            if job.field.singularities.is_some() {
-                ", or raise or remove field.singularities"
-            } else {
-                ""
-            }
-        )));
+        return Err(PipelineError::TopEdge(TopEdge {
+            s1: job.profile.as_ref().map_or(1.0, |p| p.s_range().1),
+            needed: max_error,
+            reached,
+            n: solved.layout.n_total,
+            fixed_n: job.field.singularities.is_some(),
+        }));
     }
     let mut solved = solved;
     solved.solution.field = accelerate(&solved.solution.field, shape);
@@ -577,6 +620,12 @@ pub(crate) fn check_levels(
     Ok(min_clearance)
 }
 
+/// A boss or cavity without its depth profile: job resolution gives every
+/// boss and cavity one (a default when the job has no `[profile]`).
+fn no_profile() -> PipelineError {
+    PipelineError::Internal("a boss or cavity job has no depth profile [profile]".into())
+}
+
 /// A boss or cavity: the shape's field, the levels (each with its own MFS solve on
 /// Γ(s_k)), linking, and the gouge check of every level against its Γ(s_k).
 fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {
@@ -585,25 +634,12 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let (shape, mut solves) = job_shape(job, progress)?;
     let tol = job.operation.tolerance;
     let flat_tol = tol * FLATTEN_FRACTION;
-    let profile = job
-        .profile
-        .as_ref()
-        .ok_or_else(|| PipelineError::Other("a boss or cavity needs a [profile]".into()))?;
+    let profile = job.profile.as_ref().ok_or_else(no_profile)?;
     let (solved, shape_report, outer_radius) = solve_shape(&shape, job, flat_tol, progress)?;
     set_stage(Stage::LevelGrid);
     let source = mfs_sections(&shape, job, profile, solved)?;
-    let params = level_params(job);
-    let lj = LevelJob {
-        source: &source,
-        cavity: job.operation.kind == OperationKind::Cavity,
-        top: job.stock.top,
-        stepdown: job.tool.stepdown,
-        max_scallop: job.operation.max_scallop,
-        margin: job.stock.margin,
-        outer_radius,
-        params,
-        max_hours: job.machine.max_hours,
-    };
+    let cavity = job.operation.kind == OperationKind::Cavity;
+    let lj = level_job(job, &source, cavity, outer_radius);
     let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
     set_stage(Stage::Finishing);
     let finish = match &job.finish {
@@ -712,8 +748,7 @@ pub fn section_view(
     z: f64,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<crate::levels::section_view::SectionView, PipelineError> {
-    crate::levels::sections::check_z(z, part_z_range(job), job.stock.top)
-        .map_err(PipelineError::Other)?;
+    crate::levels::sections::check_z(z, part_z_range(job), job.stock.top)?;
     let (source, _) = job_sections(job, progress)?;
     Ok(crate::levels::section_view::SectionView::new(
         &job.name,
@@ -750,10 +785,7 @@ fn finish_program(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<crate::finish::Finished, PipelineError> {
     use crate::surface::{build, SurfaceJob, SurfaceOptions};
-    let profile = job
-        .profile
-        .as_ref()
-        .ok_or_else(|| PipelineError::Other("a boss or cavity needs a [profile]".into()))?;
+    let profile = job.profile.as_ref().ok_or_else(no_profile)?;
     let sj = SurfaceJob {
         field,
         glyphs,
@@ -767,7 +799,7 @@ fn finish_program(
     let opts = SurfaceOptions {
         resolution: FINISH_MESH,
     };
-    let surface = build(&sj, &opts, progress).map_err(|e| PipelineError::Other(e.to_string()))?;
+    let surface = build(&sj, &opts, progress)?;
     progress(Progress::Stage {
         name: "finishing passes".into(),
         total: 1,
@@ -788,7 +820,7 @@ fn finish_program(
     ));
     let index = finish_index(up);
     let done = crate::finish::finish(job, f, field, glyphs, grid, h, &index, walls)
-        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
+        .map_err(PipelineError::Finishing)?;
     progress(Progress::Step);
     Ok(done)
 }
@@ -815,26 +847,75 @@ pub(crate) fn cut_levels(
     Ok((planned, toolpath, min_clearance))
 }
 
-/// The run of a source whose levels were traced in their own sections'
-/// fields (a height field, a PDE tube): the outline's own field, solved
-/// only for the preview's colour map and reported as "`name` outline
-/// (preview)", then the level reports and the output, `name` standing for
-/// the glyphs.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn sections_output(
+/// A part the level planner reads through its own sections (a height
+/// field, a PDE tube), for [`run_sections`].
+pub(crate) struct SectionsPart<'a> {
+    /// The part's sections.
+    pub source: &'a dyn Sections,
+    /// True for a cavity (a tube's mould), false for a boss.
+    pub cavity: bool,
+    /// Outer radius of the level problems, mm.
+    pub outer_radius: f64,
+    /// What the run summary calls the part (`patch`, `tube`, ...).
+    pub name: &'a str,
+    /// The progress bar's name for the finishing stage.
+    pub finish_stage: &'a str,
+}
+
+/// The level planner's job for `source` under `job`'s settings.
+fn level_job<'a>(
     job: &Job,
-    name: &str,
-    shape: Shape,
-    mut solves: Vec<SolveReport>,
-    planned: crate::levels::plan::Planned,
-    toolpath: Toolpath,
-    min_clearance: f64,
-    finish: Option<crate::finish::Finished>,
+    source: &'a dyn Sections,
+    cavity: bool,
+    outer_radius: f64,
+) -> LevelJob<'a> {
+    LevelJob {
+        source,
+        cavity,
+        top: job.stock.top,
+        stepdown: job.tool.stepdown,
+        max_scallop: job.operation.max_scallop,
+        margin: job.stock.margin,
+        outer_radius,
+        params: level_params(job),
+        max_hours: job.machine.max_hours,
+    }
+}
+
+/// The run of a part whose levels are traced in its own sections' fields:
+/// the levels cut ([`cut_levels`]), the finishing program by `finish` when
+/// the job has `[finish]` (one progress stage, `part.finish_stage`), then
+/// the outline's own field (`shape`, from [`job_shape`]), solved only for
+/// the preview's colour map and reported as "`name` outline (preview)",
+/// the level reports and the output, `name` standing for the glyphs.
+pub(crate) fn run_sections(
+    job: &Job,
+    (shape, mut solves): (Shape, Vec<SolveReport>),
+    part: SectionsPart<'_>,
+    finish: &mut dyn FnMut(&crate::job::Finish) -> Result<crate::finish::Finished, PipelineError>,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<RunOutput, PipelineError> {
+    use crate::count::{set_stage, Stage};
+    let lj = level_job(job, part.source, part.cavity, part.outer_radius);
+    set_stage(Stage::LevelGrid);
+    let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
+    set_stage(Stage::Finishing);
+    let finish = match &job.finish {
+        Some(f) => {
+            progress(Progress::Stage {
+                name: part.finish_stage.into(),
+                total: 1,
+            });
+            let done = finish(f)?;
+            progress(Progress::Step);
+            Some(done)
+        }
+        None => None,
+    };
+    set_stage(Stage::Other);
     let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
     let (solved, mut report, _) = solve_shape(&shape, job, flat_tol, progress)?;
-    report.label = format!("{name} outline (preview)");
+    report.label = format!("{} outline (preview)", part.name);
     solves.push(report);
     let levels = LevelsOutput {
         planned,
@@ -842,7 +923,7 @@ pub(crate) fn sections_output(
         min_clearance,
         finish,
     };
-    Ok(levels.output(solves, vec![name.into()], shape, solved.solution.field))
+    Ok(levels.output(solves, vec![part.name.into()], shape, solved.solution.field))
 }
 
 /// What a run by levels made: the plan, its tool path and least clearance,
@@ -1017,5 +1098,48 @@ mod tests {
             assert!(matches!(e, PipelineError::Uncut { level: 2, .. }), "{e}");
             assert!(e.to_string().contains("lower tool.stepover"), "{e}");
         }
+    }
+
+    #[test]
+    fn an_empty_shape_is_its_own_error() {
+        let e = boundary_for(&Shape::default(), 0.01).unwrap_err();
+        assert!(matches!(e, PipelineError::EmptyShape), "{e:?}");
+        assert_eq!(e.to_string(), "the shape is empty: nothing to cut");
+    }
+
+    #[test]
+    fn a_top_edge_the_field_cannot_reach_names_its_keys() {
+        let text = "[shape]\ntext = \"I\"\n[tool]\ndiameter = 3.175\nfeed = 800\nplunge_feed = 200\nspindle = 18000\nstepdown = 1\n[operation]\nkind = \"boss\"\ndepth = 2\n[profile]\nkind = \"sigmoid\"\ns1 = 0.99999\ns2 = 0.9\n[field]\nsingularities = 12\n";
+        let job = crate::job::parse_job(text, "top", std::path::Path::new(".")).unwrap();
+        let e = run(&job, &mut |_| {}).unwrap_err();
+        let PipelineError::TopEdge(t) = &e else {
+            panic!("{e:?}")
+        };
+        assert_eq!((t.s1, t.n, t.fixed_n), (0.99999, 12, true));
+        // ε ≤ s2 (1 − s1) / 100, here below the tightest target allowed;
+        // 12 charges are far from it.
+        assert_eq!(t.needed, field_target(&job));
+        assert_eq!(t.needed, FIELD_TARGET_TIGHTEST.max(0.9 * 1e-5 / 100.0));
+        assert!(t.reached > t.needed, "{t:?}");
+        let m = e.to_string();
+        assert!(m.starts_with("profile: its top edge s = 0.999990"), "{m}");
+        assert!(
+            m.contains(
+                "(profile.s1, or the last profile point), or raise or remove field.singularities"
+            ),
+            "{m}"
+        );
+    }
+
+    #[test]
+    fn a_broken_invariant_asks_for_a_report() {
+        let e = no_profile();
+        assert!(matches!(e, PipelineError::Internal(_)), "{e:?}");
+        let m = e.to_string();
+        assert!(m.starts_with("internal error: "), "{m}");
+        assert!(
+            m.ends_with("(this is a pfcam bug, please report it)"),
+            "{m}"
+        );
     }
 }

@@ -226,6 +226,19 @@ pub fn polygons_bbox(polys: &[Vec<Vec2>]) -> Option<(Vec2, Vec2)> {
     }))
 }
 
+/// The rectangle [ox, ox + X] × [oy, oy + Y] as a polygon, counter-clockwise
+/// from its corner `origin`, `size` = [X, Y] (mm); the first point is not
+/// repeated.
+pub fn rectangle(origin: Vec2, size: [f64; 2]) -> Vec<Vec2> {
+    let [x, y] = size;
+    vec![
+        origin,
+        origin + Vec2::new(x, 0.0),
+        origin + Vec2::new(x, y),
+        origin + Vec2::new(0.0, y),
+    ]
+}
+
 /// Where the lines p + u·d1 and r + v·d2 meet, as (u, v); `None` when they are
 /// parallel.
 pub fn line_crossing(p: Vec2, d1: Vec2, r: Vec2, d2: Vec2) -> Option<(f64, f64)> {

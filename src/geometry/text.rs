@@ -80,13 +80,7 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
         ShapeSource::Polyharmonic(p) => {
             let o = Vec2::new(p.origin[0], p.origin[1]);
             check_point("origin", o)?;
-            let [x, y] = p.size;
-            let rect = [
-                o,
-                o + Vec2::new(x, 0.0),
-                o + Vec2::new(x, y),
-                o + Vec2::new(0.0, y),
-            ];
+            let rect = super::rectangle(o, p.size);
             Ok(super::Shape {
                 regions: vec![super::Region {
                     name: "relief".into(),

@@ -73,25 +73,51 @@ pub(super) fn glyph_keys(s: &RawShape) -> [(&'static str, bool); 16] {
 
 /// The keys of the other sources, refused with a patch.
 fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
-    let more = [("shape.height", s.height.is_some())];
-    let others = glyph_keys(s);
-    match others.iter().chain(&more).find(|k| k.1) {
+    refuse_keys(
+        s,
+        &[("shape.height", s.height.is_some())],
+        "harmonic-bezier",
+        "a patch is given by shape.degree, shape.size, shape.row0 and shape.row1 (and shape.form, shape.origin)",
+    )
+}
+
+/// With `shape.kind = kind`: the first given key among the glyph sources'
+/// ([`glyph_keys`]) and `more` is refused, the message saying what the kind
+/// is `given_by`.
+pub(super) fn refuse_keys(
+    s: &RawShape,
+    more: &[(&'static str, bool)],
+    kind: &str,
+    given_by: &str,
+) -> Result<(), JobError> {
+    match glyph_keys(s).iter().chain(more).find(|k| k.1) {
         Some((key, _)) => Err(invalid(
             key,
-            "does not apply to shape.kind = \"harmonic-bezier\": a patch is given by shape.degree, shape.size, shape.row0 and shape.row1 (and shape.form, shape.origin)",
+            format!("does not apply to shape.kind = \"{kind}\": {given_by}"),
         )),
         None => Ok(()),
     }
 }
 
-/// A required patch key.
-fn required<T>(v: Option<T>, key: &str, what: &str) -> Result<T, JobError> {
+/// A key that `shape.kind = kind` requires: its value, or the error naming
+/// it and `what` it is.
+pub(super) fn required_with<T>(
+    kind: &str,
+    v: Option<T>,
+    key: &str,
+    what: &str,
+) -> Result<T, JobError> {
     v.ok_or_else(|| {
         invalid(
             key,
-            format!("is required with shape.kind = \"harmonic-bezier\" ({what})"),
+            format!("is required with shape.kind = \"{kind}\" ({what})"),
         )
     })
+}
+
+/// A required patch key.
+fn required<T>(v: Option<T>, key: &str, what: &str) -> Result<T, JobError> {
+    required_with("harmonic-bezier", v, key, what)
 }
 
 /// `[shape]` with `kind`: the patch, checked by building it once.

@@ -52,24 +52,12 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
         ("shape.modes", s.modes.is_some()),
         ("shape.samples", s.samples.is_some()),
     ];
-    let others = super::harmonic::glyph_keys(s);
-    match others.iter().chain(&more).find(|k| k.1) {
-        Some((key, _)) => Err(invalid(
-            key,
-            "does not apply to shape.kind = \"polyharmonic\": the solid is given by shape.points (or shape.points_file), shape.box, shape.size and shape.base (and shape.inside, shape.outside, shape.kernel, shape.a, shape.elements, shape.solid, shape.origin)",
-        )),
-        None => Ok(()),
-    }
+    super::harmonic::refuse_keys(s, &more, "polyharmonic", "the solid is given by shape.points (or shape.points_file), shape.box, shape.size and shape.base (and shape.inside, shape.outside, shape.kernel, shape.a, shape.elements, shape.solid, shape.origin)")
 }
 
 /// A required key.
 fn required<T>(v: Option<T>, key: &str, what: &str) -> Result<T, JobError> {
-    v.ok_or_else(|| {
-        invalid(
-            key,
-            format!("is required with shape.kind = \"polyharmonic\" ({what})"),
-        )
-    })
+    super::harmonic::required_with("polyharmonic", v, key, what)
 }
 
 /// `[shape]` with `kind = "polyharmonic"`: solved and built once.

@@ -70,24 +70,12 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
         ("shape.elements", s.elements.is_some()),
         ("shape.base", s.base.is_some()),
     ];
-    let others = super::harmonic::glyph_keys(s);
-    match others.iter().chain(&more).find(|k| k.1) {
-        Some((key, _)) => Err(invalid(
-            key,
-            "does not apply to shape.kind = \"pde-tube\": a tube is given by shape.bottom_size, shape.top_size and shape.height (and shape.bottom_exponent, shape.top_exponent, shape.flare, shape.rise, shape.a, shape.modes, shape.samples, shape.origin)",
-        )),
-        None => Ok(()),
-    }
+    super::harmonic::refuse_keys(s, &more, KIND, "a tube is given by shape.bottom_size, shape.top_size and shape.height (and shape.bottom_exponent, shape.top_exponent, shape.flare, shape.rise, shape.a, shape.modes, shape.samples, shape.origin)")
 }
 
 /// A required tube key.
 fn required<T>(v: Option<T>, key: &str, what: &str) -> Result<T, JobError> {
-    v.ok_or_else(|| {
-        invalid(
-            key,
-            format!("is required with shape.kind = \"pde-tube\" ({what})"),
-        )
-    })
+    super::harmonic::required_with(KIND, v, key, what)
 }
 
 /// An integer key within `range`.

@@ -195,14 +195,7 @@ impl HeightFieldSections {
 
     /// The rectangle, counter-clockwise.
     fn rectangle(&self) -> Vec<Vec2> {
-        let [x, y] = self.size;
-        let o = self.origin;
-        vec![
-            o,
-            o + Vec2::new(x, 0.0),
-            o + Vec2::new(x, y),
-            o + Vec2::new(0.0, y),
-        ]
+        crate::geometry::rectangle(self.origin, self.size)
     }
 
     /// The grid ringed by one row of points below every level (−∞).

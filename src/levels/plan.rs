@@ -10,7 +10,7 @@ use crate::field::isolines::{isolines, polygon_area, Grid};
 use crate::field::{self, Boundary, Field, FieldError, Layout, Prepared};
 use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
 use crate::toolpath::profile::ProfileError;
-use crate::toolpath::zlevel::{boss_paths, LevelCut, LevelParams};
+use crate::toolpath::zlevel::{boss_paths, cavity_paths, LevelCut, LevelParams};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -422,26 +422,13 @@ fn plan_level(
         ))));
     }
     set_stage(Stage::Rings);
+    // The same inputs either way; a cavity also measures its uncut share.
+    let (part, field, w) = (&oriented, &level.field, &mut warnings);
     let (paths, uncut) = if job.cavity {
-        let (p, f) = crate::toolpath::zlevel::cavity_paths(
-            &oriented,
-            &level.field,
-            params,
-            &label,
-            &mut warnings,
-            reach,
-        )?;
+        let (p, f) = cavity_paths(part, field, params, &label, w, reach)?;
         (p, Some(f))
     } else {
-        let p = boss_paths(
-            &oriented,
-            &level.field,
-            params,
-            &label,
-            &mut warnings,
-            reach,
-        )?;
-        (p, None)
+        (boss_paths(part, field, params, &label, w, reach)?, None)
     };
     let info = LevelInfo {
         z: job.top + z,

@@ -83,14 +83,26 @@ pub fn net_area(section: &[Vec<Vec2>]) -> f64 {
 }
 
 /// Why a height is not in the part.
-pub fn check_z(z: f64, range: (f64, f64), top: f64) -> Result<(), String> {
+pub fn check_z(z: f64, range: (f64, f64), top: f64) -> Result<(), OutsidePart> {
     let (lo, hi) = (top + range.0, top + range.1);
     if z.is_finite() && z >= lo - 1e-9 && z <= hi + 1e-9 {
         return Ok(());
     }
-    Err(format!(
-        "--z {z}: the part spans z {lo:.3} to {hi:.3} mm (machine z, stock.top = {top})"
-    ))
+    Err(OutsidePart { z, lo, hi, top })
+}
+
+/// A height (`--z`) outside the part's machine z range [lo, hi], mm.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("--z {z}: the part spans z {lo:.3} to {hi:.3} mm (machine z, stock.top = {top})")]
+pub struct OutsidePart {
+    /// The height asked for.
+    pub z: f64,
+    /// The part's lowest machine z.
+    pub lo: f64,
+    /// Its highest.
+    pub hi: f64,
+    /// `stock.top`.
+    pub top: f64,
 }
 
 #[cfg(test)]
@@ -117,7 +129,7 @@ mod tests {
     fn a_z_outside_the_part_names_the_flag_and_the_range() {
         assert!(check_z(-1.0, (-3.0, 0.0), 0.0).is_ok());
         assert!(check_z(-3.0, (-3.0, 0.0), 0.0).is_ok());
-        let e = check_z(0.5, (-3.0, 0.0), 0.0).unwrap_err();
+        let e = check_z(0.5, (-3.0, 0.0), 0.0).unwrap_err().to_string();
         assert!(
             e.contains("--z 0.5") && e.contains("-3.000 to 0.000"),
             "{e}"

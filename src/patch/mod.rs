@@ -15,10 +15,8 @@ use crate::geometry::ShapeSource;
 use crate::geometry::Vec2;
 use crate::job::Job;
 use crate::levels::height_field::HeightFieldSections;
-use crate::levels::plan::LevelJob;
 use crate::pipeline::{
-    cut_levels, job_shape, level_params, sections_output, PipelineError, Progress, RunOutput,
-    OUTER_RADIUS_FACTOR,
+    job_shape, run_sections, PipelineError, Progress, RunOutput, SectionsPart, OUTER_RADIUS_FACTOR,
 };
 use crate::sources::harmonic_bezier::PatchSpec;
 use crate::sources::polyharmonic::{PolySpec, Solid};
@@ -91,8 +89,9 @@ pub fn patch_sections(
     job: &Job,
     spec: HeightSource<'_>,
 ) -> Result<HeightFieldSections, PipelineError> {
+    // The job's resolve has built the patch once: an error here is a bug.
     spec.sections(job.operation.tolerance)
-        .map_err(PipelineError::Other)
+        .map_err(|e| PipelineError::Internal(format!("the height field of a resolved job: {e}")))
 }
 
 /// Rough a patch by levels (and finish it, with `[finish]`).
@@ -103,39 +102,18 @@ pub fn run_patch(
 ) -> Result<RunOutput, PipelineError> {
     set_stage(Stage::ShapeSolve);
     // The rectangle: the part seen from above, for the preview and report.
-    let (shape, solves) = job_shape(job, progress)?;
+    let shape = job_shape(job, progress)?;
     let source = patch_sections(job, spec)?;
     let [sx, sy] = spec.size();
-    let lj = LevelJob {
+    let part = SectionsPart {
         source: &source,
         cavity: false,
-        top: job.stock.top,
-        stepdown: job.tool.stepdown,
-        max_scallop: job.operation.max_scallop,
-        margin: job.stock.margin,
         outer_radius: OUTER_RADIUS_FACTOR * sx.hypot(sy),
-        params: level_params(job),
-        max_hours: job.machine.max_hours,
+        name: spec.label(),
+        finish_stage: "finishing passes",
     };
-    set_stage(Stage::LevelGrid);
-    let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
-    set_stage(Stage::Finishing);
-    let finish = match &job.finish {
-        Some(f) => Some(finish_patch(job, spec, f, &source, progress)?),
-        None => None,
-    };
-    set_stage(Stage::Other);
-    sections_output(
-        job,
-        spec.label(),
-        shape,
-        solves,
-        planned,
-        toolpath,
-        min_clearance,
-        finish,
-        progress,
-    )
+    let mut finish = |f: &crate::job::Finish| finish_patch(job, spec, f, &source);
+    run_sections(job, shape, part, &mut finish, progress)
 }
 
 /// The finishing program: the raster of [`raster`] against the part's
@@ -145,12 +123,7 @@ fn finish_patch(
     spec: HeightSource<'_>,
     f: &crate::job::Finish,
     source: &HeightFieldSections,
-    progress: &mut dyn FnMut(Progress),
 ) -> Result<crate::finish::Finished, PipelineError> {
-    progress(Progress::Stage {
-        name: "finishing passes".into(),
-        total: 1,
-    });
     let fine = crate::pipeline::FINISH_MESH;
     let tris = patch_part_triangles(job, spec, fine)?;
     let z_floor = placement(job).z_floor();
@@ -177,10 +150,7 @@ fn finish_patch(
         area,
         valleys: matches!(spec, HeightSource::Poly(_)),
     };
-    let done = raster::raster_finish(job, f, &part)
-        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
-    progress(Progress::Step);
-    Ok(done)
+    raster::raster_finish(job, f, &part).map_err(PipelineError::Finishing)
 }
 
 /// The stock rectangle of a patch job: the rectangle grown by `stock.margin`

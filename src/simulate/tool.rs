@@ -236,6 +236,30 @@ struct Span {
     aa: f64,
 }
 
+impl Span {
+    /// p(t) − c in XY, mm.
+    fn offset(&self, t: f64) -> (f64, f64) {
+        (self.ex + t * self.dx, self.ey + t * self.dy)
+    }
+
+    /// t₀, the XY closest approach of the axis to c (unclamped).
+    fn closest(&self) -> f64 {
+        -(self.ex * self.dx + self.ey * self.dy) / self.aa
+    }
+
+    /// ρ₀², the squared XY distance at t₀, from the cross product: free of
+    /// the cancellation in C − B²/4A.
+    fn rho0_squared(&self) -> f64 {
+        let cross = self.dx * self.ey - self.dy * self.ex;
+        cross * cross / self.aa
+    }
+
+    /// `t` clamped to [t1, t2].
+    fn clamp(&self, t: f64) -> f64 {
+        t.clamp(self.t1, self.t2)
+    }
+}
+
 impl Segment {
     /// Distance (mm) from (x, y) to the segment's XY projection, the textbook
     /// way (the projection clamped to the segment); the tests hold the
@@ -378,32 +402,20 @@ impl Segment {
             }
             Under::Along(s) => s,
         };
-        let Span {
-            t1,
-            t2,
-            ex,
-            ey,
-            dx,
-            dy,
-            aa,
-        } = span;
         let f = |t: f64| {
-            let (px, py) = (ex + t * dx, ey + t * dy);
+            let (px, py) = span.offset(t);
             self.z(t) + r - (r * r - (px * px + py * py)).max(0.0).sqrt()
         };
         let dz = self.b[2] - self.a[2];
         // XY closest approach t₀; a level move is lowest there.
-        let t0 = -(ex * dx + ey * dy) / aa;
+        let t0 = span.closest();
         let t = if dz == 0.0 {
             t0
         } else {
-            // ρ₀² from the cross product, free of the cancellation in
-            // C − B²/4A.
-            let cross = dx * ey - dy * ex;
-            let rho02 = cross * cross / aa;
-            t0 - dz * ((r * r - rho02).max(0.0) / (aa * (aa + dz * dz))).sqrt()
+            let aa = span.aa;
+            t0 - dz * ((r * r - span.rho0_squared()).max(0.0) / (aa * (aa + dz * dz))).sqrt()
         };
-        Some(f(t.clamp(t1, t2)))
+        Some(f(span.clamp(t)))
     }
 
     /// The lowest surface over (cx, cy) of a bull nose end mill of radius `r`
@@ -417,21 +429,13 @@ impl Segment {
             Under::Still { rho2 } => return Some(self.z_min() + corner_lift(rho2.sqrt(), r0, rc)),
             Under::Along(s) => s,
         };
-        let Span {
-            t1,
-            t2,
-            ex,
-            ey,
-            dx,
-            dy,
-            aa,
-        } = span;
+        let (dx, dy) = (span.dx, span.dy);
         let dz = self.b[2] - self.a[2];
         // f(t) and f'(t) = Δz + p'(ρ) ρ'(t), ρ' = (p(t) − c)·d / ρ,
         // p'(ρ) = (ρ − r0) / √(rc² − (ρ − r0)²) on the corner (infinite at
         // the rim, where the corner's wall is vertical).
         let f = |t: f64| -> (f64, f64) {
-            let (px, py) = (ex + t * dx, ey + t * dy);
+            let (px, py) = span.offset(t);
             let rho = (px * px + py * py).sqrt();
             let z = self.z(t);
             if rho <= r0 {
@@ -452,10 +456,9 @@ impl Segment {
         if dz == 0.0 {
             // Level: the lowest surface is where ρ is least (p grows with ρ),
             // the XY closest approach clamped to the interval.
-            let t0 = -(ex * dx + ey * dy) / aa;
-            return Some(f(t0.clamp(t1, t2)).0);
+            return Some(f(span.clamp(span.closest())).0);
         }
-        let (mut lo, mut hi) = (t1, t2);
+        let (mut lo, mut hi) = (span.t1, span.t2);
         let (mut flo, mut glo) = f(lo);
         let (mut fhi, mut ghi) = f(hi);
         if glo >= 0.0 || lo == hi {

@@ -223,32 +223,56 @@ fn fourier(curves: &[&[[f64; 3]]; 4], n: usize) -> (Matrix4x3<f64>, Matrix4x3<f6
 /// Checks the curves: equal lengths, at least 2N + 1 samples (else mode N aliases),
 /// at most [`MAX_SAMPLES`], finite coordinates.
 fn check(curves: &BoundaryCurves, a: f64, modes: usize) -> Result<(), PdeError> {
-    let bad = |key, reason: String| Err(PdeError::Invalid { key, reason });
-    if !(a.is_finite() && a > 0.0) {
-        return bad("a", format!("must be finite and > 0, got {a}"));
-    }
-    let k = curves.x0.len();
-    if k < 2 * modes + 1 || k > MAX_SAMPLES {
-        return bad(
-            "x0",
-            format!(
-                "{k} samples; need 2·modes + 1 = {} to {MAX_SAMPLES}",
-                2 * modes + 1
-            ),
-        );
-    }
-    for (key, c) in [
-        ("x0", &curves.x0),
+    check_a(a)?;
+    let named = [
+        ("x0", curves.x0.as_slice()),
         ("x1", &curves.x1),
         ("xu0", &curves.xu0),
         ("xu1", &curves.xu1),
-    ] {
-        if c.len() != k {
-            return bad(key, format!("{} samples, but x0 has {k}", c.len()));
+    ];
+    check_curves(&named, modes, |_, _| Ok(()))
+}
+
+/// The PDE's a (key `a`): finite and > 0.
+pub(crate) fn check_a(a: f64) -> Result<(), PdeError> {
+    if a.is_finite() && a > 0.0 {
+        return Ok(());
+    }
+    Err(PdeError::Invalid {
+        key: "a",
+        reason: format!("must be finite and > 0, got {a}"),
+    })
+}
+
+/// Curves sampled at the same K parameters, each named by its key: the
+/// first's K within 2N + 1 ≤ K ≤ [`MAX_SAMPLES`] (fewer samples alias mode
+/// N), then curve by curve K samples, each finite, and what `more` checks
+/// of it.
+pub(crate) fn check_curves<const D: usize>(
+    curves: &[(&'static str, &[[f64; D]])],
+    modes: usize,
+    more: impl Fn(&'static str, &[[f64; D]]) -> Result<(), PdeError>,
+) -> Result<(), PdeError> {
+    let bad = |key, reason: String| Err(PdeError::Invalid { key, reason });
+    let Some(&(first, c0)) = curves.first() else {
+        return Ok(());
+    };
+    let k = c0.len();
+    if k < 2 * modes + 1 || k > MAX_SAMPLES {
+        let need = 2 * modes + 1;
+        return bad(
+            first,
+            format!("{k} samples; need 2·modes + 1 = {need} to {MAX_SAMPLES}"),
+        );
+    }
+    for &(key, curve) in curves {
+        if curve.len() != k {
+            return bad(key, format!("{} samples, but {first} has {k}", curve.len()));
         }
-        if let Some(j) = c.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
+        if let Some(j) = curve.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
             return bad(key, format!("sample {j} is not finite"));
         }
+        more(key, curve)?;
     }
     Ok(())
 }

@@ -35,7 +35,7 @@
 //! annulus is not univalent for every pair of curves, so [`TrimMap::solve`]
 //! samples the Jacobian and refuses a fold.
 
-use super::pde::{fourier_curve, PdeError, PdeSurface, MAX_SAMPLES};
+use super::pde::{check_curves, fourier_curve, PdeError, PdeSurface};
 use nalgebra::{Matrix2, Vector2};
 use std::f64::consts::TAU;
 
@@ -94,29 +94,18 @@ fn twice_area(p: &[[f64; 2]]) -> f64 {
         .sum()
 }
 
-/// Equal lengths, 2N + 1 ≤ K ≤ [`MAX_SAMPLES`], finite, both counter-clockwise.
+/// Equal lengths, 2N + 1 ≤ K ≤ [`MAX_SAMPLES`](crate::sources::pde::MAX_SAMPLES), finite, both counter-clockwise.
 fn check(c: &TrimCurves, modes: usize) -> Result<(), PdeError> {
-    let bad = |key, reason: String| Err(PdeError::Invalid { key, reason });
-    let k = c.trim.len();
-    if k < 2 * modes + 1 || k > MAX_SAMPLES {
-        let need = 2 * modes + 1;
-        return bad(
-            "trim",
-            format!("{k} samples; need 2·modes + 1 = {need} to {MAX_SAMPLES}"),
-        );
-    }
-    for (key, curve) in [("trim", &c.trim), ("border", &c.border)] {
-        if curve.len() != k {
-            return bad(key, format!("{} samples, but trim has {k}", curve.len()));
-        }
-        if let Some(j) = curve.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return bad(key, format!("sample {j} is not finite"));
-        }
+    let named = [("trim", c.trim.as_slice()), ("border", &c.border)];
+    check_curves(&named, modes, |key, curve| {
         if twice_area(curve) <= 0.0 {
-            return bad(key, "must run counter-clockwise in the (u, v) plane".into());
+            return Err(PdeError::Invalid {
+                key,
+                reason: "must run counter-clockwise in the (u, v) plane".into(),
+            });
         }
-    }
-    Ok(())
+        Ok(())
+    })
 }
 
 impl TrimMap {

@@ -85,6 +85,25 @@ impl Move {
             Move::Rapid { to } | Move::Linear { to, .. } | Move::Arc { to, .. } => to,
         }
     }
+
+    /// The feed rate, mm/min; `None` for a rapid.
+    pub fn feed(&self) -> Option<f64> {
+        match *self {
+            Move::Rapid { .. } => None,
+            Move::Linear { feed, .. } | Move::Arc { feed, .. } => Some(feed),
+        }
+    }
+
+    /// Length of the move from `from`, mm: straight for a rapid or a line,
+    /// the helix for an arc ([`arc_length`]).
+    pub fn length(&self, from: Vec3) -> f64 {
+        match *self {
+            Move::Rapid { to } | Move::Linear { to, .. } => from.dist(to),
+            Move::Arc {
+                to, cx, cy, ccw, ..
+            } => arc_length(from, to, cx, cy, ccw),
+        }
+    }
 }
 
 /// A labelled run of moves (one pass of one contour at one depth, or a link).
@@ -130,8 +149,8 @@ impl Toolpath {
         let mut st = PathStats::default();
         let mut at = self.start;
         for m in self.moves() {
-            if let Move::Rapid { to } = *m {
-                let l = at.dist(to);
+            if m.feed().is_none() {
+                let l = m.length(at);
                 st.rapid_length += l;
                 st.time_s += l / rapid_rate * 60.0;
             } else {
@@ -147,20 +166,10 @@ impl Toolpath {
 
 /// Length (mm) and time (s) of a feed move from `from`; (0, 0) for a rapid.
 pub fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
-    match *m {
-        Move::Rapid { .. } => (0.0, 0.0),
-        Move::Linear { to, feed } => {
-            let l = from.dist(to);
-            (l, l / feed * 60.0)
-        }
-        Move::Arc {
-            to,
-            cx,
-            cy,
-            ccw,
-            feed,
-        } => {
-            let l = arc_length(from, to, cx, cy, ccw);
+    match m.feed() {
+        None => (0.0, 0.0),
+        Some(feed) => {
+            let l = m.length(from);
             (l, l / feed * 60.0)
         }
     }

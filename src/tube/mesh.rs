@@ -281,28 +281,12 @@ fn add_sides_and_bottom(m: &mut Mesh, border: &[u32], z: (f64, f64), stock: (Vec
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sources::pde_tube::spec::{TubeEnd, TubeSpec};
+    use crate::sources::pde_tube::spec::test_vase;
 
     fn vase(kind: TubeKind) -> PdeTube {
-        let end = |d: f64, p: f64| TubeEnd {
-            size: [d, d],
-            exponent: p,
-            flare: 0.0,
-            rise: 15.0,
-        };
-        let spec = TubeSpec {
-            bottom: end(20.0, 4.0),
-            top: end(12.0, 2.0),
-            height: 15.0,
-            a: 1.0,
-            modes: 8,
-            samples: 128,
-            origin: Vec2::new(1.0, 2.0),
-            kind,
-            tolerance: 0.01,
-            trims: Vec::new(),
-        };
-        spec.tube().expect("the vase")
+        test_vase(kind, Vec2::new(1.0, 2.0))
+            .tube()
+            .expect("the vase")
     }
 
     #[test]

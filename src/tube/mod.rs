@@ -14,11 +14,9 @@ pub mod rings;
 use crate::count::{set_stage, Stage};
 use crate::geometry::{polygons_bbox, Vec2};
 use crate::job::Job;
-use crate::levels::plan::LevelJob;
 use crate::levels::sections::Sections;
 use crate::pipeline::{
-    cut_levels, job_shape, level_params, sections_output, PipelineError, Progress, RunOutput,
-    OUTER_RADIUS_FACTOR,
+    job_shape, run_sections, PipelineError, Progress, RunOutput, SectionsPart, OUTER_RADIUS_FACTOR,
 };
 use crate::sources::pde_tube::spec::TubeSpec;
 use crate::sources::pde_tube::{PdeTube, TubeKind};
@@ -56,39 +54,18 @@ pub fn run_tube(
 ) -> Result<RunOutput, PipelineError> {
     set_stage(Stage::ShapeSolve);
     // The widest end curve: the part seen from above, for the preview and report.
-    let (shape, solves) = job_shape(job, progress)?;
+    let shape = job_shape(job, progress)?;
     let tube = tube_sections(spec)?;
     let (lo, hi) = tube_stock(job, &tube);
-    let lj = LevelJob {
+    let part = SectionsPart {
         source: &tube,
         cavity: tube.kind() == TubeKind::Mould,
-        top: job.stock.top,
-        stepdown: job.tool.stepdown,
-        max_scallop: job.operation.max_scallop,
-        margin: job.stock.margin,
         outer_radius: OUTER_RADIUS_FACTOR * (hi - lo).norm(),
-        params: level_params(job),
-        max_hours: job.machine.max_hours,
+        name: "tube",
+        finish_stage: "finishing rings",
     };
-    set_stage(Stage::LevelGrid);
-    let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
-    set_stage(Stage::Finishing);
-    let finish = match &job.finish {
-        Some(f) => Some(finish_tube(job, f, &tube, progress)?),
-        None => None,
-    };
-    set_stage(Stage::Other);
-    sections_output(
-        job,
-        "tube",
-        shape,
-        solves,
-        planned,
-        toolpath,
-        min_clearance,
-        finish,
-        progress,
-    )
+    let mut finish = |f: &crate::job::Finish| finish_tube(job, f, &tube);
+    run_sections(job, shape, part, &mut finish, progress)
 }
 
 /// The finishing program: a ring along each section ([`rings`]) against
@@ -97,12 +74,7 @@ fn finish_tube(
     job: &Job,
     f: &crate::job::Finish,
     tube: &PdeTube,
-    progress: &mut dyn FnMut(Progress),
 ) -> Result<crate::finish::Finished, PipelineError> {
-    progress(Progress::Stage {
-        name: "finishing rings".into(),
-        total: 1,
-    });
     let fine = crate::pipeline::FINISH_MESH;
     let stock = tube_stock(job, tube);
     let s = mesh::tube_mesh(tube, job.stock.top, fine, stock).map_err(PipelineError::Internal)?;
@@ -110,7 +82,7 @@ fn finish_tube(
     let area = crate::finish::wall_area(&tris);
     let index = crate::pipeline::finish_index(tris);
     let contacts = ring_contacts::Rings::new(tube, tube.points(), f.radius())
-        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
+        .map_err(PipelineError::Finishing)?;
     let part = rings::RingPart {
         tube,
         mesh: &index,
@@ -118,10 +90,7 @@ fn finish_tube(
         top: job.stock.top,
         rings: &contacts,
     };
-    let done = rings::ring_finish(job, f, &part)
-        .map_err(|e| PipelineError::Other(format!("finishing: {e}")))?;
-    progress(Progress::Step);
-    Ok(done)
+    rings::ring_finish(job, f, &part).map_err(PipelineError::Finishing)
 }
 
 /// The tube's part as a closed mesh at `resolution` mm (`pfcam surface`).

@@ -6,7 +6,8 @@
 use nalgebra::Vector3;
 use pfcam::sources::polyharmonic::closed::{closed_mesh, Region};
 use pfcam::sources::polyharmonic::iso::{zero_set, Grid3, IsoMesh, T_MIN};
-use pfcam::sources::polyharmonic::{solve, GivenPoint, Kernel, Model, PointKind, Quadrature};
+use pfcam::sources::polyharmonic::sphere::sphere_model;
+use pfcam::sources::polyharmonic::{solve, Kernel, Model};
 use pfcam::surface::Mesh;
 use std::f64::consts::PI;
 
@@ -68,30 +69,7 @@ fn saddles_and_a_torus_stay_closed() {
 /// Issue 19's sphere: 40 points on the unit sphere (Fibonacci lattice) and
 /// its centre inside, T2A with A = 0.3, box [−2, 2]³ with 6 elements a side.
 fn sphere() -> Model {
-    let golden = PI * (3.0 - 5f64.sqrt());
-    let mut points: Vec<GivenPoint> = (0..40)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / 40.0;
-            let r = (1.0 - z * z).sqrt();
-            let t = golden * i as f64;
-            GivenPoint {
-                p: Vector3::new(r * t.cos(), r * t.sin(), z),
-                kind: PointKind::Surface,
-            }
-        })
-        .collect();
-    points.push(GivenPoint {
-        p: Vector3::zeros(),
-        kind: PointKind::Inside,
-    });
-    Model {
-        lo: Vector3::repeat(-2.0),
-        hi: Vector3::repeat(2.0),
-        per_edge: 6,
-        kernel: Kernel::T2A { a: 0.3 },
-        points,
-        quadrature: Quadrature::default(),
-    }
+    sphere_model(6, Kernel::T2A { a: 0.3 })
 }
 
 /// The sphere's surface at spacing 0.04: closed and facing out, every

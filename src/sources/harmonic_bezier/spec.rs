@@ -32,14 +32,7 @@ impl PatchSpec {
 
     /// The rectangle in job coordinates, counter-clockwise from the origin.
     pub fn rectangle(&self) -> Vec<Vec2> {
-        let [x, y] = self.size;
-        let o = self.origin;
-        vec![
-            o,
-            o + Vec2::new(x, 0.0),
-            o + Vec2::new(x, y),
-            o + Vec2::new(0.0, y),
-        ]
+        crate::geometry::rectangle(self.origin, self.size)
     }
 }
 

@@ -25,7 +25,9 @@
 //! user's wiggle (or rounding in the data) becomes inside. Above
 //! [`GAIN_LIMIT`] the solve is refused.
 
-use super::{basis, fourier_curve, solve_mode, PdeError, PdeSurface, Spine, Term, MAX_SAMPLES};
+use super::{
+    basis, check_a, check_curves, fourier_curve, solve_mode, PdeError, PdeSurface, Spine, Term,
+};
 use nalgebra::{Matrix4, Matrix4x3, Vector4};
 
 /// Largest amplification of a unit datum by a mode system that
@@ -152,13 +154,11 @@ fn cubic_spine(y: [[f64; 3]; 4], s: f64, t: f64) -> Spine {
     }
 }
 
-/// Checks a, s, t and the curves (equal lengths, 2N + 1 ≤ K ≤ [`MAX_SAMPLES`],
+/// Checks a, s, t and the curves (equal lengths, 2N + 1 ≤ K ≤ [`MAX_SAMPLES`](super::MAX_SAMPLES),
 /// finite).
 fn check(c: &FourCurves, a: f64, modes: usize) -> Result<(), PdeError> {
     let bad = |key, reason: String| Err(PdeError::Invalid { key, reason });
-    if !(a.is_finite() && a > 0.0) {
-        return bad("a", format!("must be finite and > 0, got {a}"));
-    }
+    check_a(a)?;
     if !(c.s > 0.0 && c.s < 1.0) {
         return bad("s", format!("must lie strictly inside (0, 1), got {}", c.s));
     }
@@ -171,23 +171,13 @@ fn check(c: &FourCurves, a: f64, modes: usize) -> Result<(), PdeError> {
             ),
         );
     }
-    let k = c.p0.len();
-    if k < 2 * modes + 1 || k > MAX_SAMPLES {
-        let need = 2 * modes + 1;
-        return bad(
-            "p0",
-            format!("{k} samples; need 2·modes + 1 = {need} to {MAX_SAMPLES}"),
-        );
-    }
-    for (key, curve) in [("p0", &c.p0), ("p1", &c.p1), ("p2", &c.p2), ("p3", &c.p3)] {
-        if curve.len() != k {
-            return bad(key, format!("{} samples, but p0 has {k}", curve.len()));
-        }
-        if let Some(j) = curve.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return bad(key, format!("sample {j} is not finite"));
-        }
-    }
-    Ok(())
+    let named = [
+        ("p0", c.p0.as_slice()),
+        ("p1", &c.p1),
+        ("p2", &c.p2),
+        ("p3", &c.p3),
+    ];
+    check_curves(&named, modes, |_, _| Ok(()))
 }
 
 /// The mode-n coefficients of the four curves (rows P₀…P₃, columns x, y, z), each

@@ -217,29 +217,37 @@ fn segment_distance(a: Vec2, b: Vec2, q: Vec2) -> f64 {
     (a + ab * t - q).norm()
 }
 
+/// The unit tests' vase: a 20 mm squircle (superellipse exponent 4) foot
+/// rising to a 12 mm circle 15 mm up, both ends leaving vertically
+/// (rise 15, no flare), a = 1, 8 modes on 128 samples, to 0.01 mm.
+#[cfg(test)]
+pub(crate) fn test_vase(kind: TubeKind, origin: Vec2) -> TubeSpec {
+    let end = |d: f64, p: f64| TubeEnd {
+        size: [d, d],
+        exponent: p,
+        flare: 0.0,
+        rise: 15.0,
+    };
+    TubeSpec {
+        bottom: end(20.0, 4.0),
+        top: end(12.0, 2.0),
+        height: 15.0,
+        a: 1.0,
+        modes: 8,
+        samples: 128,
+        origin,
+        kind,
+        tolerance: 0.01,
+        trims: Vec::new(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn vase(kind: TubeKind) -> TubeSpec {
-        let end = |d: f64, p: f64| TubeEnd {
-            size: [d, d],
-            exponent: p,
-            flare: 0.0,
-            rise: 15.0,
-        };
-        TubeSpec {
-            bottom: end(20.0, 4.0),
-            top: end(12.0, 2.0),
-            height: 15.0,
-            a: 1.0,
-            modes: 8,
-            samples: 128,
-            origin: Vec2::new(3.0, -2.0),
-            kind,
-            tolerance: 0.01,
-            trims: Vec::new(),
-        }
+        test_vase(kind, Vec2::new(3.0, -2.0))
     }
 
     #[test]

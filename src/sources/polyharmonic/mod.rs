@@ -18,6 +18,7 @@ pub mod lagrange;
 pub mod quadrature;
 pub mod relief;
 pub mod spec;
+pub mod sphere;
 pub mod system;
 
 pub use elements::{BoxMesh, Element};

@@ -36,29 +36,19 @@ pub const CACHE: usize = 4;
 /// Interpolation nodes per smallest element side.
 const NODES_PER_ELEMENT: f64 = 5.0;
 
-/// The inputs of a relief and what was built from them.
+/// The inputs of a relief and what was built from them; it reads as its
+/// inputs ([`PolyInputs`], through `Deref`).
 #[derive(Clone)]
 pub struct PolySpec {
-    /// The given points (surface, then inside, then outside).
-    pub points: Vec<GivenPoint>,
-    /// `T2` or `T2A { a }`.
-    pub kernel: Kernel,
-    /// The box's corners, mm.
-    pub lo: Vector3<f64>,
-    /// Upper corner.
-    pub hi: Vector3<f64>,
-    /// Elements per face edge.
-    pub per_edge: usize,
-    /// The rectangle's lower-left corner and size, mm.
-    pub origin: [f64; 2],
-    /// [X, Y].
-    pub size: [f64; 2],
-    /// The lowest height (the block's foot), mm.
-    pub base: f64,
-    /// A relief, or a closed solid (milled alike; `pfcam surface` meshes
-    /// the closed solid itself).
-    pub solid: Solid,
+    inputs: PolyInputs,
     built: Arc<(Relief, HeightRange, Option<Region>)>,
+}
+
+impl std::ops::Deref for PolySpec {
+    type Target = PolyInputs;
+    fn deref(&self) -> &PolyInputs {
+        &self.inputs
+    }
 }
 
 /// What the points describe (`shape.solid`).
@@ -88,10 +78,7 @@ impl std::fmt::Debug for PolySpec {
 /// Specs are equal when their inputs are (the built parts follow from them).
 impl PartialEq for PolySpec {
     fn eq(&self, o: &Self) -> bool {
-        (&self.points, self.kernel, self.lo, self.hi, self.per_edge)
-            == (&o.points, o.kernel, o.lo, o.hi, o.per_edge)
-            && (self.origin, self.size, self.base, self.solid)
-                == (o.origin, o.size, o.base, o.solid)
+        self.inputs == o.inputs
     }
 }
 
@@ -164,15 +151,7 @@ impl PolySpec {
         let relief = Relief::new(fast, spec)?;
         let range = height_range(&relief);
         Ok(PolySpec {
-            points: i.points,
-            kernel: i.kernel,
-            lo: i.lo,
-            hi: i.hi,
-            per_edge: i.per_edge,
-            origin: i.origin,
-            size: i.size,
-            base: i.base,
-            solid: i.solid,
+            inputs: i,
             built: Arc::new((relief, range, region)),
         })
     }
@@ -184,13 +163,8 @@ impl PolySpec {
     pub fn build_cached(i: PolyInputs) -> Result<PolySpec, PolyError> {
         use std::sync::Mutex;
         static BUILT: Mutex<Vec<PolySpec>> = Mutex::new(Vec::new());
-        let same = |s: &PolySpec| {
-            (&s.points, s.kernel, s.lo, s.hi, s.per_edge)
-                == (&i.points, i.kernel, i.lo, i.hi, i.per_edge)
-                && (s.origin, s.size, s.base, s.solid) == (i.origin, i.size, i.base, i.solid)
-        };
         if let Ok(cache) = BUILT.lock() {
-            if let Some(s) = cache.iter().find(|s| same(s)) {
+            if let Some(s) = cache.iter().find(|s| s.inputs == i) {
                 return Ok(s.clone());
             }
         }

@@ -5,18 +5,7 @@ fn v(x: f64, y: f64, z: f64) -> Vector3<f64> {
     Vector3::new(x, y, z)
 }
 
-/// `n` nearly uniform unit vectors (Fibonacci lattice), turned by `phase`.
-pub(crate) fn fibonacci(n: usize, phase: f64) -> Vec<Vector3<f64>> {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            let t = golden * i as f64 + phase;
-            v(r * t.cos(), r * t.sin(), z)
-        })
-        .collect()
-}
+pub(crate) use crate::sources::polyharmonic::sphere::fibonacci;
 
 pub(crate) fn cube(half: f64) -> (Vector3<f64>, Vector3<f64>) {
     (v(-half, -half, -half), v(half, half, half))
@@ -93,27 +82,9 @@ fn greens_identity_converges_like_h_squared() {
     );
 }
 
+/// The sphere of 40 points (T2A, A = 0.3) with `per_edge` elements per edge.
 pub(crate) fn sphere_model(per_edge: usize) -> Model {
-    let (lo, hi) = cube(2.0);
-    let mut points: Vec<GivenPoint> = fibonacci(40, 0.0)
-        .into_iter()
-        .map(|p| GivenPoint {
-            p,
-            kind: PointKind::Surface,
-        })
-        .collect();
-    points.push(GivenPoint {
-        p: Vector3::zeros(),
-        kind: PointKind::Inside,
-    });
-    Model {
-        lo,
-        hi,
-        per_edge,
-        kernel: Kernel::T2A { a: 0.3 },
-        points,
-        quadrature: Quadrature::default(),
-    }
+    crate::sources::polyharmonic::sphere::sphere_model(per_edge, Kernel::T2A { a: 0.3 })
 }
 
 /// The sphere of 40 points in the box [−2, 2]³ with 4 elements per edge.
