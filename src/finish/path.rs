@@ -451,19 +451,9 @@ pub fn order(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
     let mut stack: Vec<(usize, bool)> = roots.iter().rev().map(|&i| (i, false)).collect();
     let mut at = Vec2::new(f64::INFINITY, f64::INFINITY);
     while let Some((i, linked)) = stack.pop() {
-        let most = if loops[i].closed {
-            max_link
-        } else {
-            ARC_LINK.max(max_link)
-        };
+        let most = link_limit(&loops[i], max_link);
         out.push((i, linked && reach_of(&loops[i], at) <= most));
-        let tips = oriented(&loops[i], Vec3::new(at.x, at.y, 0.0));
-        let end = if loops[i].closed {
-            tips.first()
-        } else {
-            tips.last()
-        };
-        at = end.map_or(at, |t| Vec2::new(t.x, t.y));
+        at = end_from(&loops[i], at);
         // The nearest child is cut next (pushed last); the others follow by
         // retracts once its subtree is done.
         let mut kids = children[i].clone();
@@ -513,22 +503,29 @@ pub fn order_nearest(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, b
             .map(|i| (i, if at.x.is_finite() { near(i, at) } else { 0.0 }))
             .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
         let Some((i, d)) = next else { break };
-        let most = if loops[i].closed {
-            max_link
-        } else {
-            ARC_LINK.max(max_link)
-        };
+        let most = link_limit(&loops[i], max_link);
         out.push((i, at.x.is_finite() && d <= most));
         done[i] = true;
-        let tips = oriented(&loops[i], Vec3::new(at.x, at.y, 0.0));
-        let end = if loops[i].closed {
-            tips.first()
-        } else {
-            tips.last()
-        };
-        at = end.map_or(at, |t| Vec2::new(t.x, t.y));
+        at = end_from(&loops[i], at);
     }
     out
+}
+
+/// The longest feed link to `l`: `max_link`, or [`ARC_LINK`] to an arc.
+fn link_limit(l: &Loop, max_link: f64) -> f64 {
+    if l.closed {
+        max_link
+    } else {
+        ARC_LINK.max(max_link)
+    }
+}
+
+/// Where the cutter ends `l` when it starts from `at` (XY): a loop's start,
+/// an arc's far end.
+fn end_from(l: &Loop, at: Vec2) -> Vec2 {
+    let tips = oriented(l, Vec3::new(at.x, at.y, 0.0));
+    let end = if l.closed { tips.first() } else { tips.last() };
+    end.map_or(at, |t| Vec2::new(t.x, t.y))
 }
 
 /// How far from `at` the cutter starts `l`: its nearest contact point, or an
