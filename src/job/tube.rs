@@ -69,6 +69,7 @@ fn refuse_other_keys(s: &RawShape) -> Result<(), JobError> {
         ("shape.box", s.box_.is_some()),
         ("shape.elements", s.elements.is_some()),
         ("shape.base", s.base.is_some()),
+        ("shape.solid", s.solid.is_some()),
     ];
     super::harmonic::refuse_keys(s, &more, KIND, "a tube is given by shape.bottom_size, shape.top_size and shape.height (and shape.bottom_exponent, shape.top_exponent, shape.flare, shape.rise, shape.a, shape.modes, shape.samples, shape.origin)")
 }

@@ -405,6 +405,7 @@ fn a_tube_and_a_relief_refuse_each_others_keys() {
         ("kernel = \"T2A\"", "shape.kernel"),
         ("points = [[0.0, 0.0, 1.0]]", "shape.points"),
         ("base = 0.0", "shape.base"),
+        ("solid = \"closed\"", "shape.solid"),
         ("degree = 3", "shape.degree"),
     ] {
         let e = job(&tube_job(&format!("{VASE}{line}\n"), "")).unwrap_err();
