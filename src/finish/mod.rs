@@ -186,7 +186,7 @@ pub fn finish(
     };
     let width = passes::pass_width(f.corner, f.scallop);
     let dist = (f.pattern == crate::job::Pattern::Geodesic)
-        .then(|| curves.distance(profile, cavity, &|s| p.z_of(s)));
+        .then(|| curves.distance(profile, (cavity, f.corner), &|s| p.z_of(s)));
     let cands = passes::pass_levels(
         &curves,
         dist.as_ref(),

@@ -84,17 +84,17 @@ impl Curves<'_> {
 
     /// σ, the distance on S2 from the top edge ([`geodesic::Distance`]), on
     /// a grid of [`geodesic::SPACING`] over this grid's box; `z_of(s)` is
-    /// S2's height where u = s.
+    /// S2's height where u = s, `corner` the cutter's corner radius.
     pub fn distance(
         &self,
         profile: &DepthProfile,
-        cavity: bool,
+        (cavity, corner): (bool, f64),
         z_of: &dyn Fn(f64) -> f64,
     ) -> Distance {
         let g = &self.grid;
         let hi = g.origin + Vec2::new(g.h * (g.nx - 1) as f64, g.h * (g.ny - 1) as f64);
         let fine = Grid::sample(self.field, g.origin, hi, geodesic::SPACING, self.glyphs);
-        Distance::from_top_edge(&fine, profile, cavity, z_of)
+        Distance::from_top_edge(&fine, profile, (cavity, corner), z_of)
     }
 }
 
