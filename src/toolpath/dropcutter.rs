@@ -388,10 +388,10 @@ impl Cutter {
         let mut near: Vec<Near> = Vec::with_capacity(64);
         // A cell is skipped on the same bound: its triangles' highest corner
         // at the distance to the box round all of them.
-        let may_win = |b: &Bounds, d2: f64| self.may_beat(b.zmax, d2, floor_cell.get());
+        let may_win = |b: &Bounds, d2: f64| self.may_beat(b.top(), d2, floor_cell.get());
         mesh.for_each_near(c, r, range, may_win, may_win, |ti, b, d2| {
             let mut floor = floor_cell.get();
-            let t = &mesh.tris[ti as usize];
+            let t = &mesh.tri(ti);
             let rel = t.relative(c);
             let plane = self.plane_contact(t, &rel);
             if plane.is_some_and(|k| plane_rules_out(t, k.tip, floor)) {
@@ -410,7 +410,7 @@ impl Cutter {
                 Some(k) if self.inside(t, &rel, k.point) => raise(&mut best, &mut floor, k),
                 _ => near.push(Near {
                     ti,
-                    zmax: b.zmax,
+                    zmax: b.top(),
                     d2,
                     plane: plane.map_or(f64::INFINITY, |k| k.tip),
                 }),
@@ -426,7 +426,7 @@ impl Cutter {
             if !self.may_beat(n.zmax, n.d2, floor) {
                 continue;
             }
-            let t = &mesh.tris[n.ti as usize];
+            let t = &mesh.tri(n.ti);
             if n.plane.is_finite() && plane_rules_out(t, n.plane, floor) {
                 continue;
             }
@@ -791,13 +791,16 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-/// A triangle's XY bounding box and highest z, apart from [`Tri`] so that the
-/// scan of a cell reads 40 bytes per triangle, not 150.
+/// A triangle's XY bounding box and highest z in single precision, rounded
+/// outwards (lo down, hi and z_max up), so that the box still holds the
+/// triangle and z_max is not below its highest corner: the bounds only
+/// decide what is tested, so rounding them outwards keeps every drop
+/// exact. 20 bytes, so the scan of a cell reads little.
 #[derive(Clone, Copy, Debug)]
 struct Bounds {
-    lo: [f64; 2],
-    hi: [f64; 2],
-    zmax: f64,
+    lo: [f32; 2],
+    hi: [f32; 2],
+    zmax: f32,
 }
 
 impl Bounds {
@@ -805,9 +808,9 @@ impl Bounds {
     /// hi = −∞, zmax = −∞) when there are none.
     fn union<'a>(all: impl Iterator<Item = &'a Bounds>) -> Bounds {
         let empty = Bounds {
-            lo: [f64::INFINITY; 2],
-            hi: [f64::NEG_INFINITY; 2],
-            zmax: f64::NEG_INFINITY,
+            lo: [f32::INFINITY; 2],
+            hi: [f32::NEG_INFINITY; 2],
+            zmax: f32::NEG_INFINITY,
         };
         all.fold(empty, |u, b| Bounds {
             lo: [u.lo[0].min(b.lo[0]), u.lo[1].min(b.lo[1])],
@@ -819,16 +822,40 @@ impl Bounds {
     fn new(v: &[[f64; 3]; 3]) -> Bounds {
         Bounds {
             lo: [
-                v[0][0].min(v[1][0]).min(v[2][0]),
-                v[0][1].min(v[1][1]).min(v[2][1]),
+                f32_down(v[0][0].min(v[1][0]).min(v[2][0])),
+                f32_down(v[0][1].min(v[1][1]).min(v[2][1])),
             ],
             hi: [
-                v[0][0].max(v[1][0]).max(v[2][0]),
-                v[0][1].max(v[1][1]).max(v[2][1]),
+                f32_up(v[0][0].max(v[1][0]).max(v[2][0])),
+                f32_up(v[0][1].max(v[1][1]).max(v[2][1])),
             ],
-            zmax: v[0][2].max(v[1][2]).max(v[2][2]),
+            zmax: f32_up(v[0][2].max(v[1][2]).max(v[2][2])),
         }
     }
+
+    /// Highest corner, mm.
+    fn top(&self) -> f64 {
+        f64::from(self.zmax)
+    }
+}
+
+/// The largest f32 not above x (x not NaN; below −f32::MAX, −∞).
+fn f32_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) <= x {
+        f
+    } else if f == 0.0 {
+        -f32::from_bits(1)
+    } else if f > 0.0 {
+        f32::from_bits(f.to_bits() - 1)
+    } else {
+        f32::from_bits(f.to_bits() + 1)
+    }
+}
+
+/// The smallest f32 not below x (x not NaN; above f32::MAX, +∞).
+fn f32_up(x: f64) -> f32 {
+    -f32_down(-x)
 }
 
 /// A triangle with what every drop needs precomputed.
@@ -874,6 +901,40 @@ impl Tri {
         Tri { v, n, orient }
     }
 
+    /// The normal times the orientation, or 0 without a facet test: one
+    /// vector holds both (n_z ≥ [`NZ_MIN`] > 0 when there is a facet test, so
+    /// the sign of the z component is the orientation; negation is exact).
+    fn packed_normal(&self) -> [f64; 3] {
+        if self.orient == 0.0 {
+            [0.0; 3]
+        } else {
+            self.n.map(|c| self.orient * c)
+        }
+    }
+
+    /// The triangle of corners `v` and [`Tri::packed_normal`] `p`.
+    fn unpack(v: [[f64; 3]; 3], p: [f64; 3]) -> Tri {
+        if p[2] > 0.0 {
+            Tri {
+                v,
+                n: p,
+                orient: 1.0,
+            }
+        } else if p[2] < 0.0 {
+            Tri {
+                v,
+                n: p.map(|c| -c),
+                orient: -1.0,
+            }
+        } else {
+            Tri {
+                v,
+                n: [0.0, 0.0, 1.0],
+                orient: 0.0,
+            }
+        }
+    }
+
     /// Corners with XY relative to `c`.
     fn relative(&self, c: [f64; 2]) -> [[f64; 3]; 3] {
         self.v.map(|p| [p[0] - c[0], p[1] - c[1], p[2]])
@@ -884,7 +945,12 @@ impl Tri {
 /// bounding box, grown by nothing, touches).
 #[derive(Clone, Debug)]
 pub struct MeshIndex {
-    tris: Vec<Tri>,
+    /// The corners of each triangle, mm.
+    tris: Vec<[[f64; 3]; 3]>,
+    /// `normals[i]` is `tris[i]`'s [`Tri::packed_normal`] (what [`Tri`]
+    /// adds to the corners, kept apart so that the corners are the caller's
+    /// own buffer, not a copy).
+    normals: Vec<[f64; 3]>,
     /// `bounds[i]` is `tris[i]`'s.
     bounds: Vec<Bounds>,
     /// Lower-left corner of the grid, mm.
@@ -915,16 +981,20 @@ impl MeshIndex {
     /// and counted in [`MeshIndex::skipped`].
     pub fn new(triangles: Vec<[[f64; 3]; 3]>, cell: f64) -> MeshIndex {
         let total = triangles.len();
-        let finite: Vec<[[f64; 3]; 3]> = triangles
-            .into_iter()
-            .filter(|t| t.iter().flatten().all(|c| c.is_finite()))
-            .take(MAX_TRIANGLES)
-            .collect();
-        let tris: Vec<Tri> = finite.into_par_iter().map(Tri::new).collect();
+        // In place: the caller's buffer becomes the index's corners.
+        let mut tris = triangles;
+        tris.retain(|t| t.iter().flatten().all(|c| c.is_finite()));
+        tris.truncate(MAX_TRIANGLES);
+        tris.shrink_to_fit();
         let skipped = total - tris.len();
-        let bounds: Vec<Bounds> = tris.par_iter().map(|t| Bounds::new(&t.v)).collect();
+        let normals: Vec<[f64; 3]> = tris
+            .par_iter()
+            .map(|&v| Tri::new(v).packed_normal())
+            .collect();
+        let bounds: Vec<Bounds> = tris.par_iter().map(Bounds::new).collect();
         let mut index = MeshIndex {
             tris: Vec::new(),
+            normals: Vec::new(),
             bounds: Vec::new(),
             origin: [0.0, 0.0],
             cell: 1.0,
@@ -942,11 +1012,12 @@ impl MeshIndex {
         let mut hi = [f64::NEG_INFINITY; 2];
         let mut extent = 0.0;
         for t in &bounds {
+            let (tlo, thi) = (t.lo.map(f64::from), t.hi.map(f64::from));
             for k in 0..2 {
-                lo[k] = lo[k].min(t.lo[k]);
-                hi[k] = hi[k].max(t.hi[k]);
+                lo[k] = lo[k].min(tlo[k]);
+                hi[k] = hi[k].max(thi[k]);
             }
-            extent += (t.hi[0] - t.lo[0]).max(t.hi[1] - t.lo[1]);
+            extent += (thi[0] - tlo[0]).max(thi[1] - tlo[1]);
         }
         let span = (hi[0] - lo[0]).max(hi[1] - lo[1]);
         let mut cell = if cell.is_finite() && cell > 0.0 {
@@ -976,8 +1047,8 @@ impl MeshIndex {
             let entries: usize = bounds
                 .iter()
                 .map(|t| {
-                    let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
-                    let (j0, j1) = (index.cell_y(t.lo[1]), index.cell_y(t.hi[1]));
+                    let (i0, i1) = (index.cell_x(t.lo[0].into()), index.cell_x(t.hi[0].into()));
+                    let (j0, j1) = (index.cell_y(t.lo[1].into()), index.cell_y(t.hi[1].into()));
                     (i1 - i0 + 1) * (j1 - j0 + 1)
                 })
                 .sum();
@@ -989,8 +1060,8 @@ impl MeshIndex {
         // Counting sort into the cells, then each cell's items by rank.
         let mut count = vec![0usize; index.nx * index.ny + 1];
         for t in &bounds {
-            let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
-            let (j0, j1) = (index.cell_y(t.lo[1]), index.cell_y(t.hi[1]));
+            let (i0, i1) = (index.cell_x(t.lo[0].into()), index.cell_x(t.hi[0].into()));
+            let (j0, j1) = (index.cell_y(t.lo[1].into()), index.cell_y(t.hi[1].into()));
             for j in j0..=j1 {
                 for i in i0..=i1 {
                     count[j * index.nx + i + 1] += 1;
@@ -1003,8 +1074,8 @@ impl MeshIndex {
         let mut fill = count.clone();
         let mut items = vec![0u32; count[count.len() - 1]];
         for (ti, t) in bounds.iter().enumerate() {
-            let (i0, i1) = (index.cell_x(t.lo[0]), index.cell_x(t.hi[0]));
-            let (j0, j1) = (index.cell_y(t.lo[1]), index.cell_y(t.hi[1]));
+            let (i0, i1) = (index.cell_x(t.lo[0].into()), index.cell_x(t.hi[0].into()));
+            let (j0, j1) = (index.cell_y(t.lo[1].into()), index.cell_y(t.hi[1].into()));
             // ti < MAX_TRIANGLES = 2³⁰, so ti·4 + rank fits in a u32.
             let base = (ti as u32) << 2;
             for j in j0..=j1 {
@@ -1020,8 +1091,15 @@ impl MeshIndex {
         index.start = count;
         index.items = items;
         index.tris = tris;
+        index.normals = normals;
         index.bounds = bounds;
         index
+    }
+
+    /// Triangle `ti` with its normal.
+    fn tri(&self, ti: u32) -> Tri {
+        let i = ti as usize;
+        Tri::unpack(self.tris[i], self.normals[i])
     }
 
     /// Number of triangles indexed.
@@ -1106,8 +1184,9 @@ impl MeshIndex {
         // filter stricter than they are.
         let r2 = r * r * (1.0 + 1e-9);
         let box_dist2 = |t: &Bounds| {
-            let dx = (t.lo[0] - c[0]).max(c[0] - t.hi[0]).max(0.0);
-            let dy = (t.lo[1] - c[1]).max(c[1] - t.hi[1]).max(0.0);
+            let (lo, hi) = (t.lo.map(f64::from), t.hi.map(f64::from));
+            let dx = (lo[0] - c[0]).max(c[0] - hi[0]).max(0.0);
+            let dy = (lo[1] - c[1]).max(c[1] - hi[1]).max(0.0);
             dx * dx + dy * dy
         };
         let mut visit = |i: usize, j: usize| {
@@ -1781,6 +1860,32 @@ mod tests {
                         "cell {cell}, {c:?} at ({x}, {y}): {got:?} vs {scan:?}"
                     );
                 }
+            }
+        }
+    }
+
+    /// The single-precision bounds are rounded outwards: f32_down(x) ≤ x ≤
+    /// f32_up(x), each the nearest f32 on its side (exact when x is one).
+    #[test]
+    fn dropcutter_bounds_round_outwards() {
+        let mut g = Rng(0xf32);
+        let mut xs = vec![0.0, -0.0, 1e-50, -1e-50, 1e300, -1e300, 0.1, -0.1, 1.0];
+        xs.extend((0..20000).map(|_| g.range(-1.0, 1.0) * 10f64.powf(g.range(-8.0, 6.0))));
+        for x in xs {
+            let (lo, hi) = (f32_down(x), f32_up(x));
+            assert!(f64::from(lo) <= x && x <= f64::from(hi), "{x}: {lo} {hi}");
+            if (x as f32) as f64 == x {
+                assert!(lo as f64 == x && hi as f64 == x, "{x}");
+            } else {
+                // No f32 strictly between: they are neighbours.
+                let step = |f: f32| {
+                    if f.is_sign_positive() {
+                        f.to_bits() as i64
+                    } else {
+                        -((-f).to_bits() as i64)
+                    }
+                };
+                assert!(step(hi) - step(lo) <= 1, "{x}: {lo} {hi}");
             }
         }
     }
