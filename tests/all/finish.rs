@@ -146,3 +146,44 @@ fn a_mould_finished_with_a_ball_is_within_the_scallop_wherever_the_ball_reaches(
     );
     assert!(part.max_left.value > part.max_left_reachable.value);
 }
+
+/// `finish.pattern = "geodesic"` (docs/method.md §13, *Geodesic passes*) on
+/// the letter I, boss and mould, and on the near-vertical power wall: no
+/// rapid into material, no plunge, no gouge past the tolerance; the sigmoid
+/// walls within the scallop bound where the ball reaches (the power wall is
+/// not: 0.29 mm, method.md §13, so the pattern is not the default).
+#[test]
+fn geodesic_passes_finish_the_letter_within_the_bound() {
+    let power = "[job]\nname = \"t\"\n[shape]\ntext = \"I\"\nheight = 20.0\n[tool]\ndiameter = 3.175\nstepdown = 1.0\n[stock]\nmargin = 4.0\n[operation]\nkind = \"boss\"\ndepth = 2.0\nmax_scallop = 1.0\n[profile]\nkind = \"power\"\ns1 = 0.999\ns2 = 0.99\nexponent = 500.0\n[field]\nsingularities = \"auto\"\npseudo_boundary = \"auto\"\n[finish]\ndiameter = 3.175\nfeed = 1200.0\npattern = \"geodesic\"\n";
+    let jobs = [
+        ("boss", job("boss", "pattern = \"geodesic\"\n")),
+        ("mould", job("cavity", "pattern = \"geodesic\"\n")),
+        (
+            "power wall",
+            parse_job(power, "t", Path::new(".")).expect("job"),
+        ),
+    ];
+    for (what, j) in jobs {
+        let (seq, _, finish) = rough_then_finish(&j);
+        assert!(finish.contains(" d "), "{what}: no pass of σ");
+        for p in &seq.programs {
+            assert_eq!(p.report.rapids_into_material, 0, "{what}: {}", p.name);
+            assert_eq!(p.report.straight_plunges, 0, "{what}: {}", p.name);
+        }
+        let part = seq.part.as_ref().expect("compared with the part");
+        let scallop = j.finish.as_ref().unwrap().scallop;
+        assert!(
+            part.max_gouge.value <= j.operation.tolerance,
+            "{what}: gouge {} at line {}",
+            part.max_gouge.value,
+            part.max_gouge.line
+        );
+        if what != "power wall" {
+            assert!(
+                part.max_left_reachable.value <= scallop + 0.01,
+                "{what}: {} mm left over the ball's reach",
+                part.max_left_reachable.value
+            );
+        }
+    }
+}
