@@ -1961,17 +1961,7 @@ mod tests {
                     }
                     let t = got.unwrap_or(0.0);
                     for level in [t - 0.05 * span, t - 1e-9, t, t + 1e-3 * span] {
-                        let want = got.filter(|&z| z > level);
-                        assert_eq!(
-                            c.drop_above(&m, x, y, level),
-                            want,
-                            "{c:?} ({x}, {y}) {level}"
-                        );
-                        assert_eq!(
-                            c.drop_hinted(&m, x, y, level),
-                            got,
-                            "{c:?} ({x}, {y}) {level}"
-                        );
+                        assert_above_and_hinted(&c, &m, (x, y), level, got);
                     }
                 }
             }
@@ -2019,6 +2009,28 @@ mod tests {
         );
     }
 
+    /// At (x, y): the drop above `level` is `drop` when that lies above the
+    /// level, else nothing, and the drop hinted with `level` is `drop`.
+    fn assert_above_and_hinted(
+        c: &Cutter,
+        m: &MeshIndex,
+        (x, y): (f64, f64),
+        level: f64,
+        drop: Option<f64>,
+    ) {
+        let want = drop.filter(|&z| z > level);
+        assert_eq!(
+            c.drop_above(m, x, y, level),
+            want,
+            "{c:?} ({x}, {y}) {level}"
+        );
+        assert_eq!(
+            c.drop_hinted(m, x, y, level),
+            drop,
+            "{c:?} ({x}, {y}) {level}"
+        );
+    }
+
     /// A drop above a level is the drop when it lies above it, to the last
     /// bit, and nothing otherwise; a hinted drop is the drop whatever the
     /// hint (under, at, over the answer, or not finite).
@@ -2043,18 +2055,8 @@ mod tests {
                     f64::NEG_INFINITY,
                     f64::INFINITY,
                 ] {
-                    let want = d.filter(|&z| z > level);
-                    above += usize::from(want.is_some());
-                    assert_eq!(
-                        c.drop_above(&m, x, y, level),
-                        want,
-                        "{c:?} ({x}, {y}) {level}"
-                    );
-                    assert_eq!(
-                        c.drop_hinted(&m, x, y, level),
-                        d,
-                        "{c:?} ({x}, {y}) {level}"
-                    );
+                    above += usize::from(d.is_some_and(|z| z > level));
+                    assert_above_and_hinted(&c, &m, (x, y), level, d);
                 }
                 assert_eq!(c.drop_above(&m, x, y, f64::NAN), None);
                 assert_eq!(c.drop_hinted(&m, x, y, f64::NAN), d);
