@@ -112,7 +112,11 @@ pub fn tip_loop(
         (contact, closed),
         &away,
         &grads,
-        &|q| (s_at(q), super::passes::dphi_ds(p.profile, s_at(q)).abs()),
+        &|q| {
+            // u once per point (a field evaluation on an arc's pass).
+            let s = s_at(q);
+            (s, super::passes::dphi_ds(p.profile, s).abs())
+        },
         p.cutter,
         field,
         sign,

@@ -157,11 +157,7 @@ fn the_shipped_face_simulates_clean() {
     let v = crate::common::run_and_simulate("polyharmonic", "polyharmonic-face");
     let part = &v["part"];
     assert_eq!(part["model"], "polyharmonic relief");
-    let gouge = part["max_gouge"]["value"].as_f64().unwrap();
-    let left = part["max_left_reachable"]["value"].as_f64().unwrap();
-    assert!(gouge <= 0.01, "max gouge {gouge}");
-    assert!(left <= 0.01 + 0.01, "material left {left}");
-    assert_eq!(part["gouged_cells"], 0);
+    crate::common::assert_within_part(part, 0.01, 0.01 + 0.01);
 }
 
 /// The face's block (`pfcam surface`): watertight, and its volume that of
@@ -224,11 +220,7 @@ fn the_shipped_pebble_simulates_clean() {
         &dir,
     );
     let part = &v["part"];
-    let gouge = part["max_gouge"]["value"].as_f64().unwrap();
-    let left = part["max_left_reachable"]["value"].as_f64().unwrap();
-    assert!(gouge <= 0.01, "max gouge {gouge}");
-    assert!(left <= 0.01 + 0.01, "material left {left}");
-    assert_eq!(part["gouged_cells"], 0);
+    crate::common::assert_within_part(part, 0.01, 0.01 + 0.01);
 }
 
 /// The pebble's `pfcam surface` is the closed solid itself, not the block

@@ -60,3 +60,14 @@ pub fn run_and_simulate(module: &str, name: &str) -> serde_json::Value {
     let (rough, finish) = (format!("{name}.rough.nc"), format!("{name}.finish.nc"));
     simulate_report(&[&rough, &finish], job, &dir)
 }
+
+/// A simulation report's `part` held to its bounds: max gouge at most
+/// `gouge`, material left over the last tool's reach at most `left`, and no
+/// cell gouged past the tolerance.
+pub fn assert_within_part(part: &serde_json::Value, gouge: f64, left: f64) {
+    let g = part["max_gouge"]["value"].as_f64().unwrap();
+    let l = part["max_left_reachable"]["value"].as_f64().unwrap();
+    assert!(g <= gouge, "max gouge {g}");
+    assert!(l <= left, "material left {l}");
+    assert_eq!(part["gouged_cells"], 0);
+}

@@ -19,7 +19,7 @@ pub mod files;
 pub mod oracle;
 pub mod rng;
 
-pub use bin::{pfcam, run_and_simulate, scratch, simulate_report, text, PFCAM};
+pub use bin::{assert_within_part, pfcam, run_and_simulate, scratch, simulate_report, text, PFCAM};
 pub use files::{files, root, shipped, shipped_jobs, test_data};
 pub use oracle::{area, holes, perimeter, sample_pline, seg_dist};
 pub use rng::Rng;
