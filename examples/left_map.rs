@@ -1,4 +1,5 @@
 //! Where material is left: `cargo run --release --example left_map -- JOB.toml A.nc [B.nc ...]`
+//! (cells of 0.1 mm; `LEFT_MAP_RES=0.05` for finer ones)
 //! prints the cells farthest above what the last program's tool can reach of
 //! the part (simulate::reach) after the programs, with x, y; measured along
 //! the part's normal, as `pfcam simulate` measures it, with the part's
@@ -8,7 +9,11 @@ use pfcam::simulate::{job_facts, simulate_programs, SimOptions};
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
     let job = pfcam::job::load_job(std::path::Path::new(&a[0])).expect("job");
-    let facts = job_facts(&job, 0.1).expect("facts");
+    let res: f64 = std::env::var("LEFT_MAP_RES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0.1);
+    let facts = job_facts(&job, res).expect("facts");
     let part = facts.part.clone().expect("part");
     let texts: Vec<(String, String)> = a[1..]
         .iter()
@@ -19,6 +24,7 @@ fn main() {
         .map(|(n, t)| (n.as_str(), t.as_str()))
         .collect();
     let opts = SimOptions {
+        resolution: res,
         job: Some(facts),
         ..SimOptions::default()
     };

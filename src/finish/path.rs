@@ -109,7 +109,11 @@ pub fn tip_loop(
         grads.reverse();
     }
     let axes = spread_axes(
-        (contact, closed),
+        (
+            contact,
+            closed,
+            in_crease(at, p).then_some((mesh, p.tol / 2.0)),
+        ),
         &away,
         &grads,
         &|q| {
@@ -132,17 +136,74 @@ pub fn tip_loop(
     })
 }
 
+/// Whether the pass runs along the concave crease where the wall meets the
+/// floor under it (a boss's foot Γ(s2), a mould's letter floor Γ(s1)): no
+/// cutter reaches into such a crease, and the nearest it comes is wedged
+/// against both faces, its contact normal halfway between the floor's
+/// (vertical) and the wall's (at the slope θ of the wall side, φ′ there).
+fn in_crease(at: At, p: &FinishParams) -> bool {
+    let (lo, hi) = p.profile.s_range();
+    match at {
+        At::S(s) if s == lo => p.z_of(lo) < p.z_of(hi),
+        At::S(s) if s == hi => p.z_of(hi) < p.z_of(lo),
+        _ => false,
+    }
+}
+
 /// The cutter's axis for a contact point `q` where ∇u = `g` and the surface
 /// falls away along `d` (see the module docs), and how far its tip then lies
-/// under q: rc·(1 − cos θ), the corner's sag at the slope θ.
-fn axis_at(q: Vec2, d: Vec2, g: Vec2, dphi: f64, cutter: Cutter) -> (Vec2, f64) {
+/// under q: rc·(1 − cos θ), the corner's sag at the slope θ. In a concave
+/// crease (`half`) where a floor meets the wall at the slope θ, the corner
+/// wedged against both faces: its centre rc from each lies on the bisector,
+/// rc·tan(θ/2) out from the crease in plan, its tip on the floor (sag 0); a
+/// ball then comes within r·(1/cos(θ/2) − 1) of the crease, the least any
+/// ball position can (≈ r·θ²/8), where the wall's own normal holds it
+/// r·sin θ out and r·(√(1 + sin²θ) − 1) from it (≈ r·θ²/2).
+fn axis_at(q: Vec2, d: Vec2, g: Vec2, (dphi, half): (f64, bool), cutter: Cutter) -> (Vec2, f64) {
     let t = dphi * g.norm();
     let sec = (1.0 + t * t).sqrt();
+    let flat = cutter.radius - cutter.corner;
+    if half {
+        // tan(θ/2) = tan θ / (1 + sec θ).
+        return (q + d * (flat + cutter.corner * t / (1.0 + sec)), 0.0);
+    }
     let (sin, cos) = (t / sec, 1.0 / sec);
     (
-        q + d * (cutter.radius - cutter.corner + cutter.corner * sin),
+        q + d * (flat + cutter.corner * sin),
         cutter.corner * (1.0 - cos),
     )
+}
+
+/// [`axis_at`] for a contact point of a concave crease (`crease`: the mesh
+/// and the lift allowed, half the tolerance; `None` elsewhere: the wall's
+/// normal). Along a crease that is straight on the cutter's scale the
+/// bisector's axis wedges the cutter against both faces, on the floor but
+/// for the wall's own curvature (0.002 mm on q-mould's sigmoid wall).
+/// Round a corner of the crease tighter than the cutter both faces lift it
+/// (up to 0.087 mm on the mould of a 20 mm letter I), and the floor in the
+/// corner would keep that; the wall's axis, r·sin θ farther out over the
+/// floor, still sits on it. So the bisector's axis is kept unless its
+/// cutter stands more than the allowed lift over the wall's: the lift adds
+/// to what the floor keeps beside the pass, within the tolerance's share of
+/// the bound (scallop + tolerance).
+fn crease_axis(
+    q: Vec2,
+    d: Vec2,
+    g: Vec2,
+    dphi: f64,
+    cutter: Cutter,
+    crease: Option<(&MeshIndex, f64)>,
+) -> (Vec2, f64) {
+    let wall = axis_at(q, d, g, (dphi, false), cutter);
+    let Some((mesh, lift)) = crease else {
+        return wall;
+    };
+    let half = axis_at(q, d, g, (dphi, true), cutter);
+    let z = |a: Vec2| cutter.drop(mesh, a.x, a.y);
+    match (z(wall.0), z(half.0)) {
+        (Some(zw), Some(zh)) if zw + lift < zh => wall,
+        _ => half,
+    }
 }
 
 /// Contact points with their cutter axes.
@@ -161,9 +222,11 @@ struct Axes {
 /// neighbours, on their chord) wherever two neighbouring axes lie more than
 /// [`SAMPLE`] apart: round a sharp convex corner of Γ(s) the axes fan out on
 /// a circle of radius r about it, and a chord between axes a radian apart
-/// would cut into the wall. `slope(q)` is (s, |φ′(s)|) at contact point q.
+/// would cut into the wall. `slope(q)` is (s, |φ′(s)|) at contact point q;
+/// `crease` the mesh and the lift allowed when the curve is a concave crease
+/// ([`crease_axis`]).
 fn spread_axes(
-    (contact, closed): (Vec<Vec2>, bool),
+    (contact, closed, crease): (Vec<Vec2>, bool, Option<(&MeshIndex, f64)>),
     away: &[Vec2],
     grads: &[Vec2],
     slope: &(dyn Fn(Vec2) -> (f64, f64) + Sync),
@@ -174,7 +237,7 @@ fn spread_axes(
     let n = contact.len();
     let at: Vec<(f64, f64)> = contact.iter().map(|&q| slope(q)).collect();
     let axes: Vec<(Vec2, f64)> = (0..n)
-        .map(|i| axis_at(contact[i], away[i], grads[i], at[i].1, cutter))
+        .map(|i| crease_axis(contact[i], away[i], grads[i], at[i].1, cutter, crease))
         .collect();
     let mut out = Axes {
         contact: Vec::with_capacity(n),
@@ -197,7 +260,7 @@ fn spread_axes(
             let q = contact[i].lerp(contact[j], m as f64 / k as f64);
             let g = field.grad(q);
             let (s, dphi) = slope(q);
-            let (a, sag) = axis_at(q, g.normalized() * sign, g, dphi, cutter);
+            let (a, sag) = crease_axis(q, g.normalized() * sign, g, dphi, cutter, crease);
             out.contact.push(q);
             out.axes.push(a);
             out.sags.push(sag);
@@ -975,6 +1038,69 @@ mod tests {
         // Out on the floor the entry starts over the tip, as before.
         let far = Vec3::new(-6.0, 0.0, -3.0);
         assert_eq!(entry_base(far, &p, &mesh), -3.0);
+    }
+
+    /// z = tan θ · max(0, x, y) (`corner`) or tan θ · max(0, x) on a 0.1 mm
+    /// grid over ±5 mm: a floor meeting a wall that rises at θ for x ≥ 0
+    /// along the crease x = 0, and with `corner` also for y ≥ 0, the crease
+    /// then turning a right angle round the origin, a corner of the floor.
+    fn crease_mesh(theta: f64, corner: bool) -> MeshIndex {
+        let z = |x: f64, y: f64| theta.tan() * if corner { x.max(y) } else { x }.max(0.0);
+        let p = |i: i32, j: i32| {
+            let (x, y) = (i as f64 * 0.1, j as f64 * 0.1);
+            [x, y, z(x, y)]
+        };
+        let mut tris = Vec::new();
+        for i in -50..50 {
+            for j in -50..50 {
+                // Split along the diagonal x − y = const: the creases are edges.
+                tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+                tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+            }
+        }
+        MeshIndex::new(tris, 0.4)
+    }
+
+    #[test]
+    fn in_a_straight_crease_the_ball_is_wedged_and_round_a_tight_corner_it_sits_on_the_floor() {
+        let theta = 20f64.to_radians();
+        let r = 1.5875;
+        let ball = Cutter::ball(r);
+        // At the contact point (0, −3) the surface falls away along −x; with
+        // |∇u| = 1, φ′ = tan θ.
+        let (q, d, g) = (
+            Vec2::new(0.0, -3.0),
+            Vec2::new(-1.0, 0.0),
+            Vec2::new(1.0, 0.0),
+        );
+        let straight = crease_mesh(theta, false);
+        let (axis, _) = crease_axis(q, d, g, theta.tan(), ball, Some((&straight, 0.005)));
+        let tip = ball.drop(&straight, axis.x, axis.y).unwrap();
+        // Wedged: on the floor, r·tan(θ/2) from the crease, and the ball
+        // comes within r·(1/cos(θ/2) − 1) of it, the least any position can.
+        assert!(tip.abs() < 1e-9, "{tip}");
+        assert!((axis.x + r * (theta / 2.0).tan()).abs() < 1e-9, "{axis:?}");
+        let gap = (axis.x.powi(2) + (tip + r).powi(2)).sqrt() - r;
+        assert!(
+            (gap - r * (1.0 / (theta / 2.0).cos() - 1.0)).abs() < 1e-9,
+            "{gap}"
+        );
+        // The wall's own normal would hold the ball r·sin θ out, r·(1 − cos
+        // θ) short of the crease: farther from it.
+        let (wall, _) = crease_axis(q, d, g, theta.tan(), ball, None);
+        let wall_gap = (wall.x.powi(2) + r.powi(2)).sqrt() - r;
+        assert!(wall_gap > 2.0 * gap, "{wall_gap} vs {gap}");
+        // In the corner (the floor falling away along the diagonal) both
+        // faces lift the bisector's ball; the wall's axis, farther out, is
+        // kept where that lift passes the allowed 0.005 mm.
+        let corner = crease_mesh(theta, true);
+        let (q, d) = (Vec2::new(0.0, 0.0), Vec2::new(-1.0, -1.0).normalized());
+        let (axis, _) = crease_axis(q, d, d * -1.0, theta.tan(), ball, Some((&corner, 0.005)));
+        let half = axis_at(q, d, d * -1.0, (theta.tan(), true), ball).0;
+        let lifted = ball.drop(&corner, half.x, half.y).unwrap();
+        assert!(lifted > 0.005, "{lifted}");
+        assert!((axis - d * (r * theta.sin())).norm() < 1e-9, "{axis:?}");
+        assert!(ball.drop(&corner, axis.x, axis.y).unwrap() < lifted - 0.005);
     }
 
     #[test]
