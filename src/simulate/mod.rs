@@ -41,6 +41,7 @@ pub mod run;
 pub mod stock;
 pub mod tool;
 mod verify;
+pub mod walls;
 
 use serde::Serialize;
 
@@ -522,6 +523,22 @@ fn compare_part(
     let mut gouges = Vec::new();
     let last_tool = prepared.last().map(|p| &p.tool);
     let mut cmp = part::compare(map, part, job, last_tool, &mut gouges);
+    if let Some(p) = prepared
+        .last()
+        .filter(|p| p.tool.shape() == ToolShape::Ball)
+    {
+        cmp.walls = walls::ball_left_on_walls(
+            part,
+            &p.read.moves,
+            p.tool.radius(),
+            map.grid.res * CHORD_FRACTION,
+        );
+        if let Some(w) = cmp.walls.as_mut() {
+            if several {
+                w.program = Some(p.name.to_string());
+            }
+        }
+    }
     for mut f in gouges {
         let (k, line) = locate(f.line);
         f.line = line;

@@ -19,7 +19,7 @@ use std::collections::BTreeMap;
 /// The part as a height field: triangles whose normal points up (+z), and
 /// closed outlines whose inside (even-odd: outlines less their counters)
 /// stands at `outline_z`. Where neither covers a cell it is not compared.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct PartModel {
     /// What it is, for the report (`surface S2`, `glyph outlines`).
     pub name: String,
@@ -29,6 +29,10 @@ pub struct PartModel {
     pub outlines: Vec<Vec<[f64; 2]>>,
     /// Height of the outlines' inside, mm.
     pub outline_z: f64,
+    /// Points on the walls with their unit normals, on the exact surface
+    /// where the part has one (S2: `walls::project_walls`); empty: the wall
+    /// triangles' centroids stand for them (`simulate::walls`).
+    pub wall_points: Vec<([f64; 3], [f64; 3])>,
 }
 
 /// What `--job` tells the simulation.
@@ -81,6 +85,7 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
                 .map(|c| c.flatten(tol).iter().map(|p| [p.x, p.y]).collect())
                 .collect(),
             outline_z: job.stock.top,
+            wall_points: Vec::new(),
         });
         return Ok(facts);
     }
@@ -101,6 +106,7 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
                 .map_err(part)?,
             outlines: Vec::new(),
             outline_z: job.stock.top,
+            wall_points: Vec::new(),
         });
         return Ok(facts);
     }
@@ -119,6 +125,7 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
                 .map_err(part)?,
             outlines: Vec::new(),
             outline_z: job.stock.top,
+            wall_points: Vec::new(),
         });
         return Ok(facts);
     }
@@ -133,17 +140,48 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         top: job.stock.top,
     });
     let mesh = &s.mesh;
-    let triangles = (0..mesh.triangles.len())
+    let triangles: Vec<[[f64; 3]; 3]> = (0..mesh.triangles.len())
         .map(|t| mesh.corners(t))
         .filter(|c| up_area(c) > 1e-12)
         .collect();
+    let wall_points = super::walls::project_walls(&triangles, &s2_height(job, &built.field));
     facts.part = Some(PartModel {
         name: "surface S2".into(),
         triangles,
         outlines: Vec::new(),
         outline_z: job.stock.top,
+        wall_points,
     });
     Ok(facts)
+}
+
+/// S2's exact height z = z(u(x, y)) and its gradient (dz/ds · ∇u, 0 where
+/// u is outside φ's range: the flat top and floor).
+fn s2_height<'a>(
+    job: &'a Job,
+    field: &'a crate::field::Field,
+) -> impl Fn(f64, f64) -> (f64, [f64; 2]) + Sync + 'a {
+    let cavity = job.operation.kind == OperationKind::Cavity;
+    let top = job.stock.top;
+    move |x, y| {
+        let Some(profile) = job.profile.as_ref() else {
+            return (top, [0.0, 0.0]);
+        };
+        let (lo, hi) = profile.s_range();
+        let p = crate::geometry::Vec2::new(x, y);
+        let u = field.value(p);
+        let z = crate::surface::surface_z(profile, cavity, top, u.clamp(lo, hi));
+        if u <= lo || u >= hi {
+            return (z, [0.0, 0.0]);
+        }
+        let e = 1e-7 * (hi - lo);
+        let (a, b) = ((u - e).max(lo), (u + e).min(hi));
+        let dz = (crate::surface::surface_z(profile, cavity, top, b)
+            - crate::surface::surface_z(profile, cavity, top, a))
+            / (b - a);
+        let g = field.grad(p);
+        (z, [dz * g.x, dz * g.y])
+    }
 }
 
 /// |n_z| of the triangle's unit normal: the cosine of its slope.
@@ -352,6 +390,7 @@ pub fn compare(
         max_left_program: None,
         max_left_reachable,
         max_left_reachable_program: None,
+        walls: None,
         left_share_over_scallop: if cells > 0 {
             over_scallop as f64 / cells as f64
         } else {

@@ -106,6 +106,11 @@ pub struct PartComparison {
     /// When several programs were simulated: the one `max_left_reachable.line` is in.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_left_reachable_program: Option<String>,
+    /// With a ball as the last tool: the most material left along the
+    /// normal on the part's walls where the ball reaches, measured in 3-D
+    /// (`simulate::walls`; the height map cannot on near-vertical walls).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub walls: Option<super::walls::WallLeft>,
     /// Share of the compared cells with more than `scallop + tolerance` left.
     pub left_share_over_scallop: f64,
     /// The job's tolerance, mm.
@@ -261,6 +266,16 @@ impl PartComparison {
             100.0 * self.left_share_over_scallop,
             self.cells,
             self.scallop + self.tolerance
-        )
+        ) + &self.walls.as_ref().map_or(String::new(), |w| {
+            format!(
+                "; on the walls, along the normal where the ball reaches: {:.3} mm left ({}, at X{:.2} Y{:.2} Z{:.3}) of {} points",
+                w.left.value,
+                at(&w.program, w.left.line),
+                w.at[0],
+                w.at[1],
+                w.at[2],
+                w.points
+            )
+        })
     }
 }

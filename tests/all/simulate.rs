@@ -127,6 +127,7 @@ fn square_part() -> PartModel {
         triangles,
         outlines: Vec::new(),
         outline_z: 0.0,
+        wall_points: Vec::new(),
     }
 }
 
@@ -183,6 +184,7 @@ fn an_outline_part_catches_the_same_gouge() {
         triangles: Vec::new(),
         outlines: vec![square(10.0, 20.0), square(14.0, 16.0)],
         outline_z: 0.0,
+        wall_points: Vec::new(),
     });
     let o = SimOptions {
         job: Some(job),
@@ -211,6 +213,7 @@ fn wall_gouge(below: f64) -> (f64, Vec<(usize, Kind)>) {
         triangles: vec![[a, b, c], [a, c, d]],
         outlines: Vec::new(),
         outline_z: 0.0,
+        wall_points: Vec::new(),
     });
     let o = SimOptions {
         job: Some(job),
@@ -918,6 +921,7 @@ fn pocket_job() -> JobFacts {
             triangles: vec![[a, b, c], [a, c, d]],
             outlines: Vec::new(),
             outline_z: 0.0,
+            wall_points: Vec::new(),
         }),
         tolerance: 0.01,
         scallop: 0.1,

@@ -62,12 +62,17 @@ pub fn run_and_simulate(module: &str, name: &str) -> serde_json::Value {
 }
 
 /// A simulation report's `part` held to its bounds: max gouge at most
-/// `gouge`, material left over the last tool's reach at most `left`, and no
-/// cell gouged past the tolerance.
+/// `gouge`, material left over the last tool's reach at most `left` (and on
+/// the walls along the normal, with a ball finisher), and no cell gouged
+/// past the tolerance.
 pub fn assert_within_part(part: &serde_json::Value, gouge: f64, left: f64) {
     let g = part["max_gouge"]["value"].as_f64().unwrap();
     let l = part["max_left_reachable"]["value"].as_f64().unwrap();
     assert!(g <= gouge, "max gouge {g}");
     assert!(l <= left, "material left {l}");
     assert_eq!(part["gouged_cells"], 0);
+    // With a ball finisher, the same bound along the walls' normal.
+    if let Some(w) = part["walls"]["left"]["value"].as_f64() {
+        assert!(w <= left, "material left on the walls {w}");
+    }
 }
