@@ -437,7 +437,8 @@ impl Cutter {
             for v in rel {
                 // The tip v_z − p(ρ) is not above v_z (p ≥ 0, and rounding
                 // of a difference keeps its order).
-                if v[2] > floor {
+                // The same test without its root first ([`Cutter::may_beat`]).
+                if v[2] > floor && self.may_beat(v[2], v[0] * v[0] + v[1] * v[1], floor) {
                     if let Some(k) = self.vertex(v) {
                         raise(&mut best, &mut floor, k);
                     }
@@ -604,6 +605,12 @@ impl Cutter {
     /// None when it misses the footprint, is vertical, or cannot give more than
     /// `floor`.
     fn edge(&self, a: [f64; 3], b: [f64; 3], floor: f64) -> Option<Contact> {
+        // Every point of the edge lies at least the segment's XY distance
+        // from the axis and at most max(a_z, b_z) high: the bound below
+        // without its roots, on the same terms as a triangle's box.
+        if !self.may_beat(a[2].max(b[2]), segment_dist2(a, b), floor) {
+            return None;
+        }
         let s = EdgeFrame::new(a, b, self.radius)?;
         // Upper bound for pruning: the higher clipped end's z minus p at the
         // smallest ρ on [lo, hi] (p is non-decreasing).
@@ -808,6 +815,19 @@ impl EdgeFrame {
 /// √(x² + y²). Not `f64::hypot`, which guards against overflow and
 /// underflow at several times the cost (it was a third of a drop's time);
 /// lengths here are mm, nowhere near 1e±154.
+/// Squared XY distance from the axis (the origin) to the segment a→b.
+fn segment_dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (-(a[0] * dx + a[1] * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (px, py) = (a[0] + t * dx, a[1] + t * dy);
+    px * px + py * py
+}
+
 fn norm(x: f64, y: f64) -> f64 {
     (x * x + y * y).sqrt()
 }
@@ -2048,6 +2068,31 @@ mod tests {
             by_top >= 10 && 2 * by_plane > by_top,
             "{by_plane} of {by_top}"
         );
+    }
+
+    #[test]
+    fn dropcutter_segment_dist2_is_the_least_over_the_segment() {
+        // Against the distance to 20 001 points along the segment, and never
+        // above it (the drop uses it as a lower bound).
+        let mut g = Rng(0x5e9);
+        for k in 0..2000 {
+            let mut p = || [g.range(-3.0, 3.0), g.range(-3.0, 3.0), g.range(-1.0, 1.0)];
+            let a = p();
+            let b = if k % 50 == 0 { a } else { p() };
+            let d2 = segment_dist2(a, b);
+            let sampled = (0..=20_000)
+                .map(|i| {
+                    let t = i as f64 / 20_000.0;
+                    let (x, y) = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
+                    x * x + y * y
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                d2 <= sampled * (1.0 + 1e-12) + 1e-300,
+                "{a:?} {b:?}: {d2} > {sampled}"
+            );
+            assert!(sampled - d2 <= 1e-6, "{a:?} {b:?}: {d2} vs {sampled}");
+        }
     }
 
     #[test]
