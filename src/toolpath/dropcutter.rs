@@ -125,7 +125,10 @@
 //! once (see `for_each_near`), and keeps those whose box lies within r of the
 //! axis and whose z_max − p(distance to their box) beats the best tip so far.
 //! Each cell keeps the box round its triangles' boxes and their highest
-//! corner, so a whole cell is skipped on the same bound; its triangles are
+//! corner, so a whole cell is skipped on the same bound, and an upper plane
+//! over its triangles' corners, so a cell is also skipped when that plane's
+//! own facet contact (the most any point under the plane can lift the
+//! cutter) does not beat the best tip; its triangles are
 //! sorted by highest corner, so the scan of a cell stops at the first one
 //! that cannot win even at the cell's distance. The cells are visited ring
 //! by ring from the axis's cell outwards, the nearest first.
@@ -155,6 +158,11 @@
 //! height that matters to them.
 
 use rayon::prelude::*;
+
+/// How far under the floor a cell's upper-plane bound must fall before the
+/// cell is skipped, mm (the bound's rounding, with coordinates of metres, is
+/// under 1e-9 mm).
+pub const CELL_PLANE_MARGIN: f64 = 1e-6;
 
 /// Most grid cells a [`MeshIndex`] builds; a finer requested cell is coarsened
 /// (doubled) until the grid fits. 4 million cells is 32 MB of offsets, and the
@@ -336,6 +344,30 @@ impl Cutter {
         d2 < reach * reach
     }
 
+    /// Whether the triangles of cell `k` of `mesh` may lift the tip (axis
+    /// through `c`) above `floor`, judged by the cell's upper plane
+    /// z ≤ A + g·(q − m) ([`CellPlane`]): every point of those triangles lies
+    /// on or under it, so f = z − p(ρ) on them is at most the plane's own
+    /// drop, its facet contact (module notes) with tan θ = |g|: ρ_c = a +
+    /// rc·sin θ uphill, tip = A + g·(c − m) + |g|·ρ_c − rc(1 − cos θ). Only
+    /// trusted for |g| ≤ 1000 (cos θ ≥ 1e-3) and only when it falls short
+    /// by more than [`CELL_PLANE_MARGIN`], far above the rounding.
+    #[inline]
+    fn plane_may_beat(&self, mesh: &MeshIndex, k: usize, c: [f64; 2], floor: f64) -> bool {
+        let pl = &mesh.planes[k];
+        let (gx, gy) = (f64::from(pl.g[0]), f64::from(pl.g[1]));
+        let t = norm(gx, gy);
+        if t.is_nan() || t > 1000.0 {
+            return true;
+        }
+        let m = mesh.cell_corner(k);
+        let sec = (1.0 + t * t).sqrt();
+        let rho = self.flat_radius() + self.corner * (t / sec);
+        let z = f64::from(pl.a) + gx * (c[0] - m[0]) + gy * (c[1] - m[1]) + t * rho;
+        let tip = z - self.corner * (1.0 - 1.0 / sec);
+        tip.is_nan() || tip + CELL_PLANE_MARGIN > floor
+    }
+
     /// The lowest tip z at which the cutter, axis vertical through (x, y),
     /// touches a triangle of `mesh` without any triangle entering it; None when
     /// no triangle lies under the cutter's footprint (or the cutter fails
@@ -390,7 +422,11 @@ impl Cutter {
         // A cell is skipped on the same bound: its triangles' highest corner
         // at the distance to the box round all of them.
         let may_win = |b: &Bounds, d2: f64| self.may_beat(b.top(), d2, floor_cell.get());
-        mesh.for_each_near(c, r, range, may_win, may_win, |ti, b, d2| {
+        // ... and on its upper plane's contact.
+        let cell_may_win = |k: usize, b: &Bounds, d2: f64| {
+            may_win(b, d2) && self.plane_may_beat(mesh, k, c, floor_cell.get())
+        };
+        mesh.for_each_near(c, r, range, cell_may_win, may_win, |ti, b, d2| {
             let mut floor = floor_cell.get();
             let t = &mesh.tri(ti);
             let rel = t.relative(c);
@@ -401,7 +437,8 @@ impl Cutter {
             for v in rel {
                 // The tip v_z − p(ρ) is not above v_z (p ≥ 0, and rounding
                 // of a difference keeps its order).
-                if v[2] > floor {
+                // The same test without its root first ([`Cutter::may_beat`]).
+                if v[2] > floor && self.may_beat(v[2], v[0] * v[0] + v[1] * v[1], floor) {
                     if let Some(k) = self.vertex(v) {
                         raise(&mut best, &mut floor, k);
                     }
@@ -568,6 +605,12 @@ impl Cutter {
     /// None when it misses the footprint, is vertical, or cannot give more than
     /// `floor`.
     fn edge(&self, a: [f64; 3], b: [f64; 3], floor: f64) -> Option<Contact> {
+        // Every point of the edge lies at least the segment's XY distance
+        // from the axis and at most max(a_z, b_z) high: the bound below
+        // without its roots, on the same terms as a triangle's box.
+        if !self.may_beat(a[2].max(b[2]), segment_dist2(a, b), floor) {
+            return None;
+        }
         let s = EdgeFrame::new(a, b, self.radius)?;
         // Upper bound for pruning: the higher clipped end's z minus p at the
         // smallest ρ on [lo, hi] (p is non-decreasing).
@@ -772,6 +815,19 @@ impl EdgeFrame {
 /// √(x² + y²). Not `f64::hypot`, which guards against overflow and
 /// underflow at several times the cost (it was a third of a drop's time);
 /// lengths here are mm, nowhere near 1e±154.
+/// Squared XY distance from the axis (the origin) to the segment a→b.
+fn segment_dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (-(a[0] * dx + a[1] * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (px, py) = (a[0] + t * dx, a[1] + t * dy);
+    px * px + py * py
+}
+
 fn norm(x: f64, y: f64) -> f64 {
     (x * x + y * y).sqrt()
 }
@@ -965,10 +1021,15 @@ pub struct MeshIndex {
     /// triangle index shifted left by 2 with its [`rank`] in the low bits,
     /// sorted by rank within the cell.
     start: Vec<usize>,
+    /// Where ranks 1, 2 and 3 begin in cell k's items (offsets from
+    /// `start[k]`), so that a drop takes a cell's ranks without searching.
+    rank_at: Vec<[u32; 3]>,
     items: Vec<u32>,
     /// Cell k's box round the boxes of all its triangles, and their highest
     /// corner (empty: an inverted box at −∞).
     cells: Vec<Bounds>,
+    /// Cell k's upper plane ([`CellPlane`]).
+    planes: Vec<CellPlane>,
     skipped: usize,
 }
 
@@ -1003,8 +1064,10 @@ impl MeshIndex {
             nx: 0,
             ny: 0,
             start: vec![0],
+            rank_at: Vec::new(),
             items: Vec::new(),
             cells: Vec::new(),
+            planes: Vec::new(),
             skipped,
         };
         if tris.is_empty() {
@@ -1090,6 +1153,8 @@ impl MeshIndex {
         }
         sort_cells(&mut items, &count, &bounds);
         index.cells = cell_bounds(&items, &count, &bounds);
+        index.planes = cell_planes(&index, &items, &count, &tris, &normals);
+        index.rank_at = rank_offsets(&items, &count);
         index.start = count;
         index.items = items;
         index.tris = tris;
@@ -1122,6 +1187,15 @@ impl MeshIndex {
     /// Triangles left out because a coordinate was not finite.
     pub fn skipped(&self) -> usize {
         self.skipped
+    }
+
+    /// Lower-left corner of cell k = j·nx + i, mm.
+    fn cell_corner(&self, k: usize) -> [f64; 2] {
+        let (i, j) = (k % self.nx, k / self.nx);
+        [
+            self.origin[0] + i as f64 * self.cell,
+            self.origin[1] + j as f64 * self.cell,
+        ]
     }
 
     fn cell_x(&self, x: f64) -> usize {
@@ -1178,7 +1252,7 @@ impl MeshIndex {
         c: [f64; 2],
         r: f64,
         (i0, i1, j0, j1): (usize, usize, usize, usize),
-        cell_may_win: impl Fn(&Bounds, f64) -> bool,
+        cell_may_win: impl Fn(usize, &Bounds, f64) -> bool,
         tri_may_win: impl Fn(&Bounds, f64) -> bool,
         mut f: impl FnMut(u32, &Bounds, f64),
     ) {
@@ -1197,18 +1271,17 @@ impl MeshIndex {
             // cell out of reach, or one the caller's bound rules out,
             // holds nothing to visit, whichever cell would visit them.
             let d2 = box_dist2(&self.cells[k]);
-            if d2 > r2 || !cell_may_win(&self.cells[k], d2) {
+            if d2 > r2 || !cell_may_win(k, &self.cells[k], d2) {
                 return;
             }
             let cell = &self.items[self.start[k]..self.start[k + 1]];
-            let (lo_rank, hi_rank) = match (i > i0, j > j0) {
-                (true, true) => (1, 1),
-                (false, true) => (0, 1),
-                (true, false) => (1, 2),
-                (false, false) => (0, 3),
+            let [o1, o2, o3] = self.rank_at[k].map(|o| o as usize);
+            let (mut at, end) = match (i > i0, j > j0) {
+                (true, true) => (o1, o2),
+                (false, true) => (0, o2),
+                (true, false) => (o1, o3),
+                (false, false) => (0, cell.len()),
             };
-            let mut at = cell.partition_point(|&it| it & 3 < lo_rank);
-            let end = cell.partition_point(|&it| it & 3 <= hi_rank);
             while at < end {
                 let it = cell[at];
                 let ti = it >> 2;
@@ -1289,6 +1362,75 @@ fn sort_cells(items: &mut [u32], count: &[usize], bounds: &[Bounds]) {
             (a & 3).cmp(&(b & 3)).then(z(b).total_cmp(&z(a)))
         })
     });
+}
+
+/// An upper plane over a cell's triangles: every corner of every triangle
+/// the cell lists has z ≤ A + g·(q − m), m the cell's lower-left corner
+/// ([`MeshIndex::cell_corner`]). g is the slope of the mean of the
+/// triangles' normals (0 when they are near vertical on average); A is the
+/// largest z − g·(q − m) over the corners, computed with the single
+/// precision g and rounded up. A cell with no triangles has A = −∞. Since
+/// z − g·(q − m) is affine, its maximum over a triangle is at a corner, so
+/// the plane lies over every point of every triangle of the cell.
+#[derive(Clone, Copy, Debug)]
+struct CellPlane {
+    a: f32,
+    g: [f32; 2],
+}
+
+/// The upper plane ([`CellPlane`]) of each cell; the cells in parallel.
+fn cell_planes(
+    index: &MeshIndex,
+    items: &[u32],
+    count: &[usize],
+    tris: &[[[f64; 3]; 3]],
+    normals: &[[f64; 3]],
+) -> Vec<CellPlane> {
+    (0..count.len().saturating_sub(1))
+        .into_par_iter()
+        .map(|k| {
+            let cell = &items[count[k]..count[k + 1]];
+            let mut sum = [0.0f64; 3];
+            for &it in cell {
+                let p = normals[(it >> 2) as usize];
+                let s = if p[2] < 0.0 { -1.0 } else { 1.0 };
+                sum = [sum[0] + s * p[0], sum[1] + s * p[1], sum[2] + s * p[2]];
+            }
+            let g = if sum[2] > 1e-3 * cell.len() as f64 {
+                [(-sum[0] / sum[2]) as f32, (-sum[1] / sum[2]) as f32]
+            } else {
+                [0.0, 0.0]
+            };
+            let g = if g.iter().all(|c| c.is_finite()) {
+                g
+            } else {
+                [0.0, 0.0]
+            };
+            let m = index.cell_corner(k);
+            let (gx, gy) = (f64::from(g[0]), f64::from(g[1]));
+            let mut a = f64::NEG_INFINITY;
+            for &it in cell {
+                for v in &tris[(it >> 2) as usize] {
+                    a = a.max(v[2] - gx * (v[0] - m[0]) - gy * (v[1] - m[1]));
+                }
+            }
+            CellPlane { a: f32_up(a), g }
+        })
+        .collect()
+}
+
+/// For each cell (`items[count[k]..count[k + 1]]`, sorted by rank) the
+/// offsets from its start at which ranks 1, 2 and 3 begin. A cell lists a
+/// triangle at most once, so its length (at most [`MAX_TRIANGLES`]) fits a
+/// u32.
+fn rank_offsets(items: &[u32], count: &[usize]) -> Vec<[u32; 3]> {
+    (0..count.len().saturating_sub(1))
+        .into_par_iter()
+        .map(|k| {
+            let cell = &items[count[k]..count[k + 1]];
+            [1, 2, 3].map(|q| cell.partition_point(|&it| it & 3 < q) as u32)
+        })
+        .collect()
 }
 
 /// Each cell's box round its triangles' boxes, and their highest corner.
@@ -1868,6 +2010,91 @@ mod tests {
 
     /// The single-precision bounds are rounded outwards: f32_down(x) ≤ x ≤
     /// f32_up(x), each the nearest f32 on its side (exact when x is one).
+    #[test]
+    fn dropcutter_cell_planes_lie_over_their_triangles_and_prune() {
+        // Every corner of every triangle a cell lists lies on or under the
+        // cell's upper plane, on a random mesh (rough, with loose
+        // triangles) and on a smooth tilted one.
+        let mut g = Rng(0x9a1e);
+        let tilted: Vec<[[f64; 3]; 3]> = {
+            let n = 40;
+            let p = |i: usize, j: usize| {
+                let (x, y) = (i as f64 * 0.1, j as f64 * 0.1);
+                [x, y, 0.7 * x - 0.3 * y + 0.05 * (x * x + y * y)]
+            };
+            (0..n * n)
+                .flat_map(|k| {
+                    let (i, j) = (k % n, k / n);
+                    [
+                        [p(i, j), p(i + 1, j), p(i + 1, j + 1)],
+                        [p(i, j), p(i + 1, j + 1), p(i, j + 1)],
+                    ]
+                })
+                .collect()
+        };
+        for (tris, cell) in [(random_mesh(&mut g, 30), 1.3), (tilted.clone(), 0.4)] {
+            let m = MeshIndex::new(tris, cell);
+            for k in 0..m.nx * m.ny {
+                let (pl, c) = (m.planes[k], m.cell_corner(k));
+                let (gx, gy) = (f64::from(pl.g[0]), f64::from(pl.g[1]));
+                for &it in &m.items[m.start[k]..m.start[k + 1]] {
+                    for v in m.tris[(it >> 2) as usize] {
+                        let over = f64::from(pl.a) + gx * (v[0] - c[0]) + gy * (v[1] - c[1]);
+                        assert!(v[2] <= over + 1e-12, "cell {k}: {v:?} above {over}");
+                    }
+                }
+            }
+        }
+        // On the smooth mesh a ball resting on it leaves most cells within
+        // its reach below the floor by their planes, though their highest
+        // corners stand above it.
+        let m = MeshIndex::new(tilted, 0.4);
+        let c = Cutter::ball(1.5875);
+        let (x, y) = (2.0, 2.0);
+        let floor = c.drop(&m, x, y).unwrap();
+        let range = m.cell_range(x - c.radius, x + c.radius, y - c.radius, y + c.radius);
+        let (i0, i1, j0, j1) = range.unwrap();
+        let (mut by_top, mut by_plane) = (0, 0);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let k = j * m.nx + i;
+                if m.cells[k].top() > floor {
+                    by_top += 1;
+                    by_plane += usize::from(!c.plane_may_beat(&m, k, [x, y], floor));
+                }
+            }
+        }
+        assert!(
+            by_top >= 10 && 2 * by_plane > by_top,
+            "{by_plane} of {by_top}"
+        );
+    }
+
+    #[test]
+    fn dropcutter_segment_dist2_is_the_least_over_the_segment() {
+        // Against the distance to 20 001 points along the segment, and never
+        // above it (the drop uses it as a lower bound).
+        let mut g = Rng(0x5e9);
+        for k in 0..2000 {
+            let mut p = || [g.range(-3.0, 3.0), g.range(-3.0, 3.0), g.range(-1.0, 1.0)];
+            let a = p();
+            let b = if k % 50 == 0 { a } else { p() };
+            let d2 = segment_dist2(a, b);
+            let sampled = (0..=20_000)
+                .map(|i| {
+                    let t = i as f64 / 20_000.0;
+                    let (x, y) = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
+                    x * x + y * y
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                d2 <= sampled * (1.0 + 1e-12) + 1e-300,
+                "{a:?} {b:?}: {d2} > {sampled}"
+            );
+            assert!(sampled - d2 <= 1e-6, "{a:?} {b:?}: {d2} vs {sampled}");
+        }
+    }
+
     #[test]
     fn dropcutter_bounds_round_outwards() {
         let mut g = Rng(0xf32);
