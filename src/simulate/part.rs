@@ -186,21 +186,7 @@ fn s2_height<'a>(
 
 /// |n_z| of the triangle's unit normal: the cosine of its slope.
 fn slope_cos(c: &[[f64; 3]; 3]) -> f64 {
-    let (u, v) = (
-        [c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]],
-        [c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]],
-    );
-    let n = [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ];
-    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    if len > 0.0 {
-        n[2].abs() / len
-    } else {
-        1.0
-    }
+    super::walls::unit_normal(c).map_or(1.0, |n| n[2].abs())
 }
 
 /// The part's height over every cell centre (−∞ where no triangle covers it).

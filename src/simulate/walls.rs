@@ -26,6 +26,7 @@
 use super::moves::Move;
 use super::part::PartModel;
 use super::report::Worst;
+use nalgebra::Vector3;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -60,59 +61,54 @@ pub struct WallLeft {
 
 type V3 = [f64; 3];
 
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn add_scaled(a: V3, b: V3, t: f64) -> V3 {
-    [a[0] + t * b[0], a[1] + t * b[1], a[2] + t * b[2]]
-}
-fn norm(a: V3) -> f64 {
-    dot(a, a).sqrt()
+fn v(a: V3) -> Vector3<f64> {
+    Vector3::from(a)
 }
 
 /// Distance from `p` to the segment a–b.
 fn segment_distance(p: V3, a: V3, b: V3) -> f64 {
-    let ab = sub(b, a);
-    let l2 = dot(ab, ab);
+    let (p, a, ab) = (v(p), v(a), v(b) - v(a));
+    let l2 = ab.norm_squared();
     let t = if l2 > 0.0 {
-        (dot(sub(p, a), ab) / l2).clamp(0.0, 1.0)
+        ((p - a).dot(&ab) / l2).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    norm(sub(p, add_scaled(a, ab, t)))
+    (p - (a + ab * t)).norm()
 }
 
 /// Distance from `p` to the triangle (the closest point by its region:
 /// inside, on an edge or at a corner).
-pub fn triangle_distance(p: V3, t: &[V3; 3]) -> f64 {
-    let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
-    let nn = dot(n, n);
+pub fn triangle_distance(q: V3, t: &[V3; 3]) -> f64 {
+    let (p, c) = (v(q), t.map(v));
+    let n = (c[1] - c[0]).cross(&(c[2] - c[0]));
+    let nn = n.norm_squared();
     if nn > 0.0 {
         // The foot of p on the plane, inside if on the inner side of all
         // three edges.
-        let h = dot(sub(p, t[0]), n) / nn;
-        let foot = add_scaled(p, n, -h);
+        let h = (p - c[0]).dot(&n) / nn;
+        let foot = p - n * h;
         let inside = (0..3).all(|i| {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            dot(cross(sub(b, a), sub(foot, a)), n) >= 0.0
+            let (a, b) = (c[i], c[(i + 1) % 3]);
+            (b - a).cross(&(foot - a)).dot(&n) >= 0.0
         });
         if inside {
             return h.abs() * nn.sqrt();
         }
     }
     (0..3)
-        .map(|i| segment_distance(p, t[i], t[(i + 1) % 3]))
+        .map(|i| segment_distance(q, t[i], t[(i + 1) % 3]))
         .fold(f64::INFINITY, f64::min)
+}
+
+/// The unit normal of triangle `t` (its corners' order: counter-clockwise
+/// seen from where it points), `None` for a degenerate one.
+pub fn unit_normal(t: &[V3; 3]) -> Option<V3> {
+    let c = t.map(v);
+    (c[1] - c[0])
+        .cross(&(c[2] - c[0]))
+        .try_normalize(0.0)
+        .map(Into::into)
 }
 
 /// The centroid and unit normal of every wall triangle (tilted more than
@@ -121,10 +117,8 @@ pub fn wall_centroids(triangles: &[[V3; 3]]) -> Vec<(V3, V3)> {
     triangles
         .iter()
         .filter_map(|t| {
-            let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
-            let len = norm(n);
-            let n = [n[0] / len, n[1] / len, n[2] / len];
-            (len > 0.0 && n[2] > 0.0 && n[2] < WALL_TILT).then(|| {
+            let n = unit_normal(t)?;
+            (n[2] > 0.0 && n[2] < WALL_TILT).then(|| {
                 let c = [0, 1, 2].map(|a| (t[0][a] + t[1][a] + t[2][a]) / 3.0);
                 (c, n)
             })
@@ -153,7 +147,7 @@ pub fn project_walls(
         .filter_map(|(p, n)| {
             let mut t = 0.0;
             for _ in 0..NEWTON_STEPS {
-                let q = add_scaled(p, n, t);
+                let q: V3 = (v(p) + v(n) * t).into();
                 let (z, g) = height(q[0], q[1]);
                 let f = z - q[2];
                 let df = g[0] * n[0] + g[1] * n[1] - n[2];
@@ -281,7 +275,7 @@ pub fn ball_left_on_walls(part: &PartModel, moves: &[Move], r: f64, tol: f64) ->
     left.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.2.cmp(&b.2)));
     let reaches = |k: usize| {
         let (p, n) = walls[k];
-        let c = add_scaled(p, n, r);
+        let c: V3 = (v(p) + v(n) * r).into();
         tri_bins
             .near([c[0], c[1]], r)
             .all(|i| triangle_distance(c, &part.triangles[i]) >= r - ENTER)
