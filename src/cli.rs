@@ -670,6 +670,27 @@ fn output_path(path: &Path, given: Option<PathBuf>, ext: &str) -> Result<PathBuf
     }
 }
 
+/// A command that writes one drawing of a run (`preview`, `field`): the
+/// file (`FILE`, or out/<name>.<ext>) checked before the run, so a name
+/// that cannot be written costs no run; the job run; `draw`'s bytes written
+/// and, unless `quiet`, named.
+fn write_drawing(
+    path: &Path,
+    (output, ext): (Option<PathBuf>, &str),
+    (force, quiet): (bool, bool),
+    draw: impl FnOnce(&Job, &RunOutput) -> Result<Vec<u8>>,
+) -> Result<()> {
+    let target = output_path(path, output, ext)?;
+    check_output(&target, ext, force)?;
+    let (job, out) = run_quietly(path, quiet)?;
+    let bytes = draw(&job, &out)?;
+    write_atomic(&target, &bytes, force)?;
+    if !quiet {
+        stdout_line(&format!("wrote {}", target.display()))?;
+    }
+    Ok(())
+}
+
 fn cmd_preview(
     path: &Path,
     output: Option<PathBuf>,
@@ -686,21 +707,16 @@ fn cmd_preview(
     if let Some(n) = levels.as_ref().map(Vec::len).filter(|&n| n > most) {
         bail!("--levels: give at most {most} values, got {n}");
     }
-    let target = output_path(path, output, "svg")?;
-    check_output(&target, "svg", force)?;
-    let (job, out) = run_quietly(path, quiet)?;
-    let report = RunReport::new(&job, &out);
-    let opts = PreviewOptions {
-        levels: levels.unwrap_or_else(|| pfcam::preview::levels_for(&job)),
-        field_image,
-        ..PreviewOptions::default()
-    };
-    let svg = preview_svg(&job, &out, &report, &opts).context("drawing the preview")?;
-    write_atomic(&target, svg.as_bytes(), force)?;
-    if !quiet {
-        stdout_line(&format!("wrote {}", target.display()))?;
-    }
-    Ok(())
+    write_drawing(path, (output, "svg"), (force, quiet), |job, out| {
+        let report = RunReport::new(job, out);
+        let opts = PreviewOptions {
+            levels: levels.unwrap_or_else(|| pfcam::preview::levels_for(job)),
+            field_image,
+            ..PreviewOptions::default()
+        };
+        let svg = preview_svg(job, out, &report, &opts).context("drawing the preview")?;
+        Ok(svg.into_bytes())
+    })
 }
 
 fn cmd_field(
@@ -727,15 +743,9 @@ fn cmd_field(
         "grey" => ColourMap::Grey(power.unwrap_or(auto)),
         _ => ColourMap::RedCyan(power.unwrap_or(auto)),
     };
-    let target = output_path(path, output, "png")?;
-    check_output(&target, "png", force)?;
-    let (job, out) = run_quietly(path, quiet)?;
-    let png = field_png(&job, &out, px_per_mm, pick).context("drawing the field")?;
-    write_atomic(&target, &png, force)?;
-    if !quiet {
-        stdout_line(&format!("wrote {}", target.display()))?;
-    }
-    Ok(())
+    write_drawing(path, (output, "png"), (force, quiet), |job, out| {
+        field_png(job, out, px_per_mm, pick).context("drawing the field")
+    })
 }
 
 fn cmd_surface(

@@ -383,6 +383,17 @@ impl JobError {
             JobError::FontNotFound { key, .. } | JobError::FileNotFound { key, .. } => Some(key),
         }
     }
+
+    /// A parse error placed in the file at `path` (its origin the path
+    /// rather than `job`, which text not read from a file has); any other
+    /// error as it is. The job and machine readers both parse text they
+    /// read from a file.
+    fn in_file(mut self, path: &Path) -> JobError {
+        if let JobError::Parse { origin, .. } = &mut self {
+            *origin = path.display().to_string();
+        }
+        self
+    }
 }
 
 /// An invalid value's error; echoed values in `message` are clipped
@@ -794,22 +805,8 @@ pub fn load_machine(path: &Path) -> Result<(Machine, MachineSource), JobError> {
     if !is_machine_file {
         return Ok((load_job(path)?.machine, MachineSource::Job));
     }
-    let raw: RawMachineFile = toml::from_str(&text).map_err(|e| match parse_error(&text, &e) {
-        JobError::Parse {
-            line,
-            column,
-            key,
-            message,
-            ..
-        } => JobError::Parse {
-            origin: path.display().to_string(),
-            line,
-            column,
-            key,
-            message,
-        },
-        e => e,
-    })?;
+    let raw: RawMachineFile =
+        toml::from_str(&text).map_err(|e| parse_error(&text, &e).in_file(path))?;
     Ok((
         raw.machine.unwrap_or_default().resolve()?,
         MachineSource::MachineFile,
@@ -864,22 +861,7 @@ pub fn load_job(path: &Path) -> Result<Job, JobError> {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "job".into());
     let base = path.parent().unwrap_or_else(|| Path::new(""));
-    parse_job(&text, &stem, base).map_err(|e| match e {
-        JobError::Parse {
-            line,
-            column,
-            key,
-            message,
-            ..
-        } => JobError::Parse {
-            origin: path.display().to_string(),
-            line,
-            column,
-            key,
-            message,
-        },
-        e => e,
-    })
+    parse_job(&text, &stem, base).map_err(|e| e.in_file(path))
 }
 
 /// The tables of a job file.
@@ -1341,6 +1323,37 @@ depth = 3.0
             Ok(j) => panic!("expected an error, got {j:?}"),
             Err(e) => (e.key().unwrap_or("").to_string(), e.to_string()),
         }
+    }
+
+    /// A parse error in a file read from disk names the file, whether the
+    /// file is a job or a machine file ([`JobError::in_file`]).
+    #[test]
+    fn a_parse_error_in_a_file_names_the_file() {
+        let dir = std::env::temp_dir().join(format!("pfcam-job-origin-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let machine = dir.join("machine.toml");
+        std::fs::write(
+            &machine,
+            "[machine]
+rapid_rat = 3000
+",
+        )
+        .unwrap();
+        let job = dir.join("job.toml");
+        std::fs::write(&job, with("tool", "diamter = 3")).unwrap();
+        let m = load_machine(&machine).unwrap_err();
+        let j = load_job(&job).unwrap_err();
+        std::fs::remove_dir_all(&dir).unwrap();
+        for (e, path, key) in [(m, machine, "machine.rapid_rat"), (j, job, "tool.diamter")] {
+            let JobError::Parse { origin, .. } = &e else {
+                panic!("{e:?}")
+            };
+            assert_eq!(origin, &path.display().to_string());
+            assert_eq!(e.key(), Some(key), "{e}");
+        }
+        // Text not read from a file keeps `job` as its origin.
+        let text = parse(&with("tool", "diamter = 3")).unwrap_err();
+        assert!(text.to_string().starts_with("job:"), "{text}");
     }
 
     #[test]

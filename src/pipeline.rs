@@ -169,7 +169,7 @@ pub enum PipelineError {
     Section(#[from] crate::levels::sections::OutsidePart),
     /// The finishing program (`[finish]`) could not be made.
     #[error("finishing: {0}")]
-    Finishing(String),
+    Finishing(#[from] crate::finish::FinishError),
     /// S2's mesh, for the finisher, could not be built.
     #[error("{0}")]
     Surface(Box<crate::surface::SurfaceError>),
@@ -822,8 +822,7 @@ fn finish_program(
         job.operation.tolerance,
     ));
     let index = finish_index(up);
-    let done = crate::finish::finish(job, f, field, glyphs, grid, h, &index, walls)
-        .map_err(PipelineError::Finishing)?;
+    let done = crate::finish::finish(job, f, field, glyphs, grid, h, &index, walls)?;
     progress(Progress::Step);
     Ok(done)
 }
@@ -1132,6 +1131,31 @@ mod tests {
             ),
             "{m}"
         );
+    }
+
+    #[test]
+    fn a_finishing_error_keeps_its_cause_and_its_words() {
+        use crate::finish::FinishError;
+        let e: PipelineError = FinishError::TooManyRings { max: 20_000 }.into();
+        assert!(
+            matches!(
+                e,
+                PipelineError::Finishing(FinishError::TooManyRings { max: 20_000 })
+            ),
+            "{e:?}"
+        );
+        assert_eq!(
+            e.to_string(),
+            "finishing: the finish would take more than 20000 rings: raise finish.scallop, or use a larger finishing tool"
+        );
+        let e: PipelineError = FinishError::SectionPieces { u: 0.25 }.into();
+        assert_eq!(
+            e.to_string(),
+            "finishing: the section at u = 0.2500 is not one piece: the finishing rings follow one slot"
+        );
+        // A cause in its planner's own words passes through unchanged.
+        let e: PipelineError = FinishError::Passes("∇u vanishes on Γ(0.50000)".into()).into();
+        assert_eq!(e.to_string(), "finishing: ∇u vanishes on Γ(0.50000)");
     }
 
     #[test]

@@ -19,6 +19,75 @@ use crate::levels::DepthProfile;
 use crate::toolpath::dropcutter::{Cutter, MeshIndex};
 use crate::toolpath::Toolpath;
 
+/// Why a finishing program (`[finish]`) could not be made: the boss's or
+/// cavity's passes ([`finish`]), a tube's rings (`tube::rings`) or a patch's
+/// raster (`patch::raster`). Each message is the one the user reads after
+/// `finishing: `.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FinishError {
+    /// A boss or cavity without a `[profile]` (φ(s) gives S2's heights).
+    #[error("a boss or cavity needs a [profile]")]
+    NoProfile,
+    /// The passes could not be planned ([`passes::pass_levels`], in its own
+    /// words: a foot without a curve, ∇u vanishing on a level, too many
+    /// passes).
+    #[error("{0}")]
+    Passes(String),
+    /// A pass's tip loop could not be dropped ([`path::tip_loop`], in its
+    /// own words: no part of the surface under the tool at a point).
+    #[error("{0}")]
+    Tip(String),
+    /// A flat finishing cutter on a tube's curved wall.
+    #[error("finish.shape = \"flat\" cannot follow a curved wall within the tolerance (its edge leaves a stair): use \"ball\" or \"bull\"")]
+    FlatOnWall,
+    /// A flat finishing cutter on a patch's curved surface.
+    #[error("finish.shape = \"flat\" cannot finish a curved surface by parallel passes within the tolerance (its edge leaves a stair): use \"ball\" or \"bull\"")]
+    FlatOnSurface,
+    /// A tube whose trims are not one slot less than π wide.
+    #[error("the finishing rings follow one trim less than π wide only")]
+    RingTrims,
+    /// A tube's section at `u` that the slot cuts into more than one piece.
+    #[error("the section at u = {u:.4} is not one piece: the finishing rings follow one slot")]
+    SectionPieces {
+        /// The section's parameter.
+        u: f64,
+    },
+    /// More than `max` rings.
+    #[error("the finish would take more than {max} rings: raise finish.scallop, or use a larger finishing tool")]
+    TooManyRings {
+        /// The most rings allowed.
+        max: usize,
+    },
+    /// More than `max` samples over all the rings.
+    #[error("the finish would take {rings} rings of {samples} samples (at most {max} samples): raise finish.scallop or use a larger finishing tool")]
+    TooManyRingSamples {
+        /// Rings planned.
+        rings: usize,
+        /// Samples per ring.
+        samples: usize,
+        /// The most samples allowed.
+        max: usize,
+    },
+    /// The ring heights stopped rising: a broken invariant of the planner.
+    #[error("the finishing rings do not advance at z = {z:.4} mm (please report this pfcam bug)")]
+    RingsStall {
+        /// Where they stopped (relative to the top), mm.
+        z: f64,
+    },
+    /// A raster with more passes or samples than allowed.
+    #[error("the raster would take {passes} passes of {samples} samples (at most {max_passes} passes, {max_samples} samples): raise finish.scallop or operation.tolerance, or use a larger finishing tool")]
+    TooManyRasterSamples {
+        /// Passes planned.
+        passes: usize,
+        /// Samples per pass.
+        samples: usize,
+        /// The most passes allowed.
+        max_passes: usize,
+        /// The most samples allowed.
+        max_samples: usize,
+    },
+}
+
 /// What the finisher needs besides the mesh.
 pub struct FinishParams<'a> {
     /// The cutter.
@@ -156,11 +225,8 @@ pub fn finish(
     h: f64,
     mesh: &MeshIndex,
     wall_area: f64,
-) -> Result<Finished, String> {
-    let profile = job
-        .profile
-        .as_ref()
-        .ok_or_else(|| "a boss or cavity needs a [profile]".to_string())?;
+) -> Result<Finished, FinishError> {
+    let profile = job.profile.as_ref().ok_or(FinishError::NoProfile)?;
     let cavity = job.operation.kind == crate::job::OperationKind::Cavity;
     let p = FinishParams {
         cutter: cutter_of(f),
@@ -194,9 +260,10 @@ pub fn finish(
         cavity,
         width,
         job.operation.stock_to_leave,
-    )?;
+    )
+    .map_err(FinishError::Passes)?;
     let cands = with_corner(cands, width, field, &p, mesh);
-    let loops = tip_loops(&cands.passes, field, &p, mesh)?;
+    let loops = tip_loops(&cands.passes, field, &p, mesh).map_err(FinishError::Tip)?;
     let floor_z = match cands.passes.get(cands.floor) {
         Some((passes::At::S(s), _)) => p.z_of(*s),
         _ => p.top,

@@ -150,7 +150,7 @@ fn finish_patch(
         area,
         valleys: matches!(spec, HeightSource::Poly(_)),
     };
-    raster::raster_finish(job, f, &part).map_err(PipelineError::Finishing)
+    Ok(raster::raster_finish(job, f, &part)?)
 }
 
 /// The stock rectangle of a patch job: the rectangle grown by `stock.margin`

@@ -20,7 +20,7 @@
 //!   border, at depth, its samples dropped as the passes' are (so the link
 //!   never goes below the drop height at a sample).
 
-use crate::finish::{cutter_of, passes::pass_width, Finished};
+use crate::finish::{cutter_of, passes::pass_width, FinishError, Finished};
 use crate::geometry::Vec2;
 use crate::job::{CutterShape, Finish, Job};
 use crate::toolpath::dropcutter::MeshIndex;
@@ -52,9 +52,9 @@ pub struct RasterPart<'a> {
 }
 
 /// The raster's spacing: (Δy across the passes, δ along them), mm.
-pub fn spacing(f: &Finish, max_slope_y: f64, tol: f64) -> Result<(f64, f64), String> {
+pub fn spacing(f: &Finish, max_slope_y: f64, tol: f64) -> Result<(f64, f64), FinishError> {
     if f.shape == CutterShape::Flat || f.corner <= 0.0 {
-        return Err("finish.shape = \"flat\" cannot finish a curved surface by parallel passes within the tolerance (its edge leaves a stair): use \"ball\" or \"bull\"".into());
+        return Err(FinishError::FlatOnSurface);
     }
     let w = pass_width(f.corner, f.scallop);
     let dy = w / (1.0 + max_slope_y * max_slope_y).sqrt();
@@ -217,7 +217,7 @@ impl Dropper<'_> {
 }
 
 /// The finishing program of a patch job.
-pub fn raster_finish(job: &Job, f: &Finish, part: &RasterPart) -> Result<Finished, String> {
+pub fn raster_finish(job: &Job, f: &Finish, part: &RasterPart) -> Result<Finished, FinishError> {
     use rayon::prelude::*;
     let tol = job.operation.tolerance;
     let (dy, ds) = spacing(f, part.max_slope_y, tol)?;
@@ -227,11 +227,12 @@ pub fn raster_finish(job: &Job, f: &Finish, part: &RasterPart) -> Result<Finishe
     let ys = stations(lo.y - r, lo.y + size.y + r, dy);
     let xs = stations(lo.x - r, lo.x + size.x + r, ds);
     if ys.len() > MAX_PASSES || ys.len().saturating_mul(xs.len()) > MAX_SAMPLES {
-        return Err(format!(
-            "the raster would take {} passes of {} samples (at most {MAX_PASSES} passes, {MAX_SAMPLES} samples): raise finish.scallop or operation.tolerance, or use a larger finishing tool",
-            ys.len(),
-            xs.len()
-        ));
+        return Err(FinishError::TooManyRasterSamples {
+            passes: ys.len(),
+            samples: xs.len(),
+            max_passes: MAX_PASSES,
+            max_samples: MAX_SAMPLES,
+        });
     }
     let dropper = Dropper {
         cutter: cutter_of(f),

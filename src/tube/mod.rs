@@ -81,8 +81,7 @@ fn finish_tube(
     let tris = s.mesh.up_triangles();
     let area = crate::finish::wall_area(&tris);
     let index = crate::pipeline::finish_index(tris);
-    let contacts = ring_contacts::Rings::new(tube, tube.points(), f.radius())
-        .map_err(PipelineError::Finishing)?;
+    let contacts = ring_contacts::Rings::new(tube, tube.points(), f.radius())?;
     let part = rings::RingPart {
         tube,
         mesh: &index,
@@ -90,7 +89,7 @@ fn finish_tube(
         top: job.stock.top,
         rings: &contacts,
     };
-    rings::ring_finish(job, f, &part).map_err(PipelineError::Finishing)
+    Ok(rings::ring_finish(job, f, &part)?)
 }
 
 /// The tube's part as a closed mesh at `resolution` mm (`pfcam surface`).

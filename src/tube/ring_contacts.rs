@@ -15,6 +15,7 @@
 //!   from the side's to the wall's, about the corner point. Climb milling
 //!   runs the list backwards.
 
+use crate::finish::FinishError;
 use crate::sources::pde_tube::PdeTube;
 use std::f64::consts::TAU;
 
@@ -65,7 +66,7 @@ pub struct Rings {
 impl Rings {
     /// The rings of `tube` with `p` samples, for a cutter of radius `r`
     /// (mm): an error when the tube has trims other than one slot.
-    pub fn new(tube: &PdeTube, p: usize, r: f64) -> Result<Rings, String> {
+    pub fn new(tube: &PdeTube, p: usize, r: f64) -> Result<Rings, FinishError> {
         let Some(t) = tube.trims().first() else {
             return Ok(Rings { p, slot: None, r });
         };
@@ -74,7 +75,7 @@ impl Rings {
         let b = vs.fold(f64::NEG_INFINITY, f64::max);
         let u0 = t.iter().map(|q| q[0]).fold(f64::INFINITY, f64::min);
         if tube.trims().len() > 1 || !(b > a && b - a < 0.5 * TAU) {
-            return Err("the finishing rings follow one trim less than π wide only".into());
+            return Err(FinishError::RingTrims);
         }
         let xy = |v: f64| {
             let q = tube.surface().point(u0, v);
@@ -114,7 +115,7 @@ impl Rings {
         tube: &PdeTube,
         u: f64,
         reverse: bool,
-    ) -> Result<Vec<(i64, Contact)>, String> {
+    ) -> Result<Vec<(i64, Contact)>, FinishError> {
         let p = self.p;
         let Some((a, b, m, _)) = self.slot else {
             return Ok((0..=p)
@@ -141,11 +142,7 @@ impl Rings {
                 out.push((p as i64, Contact::Wall(a + TAU)));
                 out
             }
-            Some(_) => {
-                return Err(format!(
-                "the section at u = {u:.4} is not one piece: the finishing rings follow one slot"
-            ))
-            }
+            Some(_) => return Err(FinishError::SectionPieces { u }),
         };
         if reverse {
             out.reverse();

@@ -27,7 +27,7 @@
 //!   from above round a boss, counter-clockwise round a mould's pocket.
 
 use super::ring_contacts::{Contact, Rings};
-use crate::finish::{cutter_of, passes::pass_width, Finished};
+use crate::finish::{cutter_of, passes::pass_width, FinishError, Finished};
 use crate::job::{CutterShape, Direction, Finish, Job};
 use crate::levels::sections::Sections;
 use crate::sources::pde_tube::{PdeTube, TubeKind};
@@ -73,7 +73,7 @@ pub struct RingPart<'a> {
 
 /// The ring heights z (relative to the top), from −H up to 0, neighbours'
 /// curves at most `w` apart at equal v (module doc).
-fn ring_heights(tube: &PdeTube, w: f64) -> Result<Vec<f64>, String> {
+fn ring_heights(tube: &PdeTube, w: f64) -> Result<Vec<f64>, FinishError> {
     let (lo, hi) = tube.z_range();
     let p = tube.points();
     let ring = |z: f64| tube.surface().ring(tube.u_of(z), p);
@@ -87,7 +87,7 @@ fn ring_heights(tube: &PdeTube, w: f64) -> Result<Vec<f64>, String> {
     let mut here = ring(lo);
     while zs.last().is_some_and(|&z| z < hi) {
         if zs.len() > MAX_RINGS {
-            return Err(format!("the finish would take more than {MAX_RINGS} rings: raise finish.scallop, or use a larger finishing tool"));
+            return Err(FinishError::TooManyRings { max: MAX_RINGS });
         }
         let z = *zs.last().unwrap_or(&lo);
         // |Δz| ≤ the distance, so the next ring is at most w higher.
@@ -107,7 +107,7 @@ fn ring_heights(tube: &PdeTube, w: f64) -> Result<Vec<f64>, String> {
             a
         };
         if next <= z {
-            return Err(format!("the finishing rings do not advance at z = {z:.4} mm (please report this pfcam bug)"));
+            return Err(FinishError::RingsStall { z });
         }
         zs.push(next);
         here = ring(next);
@@ -236,7 +236,7 @@ fn ring_at(
     f: &Finish,
     dropper: &Dropper,
     (z, reverse, tol): (f64, bool, f64),
-) -> Result<Ring, String> {
+) -> Result<Ring, FinishError> {
     let tube = part.tube;
     let u = tube.u_of(z);
     let contacts = part.rings.contacts(tube, u, reverse)?;
@@ -315,7 +315,7 @@ fn rings_spaced(
     dropper: &Dropper,
     zs: &[f64],
     (w, reverse, tol): (f64, bool, f64),
-) -> Result<Vec<Ring>, String> {
+) -> Result<Vec<Ring>, FinishError> {
     use rayon::prelude::*;
     let mut rings: Vec<Ring> = zs
         .par_iter()
@@ -326,7 +326,7 @@ fn rings_spaced(
         let (za, zb) = (rings[k].z, rings[k + 1].z);
         if zb - za > 1e-6 && tip_gap(&rings[k], &rings[k + 1], (w, tol)) > 1.0 {
             if rings.len() >= MAX_RINGS {
-                return Err(format!("the finish would take more than {MAX_RINGS} rings: raise finish.scallop, or use a larger finishing tool"));
+                return Err(FinishError::TooManyRings { max: MAX_RINGS });
             }
             rings.insert(
                 k + 1,
@@ -369,10 +369,10 @@ fn limit_descent(tips: &mut [Vec3]) {
 }
 
 /// The finishing program of a tube job (module doc).
-pub fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, String> {
+pub fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, FinishError> {
     use rayon::prelude::*;
     if f.shape == CutterShape::Flat || f.corner <= 0.0 {
-        return Err("finish.shape = \"flat\" cannot follow a curved wall within the tolerance (its edge leaves a stair): use \"ball\" or \"bull\"".into());
+        return Err(FinishError::FlatOnWall);
     }
     let tol = job.operation.tolerance;
     let w = pass_width(f.corner, f.scallop);
@@ -384,11 +384,11 @@ pub fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, S
     }
     zs.sort_by(f64::total_cmp);
     if zs.len().saturating_mul(part.tube.points()) > MAX_SAMPLES {
-        return Err(format!(
-            "the finish would take {} rings of {} samples (at most {MAX_SAMPLES} samples): raise finish.scallop or use a larger finishing tool",
-            zs.len(),
-            part.tube.points()
-        ));
+        return Err(FinishError::TooManyRingSamples {
+            rings: zs.len(),
+            samples: part.tube.points(),
+            max: MAX_SAMPLES,
+        });
     }
     let boss = part.tube.kind() == TubeKind::Boss;
     let reverse = boss == (job.operation.direction == Direction::Climb);
@@ -539,6 +539,9 @@ mod tests {
             corner: 0.0,
             ..f.clone()
         };
-        assert!(ring_finish(&job, &flat, &part).is_err());
+        assert_eq!(
+            ring_finish(&job, &flat, &part),
+            Err(FinishError::FlatOnWall)
+        );
     }
 }
