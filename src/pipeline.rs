@@ -1153,8 +1153,7 @@ mod tests {
             e.to_string(),
             "finishing: the section at u = 0.2500 is not one piece: the finishing rings follow one slot"
         );
-        // A cause in its planner's own words passes through unchanged.
-        let e: PipelineError = FinishError::Passes("∇u vanishes on Γ(0.50000)".into()).into();
+        let e: PipelineError = FinishError::GradientVanishes { s: 0.5 }.into();
         assert_eq!(e.to_string(), "finishing: ∇u vanishes on Γ(0.50000)");
     }
 

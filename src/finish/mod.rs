@@ -28,15 +28,40 @@ pub enum FinishError {
     /// A boss or cavity without a `[profile]` (φ(s) gives S2's heights).
     #[error("a boss or cavity needs a [profile]")]
     NoProfile,
-    /// The passes could not be planned ([`passes::pass_levels`], in its own
-    /// words: a foot without a curve, ∇u vanishing on a level, too many
-    /// passes).
-    #[error("{0}")]
-    Passes(String),
-    /// A pass's tip loop could not be dropped ([`path::tip_loop`], in its
-    /// own words: no part of the surface under the tool at a point).
-    #[error("{0}")]
-    Tip(String),
+    /// The wall's foot Γ(`foot`) has no curve to start the passes from.
+    #[error("the foot of the wall Γ({foot:.4}) has no curve")]
+    FootWithoutCurve {
+        /// The foot's s.
+        foot: f64,
+    },
+    /// ∇u vanishes on a candidate level Γ(`s`), so its spacing is unknown.
+    #[error("∇u vanishes on Γ({s:.5})")]
+    GradientVanishes {
+        /// The level's s.
+        s: f64,
+    },
+    /// The geodesic pattern's wall needs `n` passes, more than `max`.
+    #[error("the wall needs {n} finishing passes, more than {max}: raise finish.scallop or use a larger finishing tool")]
+    TooManyPasses {
+        /// Passes needed.
+        n: usize,
+        /// The most allowed.
+        max: usize,
+    },
+    /// The equipotential pattern's candidate levels passed `max` passes.
+    #[error("the wall needs more than {max} finishing passes: raise finish.scallop or use a larger finishing tool")]
+    TooManyLevels {
+        /// The most allowed.
+        max: usize,
+    },
+    /// No triangle of S2 lies under the finishing tool's axis at (`x`, `y`).
+    #[error("no part of the surface lies under the finishing tool at X{x:.3} Y{y:.3}")]
+    NothingUnder {
+        /// The axis's x, mm.
+        x: f64,
+        /// The axis's y, mm.
+        y: f64,
+    },
     /// A flat finishing cutter on a tube's curved wall.
     #[error("finish.shape = \"flat\" cannot follow a curved wall within the tolerance (its edge leaves a stair): use \"ball\" or \"bull\"")]
     FlatOnWall,
@@ -260,10 +285,9 @@ pub fn finish(
         cavity,
         width,
         job.operation.stock_to_leave,
-    )
-    .map_err(FinishError::Passes)?;
+    )?;
     let cands = with_corner(cands, width, field, &p, mesh);
-    let loops = tip_loops(&cands.passes, field, &p, mesh).map_err(FinishError::Tip)?;
+    let loops = tip_loops(&cands.passes, field, &p, mesh)?;
     let floor_z = match cands.passes.get(cands.floor) {
         Some((passes::At::S(s), _)) => p.z_of(*s),
         _ => p.top,
@@ -289,14 +313,14 @@ fn tip_loops(
     field: &Field,
     p: &FinishParams,
     mesh: &MeshIndex,
-) -> Result<Vec<path::Loop>, String> {
+) -> Result<Vec<path::Loop>, FinishError> {
     use rayon::prelude::*;
     let jobs: Vec<(usize, passes::At, &geodesic::Curve)> = passes
         .iter()
         .enumerate()
         .flat_map(|(k, (at, curves))| curves.iter().map(move |c| (k, *at, c)))
         .collect();
-    let each: Vec<Result<path::Loop, String>> = jobs
+    let each: Vec<Result<path::Loop, FinishError>> = jobs
         .par_iter()
         .map(|&(k, at, c)| path::tip_loop(c, k, at, field, p, mesh))
         .collect();

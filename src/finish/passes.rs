@@ -11,6 +11,7 @@
 //! flat floor, w apart, until the last one lies `leave` out.
 
 use super::geodesic::{self, Curve, Distance};
+use super::FinishError;
 use crate::field::isolines::Grid;
 use crate::field::Field;
 use crate::geometry::{DistanceIndex, Vec2};
@@ -134,12 +135,12 @@ pub fn pass_levels(
     cavity: bool,
     w: f64,
     leave: f64,
-) -> Result<Planned, String> {
+) -> Result<Planned, FinishError> {
     let (lo, hi) = profile.s_range();
     let (foot, top) = if cavity { (hi, lo) } else { (lo, hi) };
     let foot_loops = curves.at(foot);
     if foot_loops.is_empty() {
-        return Err(format!("the foot of the wall Γ({foot:.4}) has no curve"));
+        return Err(FinishError::FootWithoutCurve { foot });
     }
     let mut passes = floor_passes(curves.field, (foot, &foot_loops), cavity, w, leave);
     let floor = passes.len();
@@ -160,7 +161,7 @@ fn equipotential_wall(
     ends: (f64, f64),
     foot_loops: Vec<Vec<Vec2>>,
     (w, before): (f64, usize),
-) -> Result<Vec<Pass>, String> {
+) -> Result<Vec<Pass>, FinishError> {
     let levels = candidate_levels(curves, profile, ends, foot_loops, w, before)?;
     let cut = thin(&levels, profile, w);
     Ok(levels
@@ -186,15 +187,12 @@ fn geodesic_wall(
     (foot, top): (f64, f64),
     foot_loops: Vec<Vec<Vec2>>,
     w: f64,
-) -> Result<Vec<Pass>, String> {
+) -> Result<Vec<Pass>, FinishError> {
     let closed =
         |loops: Vec<Vec<Vec2>>| -> Vec<Curve> { loops.into_iter().map(Curve::closed).collect() };
     let foot_curves = closed(foot_loops);
-    let wall = geodesic::passes(dist, &foot_curves, w, MIN_CURVE, MAX_PASSES).map_err(|n| {
-        format!(
-            "the wall needs {n} finishing passes, more than {MAX_PASSES}: raise finish.scallop or use a larger finishing tool"
-        )
-    })?;
+    let wall = geodesic::passes(dist, &foot_curves, w, MIN_CURVE, MAX_PASSES)
+        .map_err(|n| FinishError::TooManyPasses { n, max: MAX_PASSES })?;
     let mut passes = vec![(At::S(foot), foot_curves)];
     passes.extend(wall.into_iter().map(|(d, c)| (At::D(d), c)));
     let top_loops = curves.at(top);
@@ -278,24 +276,22 @@ fn candidate_levels(
     foot_loops: Vec<Vec<Vec2>>,
     w: f64,
     before: usize,
-) -> Result<Vec<Level>, String> {
+) -> Result<Vec<Level>, FinishError> {
     let up = if top > foot { 1.0 } else { -1.0 };
     let step = w / REFINE as f64;
-    let level = |s: f64, loops: Vec<Vec<Vec2>>| -> Result<Level, String> {
+    let level = |s: f64, loops: Vec<Vec<Vec2>>| -> Result<Level, FinishError> {
         let grad = loops
             .par_iter()
             .map(|l| curves.min_grad(std::slice::from_ref(l)))
             .collect::<Option<Vec<f64>>>()
-            .ok_or_else(|| format!("∇u vanishes on Γ({s:.5})"))?;
+            .ok_or(FinishError::GradientVanishes { s })?;
         Ok(Level { s, loops, grad })
     };
     let mut out = vec![level(foot, foot_loops)?];
     let mut s = foot;
     while (top - s) * up > 1e-12 {
         if before + out.len() >= MAX_PASSES * REFINE {
-            return Err(format!(
-                "the wall needs more than {MAX_PASSES} finishing passes: raise finish.scallop or use a larger finishing tool"
-            ));
+            return Err(FinishError::TooManyLevels { max: MAX_PASSES });
         }
         let last = &out[out.len() - 1];
         let g = last.grad.iter().copied().fold(f64::INFINITY, f64::min);

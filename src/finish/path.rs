@@ -22,7 +22,7 @@
 
 use super::geodesic::Curve;
 use super::passes::At;
-use super::FinishParams;
+use super::{FinishError, FinishParams};
 use crate::field::Field;
 use crate::geometry::{densify, DistanceIndex, Vec2};
 use crate::toolpath::dropcutter::{Cutter, MeshIndex};
@@ -88,7 +88,7 @@ pub fn tip_loop(
     field: &Field,
     p: &FinishParams,
     mesh: &MeshIndex,
-) -> Result<Loop, String> {
+) -> Result<Loop, FinishError> {
     let closed = curve.closed;
     let mut contact = densify(&curve.pts, SAMPLE, closed);
     let sign = if p.cavity { 1.0 } else { -1.0 };
@@ -280,7 +280,7 @@ const HINT_MARGIN: f64 = 0.005;
 
 /// The drop-cutter's tip at each axis; `Err` names a point no triangle lies
 /// under.
-fn drop_tips(axes: &Axes, p: &FinishParams, mesh: &MeshIndex) -> Result<Vec<Vec3>, String> {
+fn drop_tips(axes: &Axes, p: &FinishParams, mesh: &MeshIndex) -> Result<Vec<Vec3>, FinishError> {
     let pts: Vec<(f64, f64, f64)> = (0..axes.axes.len())
         .map(|i| {
             let a = axes.axes[i];
@@ -292,12 +292,8 @@ fn drop_tips(axes: &Axes, p: &FinishParams, mesh: &MeshIndex) -> Result<Vec<Vec3
         .iter()
         .zip(zs)
         .map(|(a, z)| {
-            z.map(|z| Vec3::new(a.x, a.y, z)).ok_or_else(|| {
-                format!(
-                    "no part of the surface lies under the finishing tool at X{:.3} Y{:.3}",
-                    a.x, a.y
-                )
-            })
+            z.map(|z| Vec3::new(a.x, a.y, z))
+                .ok_or(FinishError::NothingUnder { x: a.x, y: a.y })
         })
         .collect()
 }
