@@ -91,6 +91,10 @@ pub fn tip_loop(
 ) -> Result<Loop, FinishError> {
     let closed = curve.closed;
     let mut contact = densify(&curve.pts, SAMPLE, closed);
+    if curve.s.len() == curve.pts.len() {
+        let s = densify_values(&curve.pts, &curve.s, SAMPLE, closed);
+        onto_levels(&mut contact, &s, field);
+    }
     let sign = if p.cavity { 1.0 } else { -1.0 };
     let (lo, hi) = p.profile.s_range();
     let s_at = |q: Vec2| match at {
@@ -135,6 +139,54 @@ pub fn tip_loop(
         tip,
     })
 }
+
+/// The values `s` at the points `pts` spread over [`densify`]'s points (the
+/// same steps, linear along each chord).
+fn densify_values(pts: &[Vec2], s: &[f64], step: f64, closed: bool) -> Vec<f64> {
+    let n = pts.len();
+    let chords = if closed { n } else { n.saturating_sub(1) };
+    let mut out = Vec::with_capacity(n);
+    for i in 0..chords {
+        let (a, b) = (s[i], s[(i + 1) % n]);
+        let k = (pts[i].dist(pts[(i + 1) % n]) / step).ceil().max(1.0) as usize;
+        out.extend((0..k).map(|j| a + (b - a) * j as f64 / k as f64));
+    }
+    if !closed {
+        out.extend(s.last());
+    }
+    out
+}
+
+/// Each point of a level of σ moved onto Γ(s) for its own s (the u of its
+/// crossing, [`super::geodesic::Curve::s`]) by three Newton steps along ∇u;
+/// a point that would move farther than [`ONTO_LEVEL`] in plan (near a
+/// saddle of u, where ∇u vanishes) stays where it was. Why: on a
+/// near-vertical wall a point's height is known far better than its place
+/// in plan, and round a corner of the top edge the chords of marching
+/// squares cut inside the true top (u past s_top): there the contact took
+/// the top's height and the cutter sat on the edge (mfs-sign's M, 0.031 mm
+/// left on the wall under it).
+fn onto_levels(pts: &mut [Vec2], s: &[f64], field: &Field) {
+    use rayon::prelude::*;
+    pts.par_iter_mut().zip(s).for_each(|(q, &s)| {
+        let start = *q;
+        for _ in 0..3 {
+            let (u, g) = field.value_grad(*q);
+            let step = g * ((s - u) / g.norm2());
+            let next = *q + step;
+            let far = step.norm().is_nan() || step.norm() > ONTO_LEVEL;
+            if far || next.dist(start) > ONTO_LEVEL {
+                *q = start;
+                return;
+            }
+            *q = next;
+        }
+    });
+}
+
+/// The farthest a point of a level of σ moves onto its Γ(s), mm (mfs-sign's
+/// geodesic copy gives the same program with 0.03 and 0.1).
+const ONTO_LEVEL: f64 = 0.03;
 
 /// Whether the pass runs along the concave crease where the wall meets the
 /// floor under it (a boss's foot Γ(s2), a mould's letter floor Γ(s1)): no
@@ -1189,6 +1241,30 @@ mod tests {
         // Climbing steeply is not diving.
         let up = [Vec3::new(0.1, 0.0, 2.0)];
         assert!(!dives(at, &up, DESCENT_SLOPE));
+    }
+
+    /// Points near the level Γ(s) of one charge's field (circles) land on it;
+    /// a point farther than ONTO_LEVEL from it stays.
+    #[test]
+    fn points_of_a_level_of_sigma_move_onto_their_equipotential() {
+        let field = Field::new(vec![Vec2::new(0.0, 0.0)], vec![1.0]);
+        let s = field.value(Vec2::new(2.0, 0.0));
+        let mut pts: Vec<Vec2> = (0..12)
+            .map(|k| {
+                let a = k as f64 * 0.5;
+                Vec2::new(a.cos(), a.sin()) * (2.0 + 0.02 * (k as f64 / 11.0 - 0.5))
+            })
+            .collect();
+        let far = Vec2::new(0.0, 2.5);
+        pts.push(far);
+        let before = pts.clone();
+        let targets = vec![s; pts.len()];
+        onto_levels(&mut pts, &targets, &field);
+        for (q, b) in pts.iter().zip(&before).take(12) {
+            assert!((q.norm() - 2.0).abs() < 1e-9, "{b:?} -> {q:?}");
+            assert!(q.dist(*b) <= ONTO_LEVEL);
+        }
+        assert_eq!(pts[12], far);
     }
 
     #[test]
