@@ -24,7 +24,7 @@ use super::geodesic::Curve;
 use super::passes::At;
 use super::{FinishError, FinishParams};
 use crate::field::Field;
-use crate::geometry::{densify, DistanceIndex, Vec2};
+use crate::geometry::{densify, densify_values, DistanceIndex, Vec2};
 use crate::toolpath::dropcutter::{Cutter, MeshIndex};
 use crate::toolpath::{Move, Section, Toolpath, Vec3};
 
@@ -138,23 +138,6 @@ pub fn tip_loop(
         contact: axes.contact,
         tip,
     })
-}
-
-/// The values `s` at the points `pts` spread over [`densify`]'s points (the
-/// same steps, linear along each chord).
-fn densify_values(pts: &[Vec2], s: &[f64], step: f64, closed: bool) -> Vec<f64> {
-    let n = pts.len();
-    let chords = if closed { n } else { n.saturating_sub(1) };
-    let mut out = Vec::with_capacity(n);
-    for i in 0..chords {
-        let (a, b) = (s[i], s[(i + 1) % n]);
-        let k = (pts[i].dist(pts[(i + 1) % n]) / step).ceil().max(1.0) as usize;
-        out.extend((0..k).map(|j| a + (b - a) * j as f64 / k as f64));
-    }
-    if !closed {
-        out.extend(s.last());
-    }
-    out
 }
 
 /// Each point of a level of σ moved onto Γ(s) for its own s (the u of its

@@ -7,16 +7,33 @@ use super::Vec2;
 /// `closed`: the chord from the last point back to the first is included and
 /// the first is not repeated at the end; open, the last point ends the list.
 pub fn densify(pts: &[Vec2], step: f64, closed: bool) -> Vec<Vec2> {
+    spread(pts, pts, step, closed, |a, b, t| a.lerp(b, t))
+}
+
+/// Values `vals` given at the points `pts`, spread over [`densify`]'s
+/// points (the same steps, linear along each chord).
+pub fn densify_values(pts: &[Vec2], vals: &[f64], step: f64, closed: bool) -> Vec<f64> {
+    spread(pts, vals, step, closed, |a, b, t| a + (b - a) * t)
+}
+
+/// `vals` (one per point of `pts`) at densify's steps along `pts`'s chords.
+fn spread<T: Copy>(
+    pts: &[Vec2],
+    vals: &[T],
+    step: f64,
+    closed: bool,
+    lerp: impl Fn(T, T, f64) -> T,
+) -> Vec<T> {
     let n = pts.len();
     let chords = if closed { n } else { n.saturating_sub(1) };
     let mut out = Vec::with_capacity(n);
     for i in 0..chords {
-        let (a, b) = (pts[i], pts[(i + 1) % n]);
-        let k = (a.dist(b) / step).ceil().max(1.0) as usize;
-        out.extend((0..k).map(|j| a.lerp(b, j as f64 / k as f64)));
+        let (a, b) = (vals[i], vals[(i + 1) % n]);
+        let k = (pts[i].dist(pts[(i + 1) % n]) / step).ceil().max(1.0) as usize;
+        out.extend((0..k).map(|j| lerp(a, b, j as f64 / k as f64)));
     }
     if !closed {
-        out.extend(pts.last());
+        out.extend(vals.last());
     }
     out
 }

@@ -22,7 +22,7 @@ pub mod text;
 mod vec2;
 
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};
-pub use densify::densify;
+pub use densify::{densify, densify_values};
 pub use distance::{deepest_point, deepest_point_in, seg_seg_dist, DistanceIndex};
 pub use nesting::regions_from_contours;
 pub use segment::Segment;
