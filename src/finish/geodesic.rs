@@ -454,9 +454,10 @@ fn top_share(top: f64, other: f64, s_top: f64) -> f64 {
 
 /// The passes of the wall between its top edge and its foot: the levels σ =
 /// k·`w` for k = 1, 2, ... below the largest σ, the deepest first (the
-/// finisher cuts from the floor up), each with its curves (none shorter than
-/// `min_len`, mm), and between levels k + 1 and k the pieces of σ = (k + ½)·w
-/// that neither level k + 1 nor the wall's foot `foot` comes near
+/// finisher cuts from the floor up), each with its curves ([`kept`] says
+/// which: none shorter than `min_len`, mm, unless it reaches past the foot's
+/// band), and between levels k + 1 and k the pieces of σ = (k + ½)·w that
+/// neither level k + 1 nor the wall's foot `foot` comes near
 /// ([`ridge_pieces`]). `max_passes` bounds the work: `Err` names the count.
 pub fn passes(
     dist: &Distance,
@@ -470,7 +471,8 @@ pub fn passes(
     if k_max > max_passes {
         return Err(k_max);
     }
-    let long = |c: &Curve| c.length() >= min_len;
+    let foot_index = segment_index(foot);
+    let long = |c: &Curve| kept(c, min_len, foot_index.as_ref(), w);
     let levels: Vec<Vec<Curve>> = (0..=k_max + 1)
         .into_par_iter()
         .map(|k| {
@@ -522,7 +524,34 @@ pub const COVERED: f64 = 0.75;
 /// level k would be left with a scallop up to four times the bound; the
 /// half level runs w/2 from level k there.
 pub fn ridge_pieces(half: &[Curve], next: &[Curve], w: f64) -> Vec<Curve> {
-    let segs: Vec<Vec<Vec2>> = next
+    let index = segment_index(next);
+    let far = |q: Vec2| index.as_ref().is_none_or(|ix| ix.distance(q) > COVERED * w);
+    half.iter()
+        .flat_map(|c| uncovered_runs(c, &c.pts.iter().map(|&q| far(q)).collect::<Vec<_>>()))
+        .collect()
+}
+
+/// Whether a level's curve `c` is cut: if it is at least `min_len` long, or
+/// if it is open (it ends where the wall meets the floor, see
+/// [`Distance::level`]) and reaches farther than w/2 from the foot (`foot`,
+/// indexed by [`segment_index`]), past the band the foot's own pass covers.
+/// A short closed curve is the grid's crumb round a maximum of σ, which the
+/// half level under it covers ([`ridge_pieces`]); a short open one within
+/// w/2 of the foot is a level grazing the foot. But where a ridge of σ runs
+/// down into the foot, the level's last V there is short and open, and
+/// without it the ball left 0.021 mm between the V under it and the foot
+/// (mfs-sign's M, a 1° slope).
+fn kept(c: &Curve, min_len: f64, foot: Option<&crate::geometry::DistanceIndex>, w: f64) -> bool {
+    if c.length() >= min_len {
+        return true;
+    }
+    !c.closed && foot.is_none_or(|ix| c.pts.iter().any(|&q| ix.distance(q) > 0.5 * w))
+}
+
+/// A distance index over the segments of `curves` (an open curve's last
+/// point is not joined to its first), or `None` when there are none.
+fn segment_index(curves: &[Curve]) -> Option<crate::geometry::DistanceIndex> {
+    let segs: Vec<Vec<Vec2>> = curves
         .iter()
         .flat_map(|c| {
             let n = c.pts.len();
@@ -530,11 +559,7 @@ pub fn ridge_pieces(half: &[Curve], next: &[Curve], w: f64) -> Vec<Curve> {
             (0..m).map(move |i| vec![c.pts[i], c.pts[(i + 1) % n]])
         })
         .collect();
-    let index = (!segs.is_empty()).then(|| crate::geometry::DistanceIndex::new(&segs));
-    let far = |q: Vec2| index.as_ref().is_none_or(|ix| ix.distance(q) > COVERED * w);
-    half.iter()
-        .flat_map(|c| uncovered_runs(c, &c.pts.iter().map(|&q| far(q)).collect::<Vec<_>>()))
-        .collect()
+    (!segs.is_empty()).then(|| crate::geometry::DistanceIndex::new(&segs))
 }
 
 /// Points either side of an uncovered run that are kept with it.
@@ -770,6 +795,36 @@ mod tests {
             "{sigmas:?}"
         );
         assert!((sigmas[sigmas.len() - 1] - 0.5 * w).abs() < 1e-12);
+    }
+
+    /// Which short curves a level keeps, against a foot along y = 0 and w =
+    /// 0.36: a V 0.9 mm long whose tip lies 0.3 mm (over w/2) from the foot
+    /// is kept; a piece grazing the foot 0.1 mm off it and a closed crumb
+    /// round a maximum are not; anything at least `min_len` long is.
+    #[test]
+    fn a_short_level_is_kept_only_where_it_reaches_past_the_foot_band() {
+        let v = |x: f64, y: f64| Vec2::new(x, y);
+        let foot = [Curve {
+            pts: vec![v(-5.0, 0.0), v(5.0, 0.0)],
+            closed: false,
+            s: Vec::new(),
+        }];
+        let ix = segment_index(&foot);
+        let open = |pts: Vec<Vec2>| Curve {
+            pts,
+            closed: false,
+            s: Vec::new(),
+        };
+        let w = 0.36;
+        let vee = open(vec![v(-0.3, 0.05), v(0.0, 0.3), v(0.3, 0.05)]);
+        assert!(vee.length() < 1.0);
+        assert!(kept(&vee, 1.0, ix.as_ref(), w));
+        let grazing = open(vec![v(1.0, 0.1), v(1.5, 0.1)]);
+        assert!(!kept(&grazing, 1.0, ix.as_ref(), w));
+        let crumb = Curve::closed(vec![v(0.0, 2.0), v(0.1, 2.0), v(0.1, 2.1)]);
+        assert!(!kept(&crumb, 1.0, ix.as_ref(), w));
+        let long = open(vec![v(1.0, 0.1), v(2.5, 0.1)]);
+        assert!(kept(&long, 1.0, ix.as_ref(), w));
     }
 
     /// A convex wall z = −(x − 1)²/4 (radius of curvature 2 at its top
