@@ -157,7 +157,7 @@ impl Shape {
     }
 }
 
-/// Marks the points (xs[i], ys[j]) inside the closed polygons (non-zero
+/// Marks the points (`xs[i]`, `ys[j]`) inside the closed polygons (non-zero
 /// winding), row-major (index j·xs.len() + i), `xs` ascending: each row from
 /// its crossings with the polygons' edges (an edge counts where one end lies
 /// at or below the row and the other above it), rows in parallel.

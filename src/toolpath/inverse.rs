@@ -11,7 +11,7 @@
 //! 3. Clearing rings: equipotentials of that field, each value chosen by
 //!    bisection so that neighbouring rings are at most `stepover` apart
 //!    (symmetric Hausdorff distance, measured), until every ring is small
-//!    enough for the tool to cover its inside ([`rings`]).
+//!    enough for the tool to cover its inside (`rings`).
 
 use super::profile::ProfileError;
 use super::trace::{trace, Navigator, TraceParams};
