@@ -214,6 +214,14 @@ pub fn polygon_winding_number(poly: &[Vec2], p: Vec2) -> i32 {
     w
 }
 
+/// Signed area of a closed polygon, first point not repeated (positive
+/// counter-clockwise): the shoelace sum. The one definition; the z-levels, the
+/// planner, compose and the sections all orient and drop loops by it.
+pub fn polygon_area(p: &[Vec2]) -> f64 {
+    let n = p.len();
+    (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum::<f64>() / 2.0
+}
+
 /// Bounding box of the vertices of polygons; `None` when there are none.
 pub fn polygons_bbox(polys: &[Vec<Vec2>]) -> Option<(Vec2, Vec2)> {
     let mut it = polys.iter().flatten();

@@ -20,8 +20,9 @@ use super::zlevel::{
     LevelParams, Pockets,
 };
 use crate::count::{set_stage, Stage};
-use crate::field::isolines::{isolines, isolines_linear, polygon_area, Grid};
+use crate::field::isolines::{isolines, isolines_linear, Grid};
 use crate::field::{Field, Sink};
+use crate::geometry::polygon_area;
 use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
 
 /// The clearing paths of a level and the region V their coverage is
