@@ -138,7 +138,7 @@ fn field_eval_fast(c: &mut Criterion) {
         .collect();
     let is_counter: Vec<bool> = level
         .iter()
-        .map(|p| field::isolines::polygon_area(p) < 0.0)
+        .map(|p| pfcam::geometry::polygon_area(p) < 0.0)
         .collect();
     let loops = is_counter.iter().filter(|c| !**c).count().max(1);
     let centre = field::centroid(&contours, flat_tol);

@@ -2,7 +2,8 @@
 //! Hausdorff distance (polygon to polygon, densified at 0.05 mm, no field used),
 //! the number of outline and hole loops, and the field's max boundary error.
 //! `cargo run --release --example top_outline -- jobs/mfs-sign.toml 0.99,0.999,0.9999`
-use pfcam::field::isolines::{isolines, polygon_area, Grid};
+use pfcam::field::isolines::{isolines, Grid};
+use pfcam::geometry::polygon_area;
 use pfcam::geometry::{DistanceIndex, Vec2};
 
 fn densify(loops: &[Vec<Vec2>], step: f64) -> Vec<Vec2> {

@@ -32,9 +32,10 @@
 //! piece of its boundary is an error, not a curve copied from the membership test;
 //! then each vertex is carried onto u = 1 by Newton's method.
 
-use crate::field::isolines::{isolines_in, polygon_area, Grid};
+use crate::field::isolines::{isolines_in, Grid};
 use crate::field::setup::{Boundary, Layout, Prepared, Sink, OUTER_CHARGES, SINK_CHARGES};
 use crate::field::{self, mfs, Field, FieldError, Problem};
+use crate::geometry::polygon_area;
 use crate::geometry::{
     build_shape, deepest_point_in, line_crossing, polygon_winding_number, polygons_bbox,
     regions_from_contours, svgpath, BoolOp, Composition, Contour, DistanceIndex, GeometryError,

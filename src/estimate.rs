@@ -10,7 +10,7 @@
 //! (the outline is not counted twice). Rapids, plunges, ramps and links add to
 //! it, never subtract: a program cannot be faster than its bound.
 
-use crate::field::isolines::polygon_area;
+use crate::geometry::polygon_area;
 use crate::geometry::Vec2;
 use crate::job::Machine;
 

@@ -549,7 +549,7 @@ fn space_out(ts: &mut [f64], ascending: bool) {
 
 /// The stock rectangle as the level planner computes it: the bounding box of
 /// the largest level Γ(s_bottom) (a boss's foot, a cavity's rim), from the
-/// same grid of u and the same curves ([`crate::levels::mfs_sections::job_grid`],
+/// same grid of u and the same curves (`crate::levels::mfs_sections::job_grid`,
 /// [`crate::levels::plan::curves`]), plus the margin.
 pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
     if crate::geometry::polygons_bbox(sj.glyphs).is_none() {

@@ -367,15 +367,10 @@ fn edge_ends(grid: &Grid, e: Edge, s: f64) -> ((Vec2, f64), (Vec2, f64)) {
     )
 }
 
-/// Signed area of a closed polygon (positive counter-clockwise).
-pub fn polygon_area(p: &[Vec2]) -> f64 {
-    let n = p.len();
-    (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum::<f64>() / 2.0
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::polygon_area;
 
     #[test]
     fn single_charge_equipotentials_are_circles() {

@@ -389,7 +389,7 @@ fn truncated_lstsq(a: &Mat<f64>, mut rhs: Mat<f64>) -> (Vec<f64>, usize, f64) {
 }
 
 /// max |u(P) − g(P)| over the given points, the field evaluated through local
-/// expansions over the points' cluster ([`dense_box`]): within 1e-14 of the
+/// expansions over the points' cluster (`dense_box`): within 1e-14 of the
 /// direct sums (§12 of docs/method.md), far below any boundary error worth
 /// measuring; the check points were most of the shape solves' kernel pairs
 /// (issue 13). Points outside the box are summed directly.

@@ -126,7 +126,7 @@ impl Distance {
     /// σ over `grid` (u at its nodes, 1 inside the material), for the wall
     /// of φ = `profile` from its top edge: z at a node is `z_of(u)` with u
     /// held to φ's range; `cavity` mirrors which end of the range is the top;
-    /// `corner` is the cutter's corner radius (see [`dijkstra`]).
+    /// `corner` is the cutter's corner radius (see `dijkstra`).
     pub fn from_top_edge(
         grid: &Grid,
         profile: &DepthProfile,

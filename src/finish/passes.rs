@@ -125,8 +125,8 @@ pub struct Planned {
 /// wall's. With `geodesic` (σ of [`geodesic::Distance`]) the wall's are the
 /// foot Γ(s_foot), the levels of σ from the deepest ([`geodesic::passes`])
 /// and the top edge Γ(s_top); without, the wall's candidate levels
-/// ([`candidate_levels`]) with each loop kept only where its wall's spacing
-/// needs it ([`thin`]). `cavity` mirrors the profile (its floor is at the
+/// (`candidate_levels`) with each loop kept only where its wall's spacing
+/// needs it (`thin`). `cavity` mirrors the profile (its floor is at the
 /// high end of s). Errors name what failed.
 pub fn pass_levels(
     curves: &Curves,
@@ -253,7 +253,7 @@ fn spread(g: f64, dphi: f64) -> f64 {
 /// Candidate levels per pass width: the wall's candidate levels Γ(s) lie
 /// w/REFINE apart where Γ(s) is most spread, and each wall (each loop of
 /// Γ(s) and its continuation up the wall) is cut only at the candidates it
-/// needs ([`thin`]).
+/// needs (`thin`).
 pub const REFINE: usize = 2;
 
 /// A candidate level of the wall: s, the loops of Γ(s) and the least |∇u|

@@ -15,7 +15,7 @@
 //!    requires), arc centres as `I`/`J` offsets from the arc's start as written
 //!    (GRBL's only arc distance mode), chosen on the 0.001 mm grid so that the
 //!    written start and end are as nearly equidistant from the written centre
-//!    as the grid allows (see [`CENTRE_SEARCH`]), `F` only when the feed changes;
+//!    as the grid allows (see `CENTRE_SEARCH`), `F` only when the feed changes;
 //! 5. a retract to safe Z if the tool is below it, `M9` with coolant, `M5`, `M2`.
 //!
 //! Arcs reach the program only as [`arcfit::legalize`] lets them: none with

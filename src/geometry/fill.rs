@@ -304,14 +304,10 @@ fn drop_straight_points(l: Vec<P>) -> Vec<P> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::polygon_area;
 
     fn v(x: f64, y: f64) -> Vec2 {
         Vec2::new(x, y)
-    }
-
-    fn area(l: &[Vec2]) -> f64 {
-        let n = l.len();
-        (0..n).map(|i| l[i].cross(l[(i + 1) % n])).sum::<f64>() / 2.0
     }
 
     fn square(x: f64, y: f64, s: f64, ccw: bool) -> Vec<Vec2> {
@@ -330,7 +326,11 @@ mod tests {
             assert_eq!(loops.len(), 2, "{rule:?}");
             for l in &loops {
                 assert_eq!(l.len(), 3);
-                assert!((area(l) - 100.0).abs() < 1e-6, "{}", area(l));
+                assert!(
+                    (polygon_area(l) - 100.0).abs() < 1e-6,
+                    "{}",
+                    polygon_area(l)
+                );
             }
         }
     }
@@ -343,15 +343,15 @@ mod tests {
         let both = [outer.clone(), inner.clone()];
         let nz = fill_outlines(&both, FillRule::NonZero).unwrap();
         assert_eq!(nz.len(), 1);
-        assert!((area(&nz[0]) - 100.0).abs() < 1e-6);
+        assert!((polygon_area(&nz[0]) - 100.0).abs() < 1e-6);
         let eo = fill_outlines(&both, FillRule::EvenOdd).unwrap();
         assert_eq!(eo.len(), 2);
-        let total: f64 = eo.iter().map(|l| area(l)).sum();
+        let total: f64 = eo.iter().map(|l| polygon_area(l)).sum();
         assert!((total - 84.0).abs() < 1e-6, "{total}");
         // Opposite directions: a hole under both.
         let both = [outer, square(3.0, 3.0, 4.0, false)];
         let nz = fill_outlines(&both, FillRule::NonZero).unwrap();
-        let total: f64 = nz.iter().map(|l| area(l)).sum();
+        let total: f64 = nz.iter().map(|l| polygon_area(l)).sum();
         assert_eq!(nz.len(), 2);
         assert!((total - 84.0).abs() < 1e-6, "{total}");
     }
@@ -363,16 +363,16 @@ mod tests {
         let loops = fill_outlines(&[a, b], FillRule::NonZero).unwrap();
         assert_eq!(loops.len(), 1);
         assert!(
-            (area(&loops[0]) - 175.0).abs() < 1e-6,
+            (polygon_area(&loops[0]) - 175.0).abs() < 1e-6,
             "{}",
-            area(&loops[0])
+            polygon_area(&loops[0])
         );
         assert_eq!(loops[0].len(), 8);
         // Evenodd: the overlap is a hole, drawn as two L-shapes meeting at corners.
         let a = square(0.0, 0.0, 10.0, true);
         let b = square(5.0, 5.0, 10.0, true);
         let loops = fill_outlines(&[a, b], FillRule::EvenOdd).unwrap();
-        let total: f64 = loops.iter().map(|l| area(l)).sum();
+        let total: f64 = loops.iter().map(|l| polygon_area(l)).sum();
         assert!((total - 150.0).abs() < 1e-6, "{total}");
     }
 
@@ -387,12 +387,12 @@ mod tests {
         let nz = fill_outlines(std::slice::from_ref(&star), FillRule::NonZero).unwrap();
         assert_eq!(nz.len(), 1);
         assert_eq!(nz[0].len(), 10);
-        assert!(area(&nz[0]) > 0.0);
+        assert!(polygon_area(&nz[0]) > 0.0);
         let eo = fill_outlines(std::slice::from_ref(&star), FillRule::EvenOdd).unwrap();
         // Five tips; the pentagon in the middle (winding 2) is empty.
         assert_eq!(eo.len(), 5);
-        let tips: f64 = eo.iter().map(|l| area(l)).sum();
-        assert!(tips > 0.0 && tips < area(&nz[0]));
+        let tips: f64 = eo.iter().map(|l| polygon_area(l)).sum();
+        assert!(tips > 0.0 && tips < polygon_area(&nz[0]));
     }
 
     #[test]

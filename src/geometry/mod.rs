@@ -157,7 +157,7 @@ impl Shape {
     }
 }
 
-/// Marks the points (xs[i], ys[j]) inside the closed polygons (non-zero
+/// Marks the points (`xs[i]`, `ys[j]`) inside the closed polygons (non-zero
 /// winding), row-major (index j·xs.len() + i), `xs` ascending: each row from
 /// its crossings with the polygons' edges (an edge counts where one end lies
 /// at or below the row and the other above it), rows in parallel.
@@ -212,6 +212,14 @@ pub fn polygon_winding_number(poly: &[Vec2], p: Vec2) -> i32 {
         }
     }
     w
+}
+
+/// Signed area of a closed polygon, first point not repeated (positive
+/// counter-clockwise): the shoelace sum. The one definition; the z-levels, the
+/// planner, compose and the sections all orient and drop loops by it.
+pub fn polygon_area(p: &[Vec2]) -> f64 {
+    let n = p.len();
+    (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum::<f64>() / 2.0
 }
 
 /// Bounding box of the vertices of polygons; `None` when there are none.

@@ -5,7 +5,7 @@
 //! Reads never block the streamer: the reader thread polls its handle with a short
 //! timeout and hands whole lines over a channel, so every wait in the streamer is a
 //! bounded `recv_timeout`. A port that fails or hangs up (USB unplugged, pty master
-//! closed) ends the reader with [`Incoming::Closed`].
+//! closed) ends the reader with `Incoming::Closed`.
 
 use std::io::{Read, Write};
 use std::sync::atomic::{AtomicBool, Ordering};

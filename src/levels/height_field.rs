@@ -22,7 +22,8 @@
 
 use super::plan::CHORD_FRACTION;
 use super::sections::{LevelField, Sections};
-use crate::field::isolines::{edge_loops, polygon_area, root_in_unit, Grid};
+use crate::field::isolines::{edge_loops, root_in_unit, Grid};
+use crate::geometry::polygon_area;
 use crate::geometry::Vec2;
 use crate::sources::harmonic_bezier::{HarmonicPatch, HeightRange, PatchSpec};
 

@@ -6,8 +6,9 @@
 use super::schedule;
 use super::sections::{LevelField, Sections};
 use crate::estimate::{check_bound, level_area, levels_bound, GuardError, LowerBound};
-use crate::field::isolines::{isolines, polygon_area, Grid};
+use crate::field::isolines::{isolines, Grid};
 use crate::field::{self, Boundary, Field, FieldError, Layout, Prepared};
+use crate::geometry::polygon_area;
 use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
 use crate::toolpath::profile::ProfileError;
 use crate::toolpath::zlevel::{boss_paths, cavity_paths, LevelCut, LevelParams};

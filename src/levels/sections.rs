@@ -10,8 +10,8 @@
 //! paper's S2 = {(x, y) ∈ Γ(s), z = φ(s)}) and a profile job's prism
 //! ([`super::prism::PrismSections`]) implement it.
 
-use crate::field::isolines::polygon_area;
 use crate::field::Field;
+use crate::geometry::polygon_area;
 use crate::geometry::Vec2;
 
 /// A part described by its horizontal sections.

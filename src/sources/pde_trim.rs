@@ -222,7 +222,7 @@ impl TrimmedSurface {
 }
 
 /// `k` points of the closed polygon `p` (first point not repeated), equally
-/// spaced in arc length from p[0]: the samples ηₖ of a [`TrimCurves`] curve.
+/// spaced in arc length from `p[0]`: the samples ηₖ of a [`TrimCurves`] curve.
 /// Empty for fewer than two distinct points.
 pub fn resample_closed(p: &[[f64; 2]], k: usize) -> Vec<[f64; 2]> {
     let n = p.len();

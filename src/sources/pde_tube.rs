@@ -36,7 +36,7 @@
 //! decides.
 
 use super::pde::{BoundaryCurves, PdeError, PdeSurface};
-use crate::field::isolines::polygon_area;
+use crate::geometry::polygon_area;
 use crate::geometry::Vec2;
 use crate::levels::sections::{LevelField, Sections};
 use std::f64::consts::TAU;

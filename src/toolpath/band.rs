@@ -131,7 +131,7 @@ fn without_crumbs(points: Vec<Vec2>, eps: f64) -> Vec<Vec2> {
 
 /// The rings that cut a cavity level's band `band` wide next to the wall,
 /// innermost first, without the wall loops themselves (at r, traced by the
-/// caller). `None` when a radius has more than [`MAX_LOOPS`] loops.
+/// caller). `None` when a radius has more than `MAX_LOOPS` loops.
 pub fn band_rings(
     part: &[Vec<Vec2>],
     index: &DistanceIndex,

@@ -11,7 +11,7 @@
 //! 3. Clearing rings: equipotentials of that field, each value chosen by
 //!    bisection so that neighbouring rings are at most `stepover` apart
 //!    (symmetric Hausdorff distance, measured), until every ring is small
-//!    enough for the tool to cover its inside ([`rings`]).
+//!    enough for the tool to cover its inside (`rings`).
 
 use super::profile::ProfileError;
 use super::trace::{trace, Navigator, TraceParams};
@@ -20,8 +20,9 @@ use super::zlevel::{
     LevelParams, Pockets,
 };
 use crate::count::{set_stage, Stage};
-use crate::field::isolines::{isolines, isolines_linear, polygon_area, Grid};
+use crate::field::isolines::{isolines, isolines_linear, Grid};
 use crate::field::{Field, Sink};
+use crate::geometry::polygon_area;
 use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
 
 /// The clearing paths of a level and the region V their coverage is

@@ -8,7 +8,7 @@ use super::runs;
 use super::stock::{model_radius, StockMap};
 use super::trace::{trace, Navigator, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
-use crate::geometry::{polygon_winding_number, polygons_bbox, DistanceIndex, Vec2};
+use crate::geometry::{polygon_area, polygon_winding_number, polygons_bbox, DistanceIndex, Vec2};
 
 /// Settings shared by every level, mm, mm/min and degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -144,11 +144,6 @@ pub(super) fn lowest(poly: &[Vec2]) -> Vec2 {
     })
 }
 
-fn signed_area(p: &[Vec2]) -> f64 {
-    let n = p.len();
-    (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum::<f64>() / 2.0
-}
-
 /// The paths of one boss level: around every outer loop of the part, clearing
 /// rings (rolling-disk offsets of radius r + j·stepover) from the outermost that
 /// still reaches into the stock (or, with `reach`, the band of that width) down to
@@ -189,7 +184,7 @@ pub fn boss_paths<N: Navigator + Sync>(
     // On a level added for the scallop bound, only the band next to a hole's
     // wall (the level below cleared the counter inside its own contour).
     let most = if reach.is_some() { rings } else { usize::MAX };
-    let holes: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
+    let holes: Vec<&Vec<Vec2>> = part.iter().filter(|q| polygon_area(q) < 0.0).collect();
     for (h, hole) in holes.iter().enumerate() {
         paths.extend(w.hole_rings(h, hole, most, warnings)?);
     }
@@ -267,7 +262,7 @@ impl<N: Navigator + Sync> Walls<'_, N> {
         let rj = p.wall() + j as f64 * p.stepover;
         let mut done: Vec<Vec<Vec2>> = Vec::new();
         let mut out = Vec::new();
-        for lp in self.part.iter().filter(|q| signed_area(q) > 0.0) {
+        for lp in self.part.iter().filter(|q| polygon_area(q) > 0.0) {
             let low = lowest(lp);
             let probe = low - Vec2::new(0.0, rj);
             if !done.is_empty() {
@@ -717,8 +712,8 @@ pub fn cavity_paths<N: Navigator + Sync>(
         tol: p.tol,
         part_on_left: !p.climb,
     };
-    let pockets: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) < 0.0).collect();
-    let islands: Vec<&Vec<Vec2>> = part.iter().filter(|q| signed_area(q) > 0.0).collect();
+    let pockets: Vec<&Vec<Vec2>> = part.iter().filter(|q| polygon_area(q) < 0.0).collect();
+    let islands: Vec<&Vec<Vec2>> = part.iter().filter(|q| polygon_area(q) > 0.0).collect();
     // Each pocket's deepest point and its room (a grid search), once.
     let deepest: Vec<(Vec2, f64)> = pockets
         .iter()
@@ -814,7 +809,7 @@ pub(super) fn orient_v(loops: &[Vec<Vec2>], n_pockets: usize) -> Vec<Vec<Vec2>> 
         .enumerate()
         .map(|(i, l)| {
             let l = &l[..l.len() - 1];
-            if (signed_area(l) < 0.0) == (i < n_pockets) {
+            if (polygon_area(l) < 0.0) == (i < n_pockets) {
                 l.to_vec()
             } else {
                 l.iter().rev().copied().collect()

@@ -51,7 +51,7 @@ fn ring_points(tube: &PdeTube, resolution: f64) -> usize {
 /// The closed mesh of the tube's part (module doc), `top` the stock top
 /// (mm, where the tube's top goes), vertices at most about `resolution` mm
 /// apart, `stock` the stock rectangle. A trimmed boss is meshed by
-/// [`super::mesh_slot`]. An error is a pfcam bug (a ring whose polar angle
+/// `super::mesh_slot`. An error is a pfcam bug (a ring whose polar angle
 /// does not increase), or a trim the mesh cannot carry.
 pub fn tube_mesh(
     tube: &PdeTube,

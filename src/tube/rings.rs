@@ -17,10 +17,10 @@
 //! - **Samples.** A ring has the section's P points (chords within 0.1 ×
 //!   tolerance on the surface), and every chord between two tips whose
 //!   midpoint lies more than tol/2 under the drop there is halved (up to
-//!   [`REFINE_DEPTH`] times), as the patch's raster does.
+//!   `REFINE_DEPTH` times), as the patch's raster does.
 //! - **Links.** Ring k's end (its start: a ring is closed) to ring k + 1's
-//!   start follows the drop at samples [`LINK_STEP`] apart: a feed over the
-//!   surface, never below it. The first ring is entered from [`APPROACH`] mm
+//!   start follows the drop at samples `LINK_STEP` apart: a feed over the
+//!   surface, never below it. The first ring is entered from `APPROACH` mm
 //!   off its start along the normal, into free space (off the wall), where
 //!   the cutter comes down from the retract height.
 //! - **Direction.** Climb milling (`operation.direction`): clockwise seen
@@ -67,7 +67,7 @@ pub struct RingPart<'a> {
     pub area: f64,
     /// Machine z of the tube's top (the stock top), mm.
     pub top: f64,
-    /// Where the rings touch ([`ring_contacts::Rings`]).
+    /// Where the rings touch ([`Rings`]).
     pub rings: &'a Rings,
 }
 

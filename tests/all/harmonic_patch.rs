@@ -116,7 +116,7 @@ fn sections_of_a_cubic_match_a_pixel_count() {
         );
         for poly in &sec {
             assert!(
-                pfcam::field::isolines::polygon_area(poly) > 0.0,
+                pfcam::geometry::polygon_area(poly) > 0.0,
                 "outlines run CCW"
             );
             for q in poly {

@@ -92,7 +92,8 @@ fn mfs_sign_boss_levels_are_gouge_free_ramped_and_reported() {
 /// point (Γ(s) for s < 1 encloses its glyph, but near s = 1 the contoured
 /// polygon may cut a hair inside a vertex).
 fn assert_top_shows_the_letters(out: &RunOutput, s1: f64) {
-    use pfcam::field::isolines::{isolines, polygon_area, Grid};
+    use pfcam::field::isolines::{isolines, Grid};
+    use pfcam::geometry::polygon_area;
     use pfcam::geometry::{deepest_point, polygon_winding_number, DistanceIndex, Vec2};
     let polys: Vec<Vec<Vec2>> = out.shape.contours().map(|c| c.flatten(0.01)).collect();
     let (lo, hi) = out.shape.bbox().unwrap();

@@ -166,9 +166,7 @@ fn a_mould_section_is_holes_that_shrink_downward() {
         let z = -0.5 * k as f64;
         let sec = src.section(z);
         assert!(!sec.is_empty());
-        let view_holes = sec
-            .iter()
-            .all(|p| pfcam::field::isolines::polygon_area(p) < 0.0);
+        let view_holes = sec.iter().all(|p| pfcam::geometry::polygon_area(p) < 0.0);
         assert!(view_holes, "z {z}: the I's mould (no island) is holes only");
         // Net area negative; its size falls going down (the rim is widest).
         let a = -net_area(&sec);

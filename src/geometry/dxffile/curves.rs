@@ -338,14 +338,8 @@ impl Path {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::polygon_area;
     use std::f64::consts::PI;
-
-    fn shoelace(p: &[Vec2]) -> f64 {
-        (0..p.len())
-            .map(|i| p[i].cross(p[(i + 1) % p.len()]))
-            .sum::<f64>()
-            / 2.0
-    }
 
     #[test]
     fn an_ellipse_flattens_within_the_tolerance() {
@@ -381,7 +375,7 @@ mod tests {
             assert!(worst <= tol * (1.0 + 1e-9), "tol {tol}: {worst}");
             assert!(worst >= tol * 0.3, "tol {tol}: too fine, {worst}");
             let exact = PI * u.cross(v).abs();
-            assert!((shoelace(&pts[..pts.len() - 1]) - exact).abs() < 2.0 * PI * 20.0 * tol);
+            assert!((polygon_area(&pts[..pts.len() - 1]) - exact).abs() < 2.0 * PI * 20.0 * tol);
         }
     }
 

@@ -21,7 +21,7 @@ pub struct GaussRule {
 }
 
 impl GaussRule {
-    /// The rule of `n` points, 1 ≤ n ≤ [`MAX_ORDER`] (clamped into that range).
+    /// The rule of `n` points, 1 ≤ n ≤ `MAX_ORDER` (clamped into that range).
     pub fn new(n: usize) -> Self {
         let n = n.clamp(1, MAX_ORDER);
         let mut nodes = vec![0.0; n];

@@ -39,7 +39,7 @@ pub const MAX_NODES: usize = 8_000_000;
 /// Regula falsi steps at most per vertex.
 const ROOT_STEPS: usize = 60;
 
-/// A regular grid of nodes lo + (i hx, j hy, k hz), n[0] × n[1] × n[2].
+/// A regular grid of nodes lo + (i hx, j hy, k hz), `n[0]` × `n[1]` × `n[2]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grid3 {
     /// The first node, mm.
