@@ -109,7 +109,7 @@ impl RawFinish {
     /// Checks `[finish]`; the feeds and spindle default to `[tool]`'s.
     pub fn resolve(self, tool: &super::Tool) -> Result<Finish, JobError> {
         let pattern = match self.pattern.as_deref() {
-            None => Pattern::Equipotential,
+            None => Pattern::Geodesic,
             Some(p) => {
                 super::one_of("finish.pattern", p, PATTERNS)?;
                 if p == "geodesic" {
@@ -201,9 +201,9 @@ mod tests {
         assert_eq!(f.corner, 1.0);
         assert_eq!(f.feed, 700.0);
         assert_eq!(f.scallop, defaults::SCALLOP);
-        assert_eq!(f.pattern, Pattern::Equipotential);
-        let geo = job("[finish]\ndiameter = 2.0\npattern = \"geodesic\"\n").unwrap();
-        assert_eq!(geo.finish.unwrap().pattern, Pattern::Geodesic);
+        assert_eq!(f.pattern, Pattern::Geodesic);
+        let eq = job("[finish]\ndiameter = 2.0\npattern = \"equipotential\"\n").unwrap();
+        assert_eq!(eq.finish.unwrap().pattern, Pattern::Equipotential);
         assert_eq!(j.operation.stock_to_leave, defaults::STOCK_TO_LEAVE);
         let fj = j.finishing().unwrap();
         assert_eq!((fj.tool.diameter, fj.tool.shape), (2.0, CutterShape::Ball));
