@@ -31,6 +31,7 @@
 //! [`simulate_programs`] returns a [`Sequence`] (a report per program, the
 //! part compared once, the final stock), and [`png::sequence_png`] draws it.
 
+pub mod balldrop;
 pub mod header;
 pub mod moves;
 pub mod part;

@@ -289,6 +289,47 @@ fn near_outline(outlines: &[Vec<[f64; 2]>], x: f64, y: f64, tol: f64) -> bool {
     })
 }
 
+/// The reach `r` at the cells `over` (where the envelope on the cells'
+/// heights reads more than the bound left) raised by a ball's exact drops
+/// onto the part's triangles ([`super::reach::refine`]); other tools and
+/// parts without triangles keep the cells' envelope.
+fn exact_reach(
+    g: &super::stock::Grid,
+    ph: &[f64],
+    tool: &super::tool::Tool,
+    part: &PartModel,
+    r: &mut [f64],
+    over: &[usize],
+) {
+    if over.is_empty() || part.triangles.is_empty() || tool.shape() != super::ToolShape::Ball {
+        return;
+    }
+    let all: Vec<[f64; 3]> = part.triangles.iter().flatten().copied().collect();
+    let (lo, hi) = super::walls::xy_box(&all);
+    let boxes: Vec<_> = part
+        .triangles
+        .iter()
+        .map(|t| super::walls::xy_box(t))
+        .collect();
+    let bins = super::walls::Bins::new(lo, hi, &boxes);
+    let rad = tool.radius();
+    let top: Vec<f64> = part
+        .triangles
+        .iter()
+        .map(|t| t[0][2].max(t[1][2]).max(t[2][2]))
+        .collect();
+    // A triangle whose top is under `floor` cannot lift the tip over it.
+    let drop_at = |x: f64, y: f64, floor: f64| -> Option<f64> {
+        let z = bins
+            .near([x, y], rad)
+            .filter(|&i| top[i] > floor)
+            .map(|i| super::balldrop::ball_on_triangle(&part.triangles[i], x, y, rad))
+            .fold(f64::NEG_INFINITY, f64::max);
+        z.is_finite().then_some(z - rad)
+    };
+    super::reach::refine(g, ph, tool, r, over, &drop_at);
+}
+
 /// Compares the stock with the part; adds one [`Kind::Gouge`] finding per line
 /// whose cuts lie below the part by more than the tolerance.
 pub fn compare(
@@ -302,7 +343,20 @@ pub fn compare(
     let (ph, cos) = part_surface(map, part);
     // What the last tool can reach of the part (`reach`): the material
     // above it is the programs' to remove.
-    let reach = tool.map(|t| super::reach::envelope(&g, &ph, t));
+    let mut reach = tool.map(|t| super::reach::envelope(&g, &ph, t));
+    if let (Some(r), Some(t)) = (reach.as_mut(), tool) {
+        // Half the bound (scallop + tolerance): the largest figure left
+        // unrefined is under it, so any near the bound is exact.
+        let bound = 0.5 * (job.scallop + job.tolerance);
+        let over: Vec<usize> = (0..ph.len())
+            .filter(|&k| {
+                ph[k] != f64::NEG_INFINITY
+                    && r[k].is_finite()
+                    && (map.h[k] - r[k].max(ph[k])) * cos[k] > bound
+            })
+            .collect();
+        exact_reach(&g, &ph, t, part, r, &over);
+    }
     let mut max_left_reachable = Worst::default();
     let mut cells = 0;
     let mut max_gouge = Worst::default();

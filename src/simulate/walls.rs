@@ -166,7 +166,7 @@ pub fn project_walls(
 }
 
 /// Items binned by their XY box on a grid of [`BIN`] mm from `lo`.
-struct Bins {
+pub(super) struct Bins {
     lo: [f64; 2],
     nx: usize,
     ny: usize,
@@ -174,7 +174,7 @@ struct Bins {
 }
 
 impl Bins {
-    fn new(lo: [f64; 2], hi: [f64; 2], boxes: &[([f64; 2], [f64; 2])]) -> Bins {
+    pub(super) fn new(lo: [f64; 2], hi: [f64; 2], boxes: &[([f64; 2], [f64; 2])]) -> Bins {
         let nx = (((hi[0] - lo[0]) / BIN).ceil() as usize).max(1);
         let ny = (((hi[1] - lo[1]) / BIN).ceil() as usize).max(1);
         let mut cells = vec![Vec::new(); nx * ny];
@@ -198,7 +198,7 @@ impl Bins {
 
     /// The items in the cells that a disc of radius `r` about `p` touches
     /// (an item may come more than once).
-    fn near(&self, p: [f64; 2], r: f64) -> impl Iterator<Item = usize> + '_ {
+    pub(super) fn near(&self, p: [f64; 2], r: f64) -> impl Iterator<Item = usize> + '_ {
         let (i0, j0) = Self::cell(self.lo, self.nx, self.ny, [p[0] - r, p[1] - r]);
         let (i1, j1) = Self::cell(self.lo, self.nx, self.ny, [p[0] + r, p[1] + r]);
         (j0..=j1).flat_map(move |j| {
@@ -207,7 +207,7 @@ impl Bins {
     }
 }
 
-fn xy_box(pts: &[V3]) -> ([f64; 2], [f64; 2]) {
+pub(super) fn xy_box(pts: &[V3]) -> ([f64; 2], [f64; 2]) {
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
     for p in pts {
