@@ -1,5 +1,9 @@
 //! Small numeric helpers shared by the stages.
 
+mod condition;
+
+pub(crate) use condition::triangular_condition;
+
 /// The larger of `a` and `b`, or NaN when either is NaN. `f64::max` returns the
 /// other operand when one is NaN, so a reduction with it reads a NaN error as
 /// no error at all; every reduction of an error or a distance that a check

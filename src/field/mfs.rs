@@ -287,18 +287,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     // same G-code); pfcam parallelises over whole solves and loops instead.
     faer::set_global_parallelism(faer::Par::Seq);
     let qr = a.qr();
-    let r = qr.thin_R();
-    let (mut rmax, mut rmin) = (0.0_f64, f64::INFINITY);
-    for k in 0..n {
-        let v = r[(k, k)].abs();
-        rmax = rmax.max(v);
-        rmin = rmin.min(v);
-    }
-    let condition = if rmin > 0.0 {
-        rmax / rmin
-    } else {
-        f64::INFINITY
-    };
+    let condition = crate::num::triangular_condition(qr.thin_R());
     let rhs = Mat::<f64>::from_fn(m, 1, |i, _| problem.colloc[i].value);
     let plain = (condition < MAX_CONDITION)
         .then(|| {

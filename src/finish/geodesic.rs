@@ -454,7 +454,7 @@ fn top_share(top: f64, other: f64, s_top: f64) -> f64 {
 
 /// The passes of the wall between its top edge and its foot: the levels σ =
 /// k·`w` for k = 1, 2, ... below the largest σ, the deepest first (the
-/// finisher cuts from the floor up), each with its curves ([`kept`] says
+/// finisher cuts from the floor up), each with its curves (`kept` says
 /// which: none shorter than `min_len`, mm, unless it reaches past the foot's
 /// band), and between levels k + 1 and k the pieces of σ = (k + ½)·w that
 /// neither level k + 1 nor the wall's foot `foot` comes near

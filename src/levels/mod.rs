@@ -1,7 +1,7 @@
 //! The z-levels of a boss or cavity: the z schedule, the order the levels are
 //! cut in, and (in the submodules) the planner, the sections interface and its
-//! sources. The depth profile φ(s) they follow is [`crate::profile`]
-//! (re-exported here).
+//! sources. The depth profile φ(s) they follow is [`DepthProfile`] (from the
+//! crate's `profile` module, re-exported here).
 
 pub mod height_field;
 pub mod mfs_sections;

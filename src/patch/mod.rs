@@ -32,7 +32,7 @@ pub enum HeightSource<'a> {
 
 impl ShapeSource {
     /// The height field this source is, if it is one.
-    pub fn height_source(&self) -> Option<HeightSource<'_>> {
+    pub(crate) fn height_source(&self) -> Option<HeightSource<'_>> {
         match self {
             ShapeSource::HarmonicBezier(s) => Some(HeightSource::Bezier(s)),
             ShapeSource::Polyharmonic(s) => Some(HeightSource::Poly(s)),

@@ -9,6 +9,7 @@
 //! counters of letters are.
 
 use super::profile::ProfileError;
+use super::spot::spot_loop;
 use super::trace::{trace, Navigator, TraceParams};
 use super::zlevel::{CutPath, LevelParams};
 use crate::geometry::{DistanceIndex, Vec2};
@@ -148,37 +149,33 @@ pub fn clear_bays<N: Navigator>(
         bays += 1;
         let loops: Vec<Vec<Vec2>> = paths.iter().map(as_loop).collect();
         let cut = DistanceIndex::new(&loops);
-        let mut rings = bay_rings(nav, index, &cut, q, room, p);
-        if rings.is_empty() {
+        let ring_label = || format!("{label}: ring in a bay");
+        let rings = bay_rings(nav, index, &cut, q, room, p);
+        let rings: Vec<CutPath> = if rings.is_empty() {
             // No ring of its own: a loop of radius up to r/2 about the spot,
             // its disk still r + tol from the part.
             let rho = (0.5 * r).min(room - p.wall() - p.tol);
-            let m = 24;
-            let mut pts: Vec<Vec2> = (0..m)
-                .map(|k| {
-                    let a = std::f64::consts::TAU * k as f64 / m as f64;
-                    q + Vec2::new(a.cos(), a.sin()) * rho
+            vec![spot_loop(q, rho, ring_label())]
+        } else {
+            rings
+                .into_iter()
+                .map(|points| CutPath {
+                    label: ring_label(),
+                    points,
+                    closed: true,
+                    ring: None,
                 })
-                .collect();
-            pts.push(pts[0]);
-            rings.push(pts);
-        }
+                .collect()
+        };
         let new = DistanceIndex::new(
             &rings
                 .iter()
-                .map(|l| l[..l.len() - 1].to_vec())
+                .map(|c| c.points[..c.points.len() - 1].to_vec())
                 .collect::<Vec<_>>(),
         );
         let hint = std::cell::Cell::new(0);
         spots.retain(|&(_, x)| x != q && !new.closer_than(x, r, &hint));
-        for pts in rings {
-            paths.push(CutPath {
-                label: format!("{label}: ring in a bay"),
-                points: pts,
-                closed: true,
-                ring: None,
-            });
-        }
+        paths.extend(rings);
     }
     Ok(())
 }

@@ -12,6 +12,7 @@ pub mod gouge;
 pub mod inverse;
 pub mod profile;
 pub mod runs;
+pub(crate) mod spot;
 pub mod stock;
 pub mod trace;
 pub mod zlevel;

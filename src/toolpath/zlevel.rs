@@ -5,6 +5,7 @@ use super::air::Keepout;
 use super::entry::{enter, ramp_start, start_near, Entry, CLEARANCE};
 use super::profile::{deepest_point, ProfileError};
 use super::runs;
+use super::spot::spot_loop;
 use super::stock::{model_radius, StockMap};
 use super::trace::{trace, Navigator, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
@@ -998,20 +999,11 @@ impl<'a> Coverage<'a> {
                 continue;
             }
             dabs.push(c);
-            let n = 24;
-            let mut pts: Vec<Vec2> = (0..n)
-                .map(|k| {
-                    let a = std::f64::consts::TAU * k as f64 / n as f64;
-                    c + Vec2::new(a.cos(), a.sin()) * dab_r
-                })
-                .collect();
-            pts.push(pts[0]);
-            spots.push(CutPath {
-                label: format!("{label}: loop at an uncut spot"),
-                points: pts,
-                closed: true,
-                ring: None,
-            });
+            spots.push(spot_loop(
+                c,
+                dab_r,
+                format!("{label}: loop at an uncut spot"),
+            ));
         }
         spots
     }

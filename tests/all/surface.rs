@@ -5,7 +5,7 @@
 //! and writes nothing for a bad job.
 
 use pfcam::field::isolines::Grid;
-use pfcam::geometry::{polygon_winding_number, Vec2};
+use pfcam::geometry::{polygon_winding_number, ShapeSource, Vec2};
 use pfcam::job::{parse_job, Job, OperationKind};
 use pfcam::surface::{
     edge_use_counts, is_watertight, job_surface, read_stl, stl_bytes, weld, JobSurface, Mesh,
@@ -26,8 +26,12 @@ fn jobs_of(kind: OperationKind) -> Vec<Job> {
         .into_iter()
         .filter(|j| j.operation.kind == kind)
         .filter(|j| {
-            j.shape.height_source().is_none()
-                && !matches!(j.shape, pfcam::geometry::ShapeSource::PdeTube(_))
+            !matches!(
+                j.shape,
+                ShapeSource::HarmonicBezier(_)
+                    | ShapeSource::Polyharmonic(_)
+                    | ShapeSource::PdeTube(_)
+            )
         })
         .collect()
 }

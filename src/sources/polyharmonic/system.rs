@@ -333,18 +333,7 @@ fn dense_solve(a: Vec<f64>, b: &[f64]) -> Result<(Vec<f64>, f64), PolyError> {
     let mat = Mat::<f64>::from_fn(size, size, |i, j| a[i * size + j]);
     drop(a);
     let lu = mat.full_piv_lu();
-    let u = lu.U();
-    let (mut umax, mut umin) = (0.0_f64, f64::INFINITY);
-    for k in 0..size {
-        let d = u[(k, k)].abs();
-        umax = umax.max(d);
-        umin = umin.min(d);
-    }
-    let condition = if umin > 0.0 {
-        umax / umin
-    } else {
-        f64::INFINITY
-    };
+    let condition = crate::num::triangular_condition(lu.U());
     if !(condition.is_finite() && condition <= MAX_CONDITION) {
         return Err(PolyError::Singular { size, condition });
     }
