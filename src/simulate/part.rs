@@ -290,7 +290,7 @@ fn near_outline(outlines: &[Vec<[f64; 2]>], x: f64, y: f64, tol: f64) -> bool {
 }
 
 /// The reach `r` at the cells `over` (where the envelope on the cells'
-/// heights reads more than the bound left) raised by a ball's exact drops
+/// heights reads more than half the bound, scallop + tolerance, left) raised by a ball's exact drops
 /// onto the part's triangles ([`super::reach::refine`]); other tools and
 /// parts without triangles keep the cells' envelope.
 fn exact_reach(
