@@ -289,13 +289,14 @@ fn near_outline(outlines: &[Vec<[f64; 2]>], x: f64, y: f64, tol: f64) -> bool {
     })
 }
 
-/// The reach `r` at the cells `over` (where the envelope on the cells'
+/// The reach `r` (the envelope of the tips `drops` on the cells) at the
+/// cells `over` (where the envelope on the cells'
 /// heights reads more than half the bound, scallop + tolerance, left) raised by a ball's exact drops
 /// onto the part's triangles ([`super::reach::refine`]); other tools and
 /// parts without triangles keep the cells' envelope.
 fn exact_reach(
     g: &super::stock::Grid,
-    ph: &[f64],
+    drops: &[f64],
     tool: &super::tool::Tool,
     part: &PartModel,
     r: &mut [f64],
@@ -327,7 +328,7 @@ fn exact_reach(
             .fold(f64::NEG_INFINITY, f64::max);
         z.is_finite().then_some(z - rad)
     };
-    super::reach::refine(g, ph, tool, r, over, &drop_at);
+    super::reach::refine(g, drops, tool, r, over, &drop_at);
 }
 
 /// Compares the stock with the part; adds one [`Kind::Gouge`] finding per line
@@ -343,8 +344,11 @@ pub fn compare(
     let (ph, cos) = part_surface(map, part);
     // What the last tool can reach of the part (`reach`): the material
     // above it is the programs' to remove.
-    let mut reach = tool.map(|t| super::reach::envelope(&g, &ph, t));
-    if let (Some(r), Some(t)) = (reach.as_mut(), tool) {
+    let drops = tool.map(|t| super::reach::drops(&g, &ph, t));
+    let mut reach = tool
+        .zip(drops.as_ref())
+        .map(|(t, d)| super::reach::envelope_of_drops(&g, d, t));
+    if let (Some(r), Some(t), Some(d)) = (reach.as_mut(), tool, drops.as_ref()) {
         // Half the bound (scallop + tolerance): the largest figure left
         // unrefined is under it, so any near the bound is exact.
         let bound = 0.5 * (job.scallop + job.tolerance);
@@ -355,7 +359,7 @@ pub fn compare(
                     && (map.h[k] - r[k].max(ph[k])) * cos[k] > bound
             })
             .collect();
-        exact_reach(&g, &ph, t, part, r, &over);
+        exact_reach(&g, d, t, part, r, &over);
     }
     let mut max_left_reachable = Worst::default();
     let mut cells = 0;

@@ -35,12 +35,18 @@ fn offsets(grid: &Grid, tool: &Tool) -> Vec<(i64, i64, f64)> {
 /// The envelope (see the module docs) of `part` (row-major on `grid`, −∞
 /// where there is no part) for `tool`; −∞ where no placement covers a cell.
 pub fn envelope(grid: &Grid, part: &[f64], tool: &Tool) -> Vec<f64> {
+    envelope_of_drops(grid, &drops(grid, part, tool), tool)
+}
+
+/// The drop of `tool` over every cell on the heights `part` (drop(c) in the
+/// module docs: the lowest tip there without entering a cell's height).
+pub fn drops(grid: &Grid, part: &[f64], tool: &Tool) -> Vec<f64> {
     let off = offsets(grid, tool);
     let (nx, ny) = (grid.nx as i64, grid.ny as i64);
     let at = |v: &[f64], i: i64, j: i64| -> Option<f64> {
         (i >= 0 && j >= 0 && i < nx && j < ny).then(|| v[(j * nx + i) as usize])
     };
-    let drop: Vec<f64> = (0..grid.nx * grid.ny)
+    (0..grid.nx * grid.ny)
         .into_par_iter()
         .map(|k| {
             let (i, j) = ((k % grid.nx) as i64, (k / grid.nx) as i64);
@@ -48,29 +54,48 @@ pub fn envelope(grid: &Grid, part: &[f64], tool: &Tool) -> Vec<f64> {
                 .filter_map(|&(di, dj, l)| at(part, i + di, j + dj).map(|p| p - l))
                 .fold(f64::NEG_INFINITY, f64::max)
         })
-        .collect();
-    (0..grid.nx * grid.ny)
-        .into_par_iter()
-        .map(|k| {
-            let (i, j) = ((k % grid.nx) as i64, (k / grid.nx) as i64);
-            let m = off
-                .iter()
-                .filter_map(|&(di, dj, l)| at(&drop, i - di, j - dj).map(|d| d + l))
-                .filter(|v| v.is_finite())
-                .fold(f64::INFINITY, f64::min);
-            if m.is_finite() {
-                m
-            } else {
-                f64::NEG_INFINITY
-            }
-        })
         .collect()
 }
 
-/// The envelope `env` (from [`envelope`]) raised at the cells `cells` to
+/// The envelope over every cell of the tips `drop` (from [`drops`]).
+pub fn envelope_of_drops(grid: &Grid, drop: &[f64], tool: &Tool) -> Vec<f64> {
+    let off = offsets(grid, tool);
+    let (nx, ny) = (grid.nx as i64, grid.ny as i64);
+    let at = |i: i64, j: i64| -> Option<f64> {
+        (i >= 0 && j >= 0 && i < nx && j < ny).then(|| drop[(j * nx + i) as usize])
+    };
+    (0..grid.nx * grid.ny)
+        .into_par_iter()
+        .map(|k| lowest(grid, &off, k, &at))
+        .collect()
+}
+
+/// The lowest surface any placement leaves over cell `k`: min over the
+/// offsets of the tip `drop_of` the placement gives (`None`: none there)
+/// plus the lift; −∞ where no placement covers it.
+fn lowest(
+    grid: &Grid,
+    off: &[(i64, i64, f64)],
+    k: usize,
+    drop_of: &dyn Fn(i64, i64) -> Option<f64>,
+) -> f64 {
+    let (i, j) = ((k % grid.nx) as i64, (k / grid.nx) as i64);
+    let m = off
+        .iter()
+        .filter_map(|&(di, dj, l)| drop_of(i - di, j - dj).map(|d| d + l))
+        .filter(|v| v.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    if m.is_finite() {
+        m
+    } else {
+        f64::NEG_INFINITY
+    }
+}
+
+/// The envelope `env` (from [`envelope_of_drops`] of `drop`) raised at the cells `cells` to
 /// what the tool's drops onto the part itself give there: each placement
 /// within the tool's radius of such a cell takes the higher of its drop on
-/// the cells' heights and `drop_at(x, y, floor)` (the drop onto the part's
+/// the cells' heights (`drop`, from [`drops`], not recomputed) and `drop_at(x, y, floor)` (the drop onto the part's
 /// triangles at the placement's centre; it may skip what cannot lift the
 /// tool over `floor`, the drop on the cells; `None`: nothing under it). On a near-vertical wall
 /// the cells' heights let the tool sink between two cell centres (up to
@@ -80,7 +105,7 @@ pub fn envelope(grid: &Grid, part: &[f64], tool: &Tool) -> Vec<f64> {
 /// above the true drop, so neither is the result.
 pub fn refine(
     grid: &Grid,
-    part: &[f64],
+    drop: &[f64],
     tool: &Tool,
     env: &mut [f64],
     cells: &[usize],
@@ -104,25 +129,14 @@ pub fn refine(
     let drops: HashMap<(i64, i64), f64> = places
         .par_iter()
         .map(|&(i, j)| {
-            let on_cells = off
-                .iter()
-                .filter(|&&(di, dj, _)| inside(i + di, j + dj))
-                .map(|&(di, dj, l)| part[((j + dj) * nx + i + di) as usize] - l)
-                .fold(f64::NEG_INFINITY, f64::max);
+            let on_cells = drop[(j * nx + i) as usize];
             let exact = drop_at(grid.cx(i as usize), grid.cy(j as usize), on_cells);
             ((i, j), exact.map_or(on_cells, |e| e.max(on_cells)))
         })
         .collect();
+    let refined = |i: i64, j: i64| drops.get(&(i, j)).copied();
     for &k in cells {
-        let (i, j) = ((k % grid.nx) as i64, (k / grid.nx) as i64);
-        let m = off
-            .iter()
-            .filter_map(|&(di, dj, l)| drops.get(&(i - di, j - dj)).map(|d| d + l))
-            .filter(|v| v.is_finite())
-            .fold(f64::INFINITY, f64::min);
-        if m.is_finite() {
-            env[k] = env[k].max(m);
-        }
+        env[k] = env[k].max(lowest(grid, &off, k, &refined));
     }
 }
 
@@ -231,7 +245,14 @@ mod tests {
             .map(|&k| want(k % g.nx) - env[k])
             .fold(0.0, f64::max);
         assert!(sunk > 0.02, "{sunk}");
-        refine(&g, &part, &ball, &mut env, &foot, &drop_at);
+        refine(
+            &g,
+            &drops(&g, &part, &ball),
+            &ball,
+            &mut env,
+            &foot,
+            &drop_at,
+        );
         for &k in &foot {
             let i = k % g.nx;
             assert!(
