@@ -286,7 +286,7 @@ fn gcode_doc_table_matches_the_samples() {
     let doc = fs::read_to_string(root().join("docs/gcode.md")).expect("docs/gcode.md");
     let mut seen = 0;
     for (name, row_start) in [
-        ("mfs-sign", "| mfs-sign (boss"),
+        ("mfs-sign.rough", "| mfs-sign.rough (boss"),
         ("mfs-mould.rough", "| mfs-mould.rough (cavity"),
     ] {
         let row = doc
@@ -327,7 +327,8 @@ fn header_levels(name: &str) -> usize {
 }
 
 /// The README's first paragraph counts mfs-sign's z-levels: the count in
-/// the shipped program's header (`(levels: 55, ...)`) is the one it states.
+/// the shipped roughing program's header (`(levels: 3, ...)`) is the one it
+/// states.
 #[test]
 fn readme_level_count_matches_the_sample() {
     let readme = fs::read_to_string(root().join("README.md")).expect("README.md");
@@ -339,8 +340,8 @@ fn readme_level_count_matches_the_sample() {
         .expect("README.md states mfs-sign's z-levels as 'N z-levels'");
     assert_eq!(
         stated,
-        header_levels("mfs-sign"),
-        "README.md against gcode-samples/mfs-sign.nc"
+        header_levels("mfs-sign.rough"),
+        "README.md against gcode-samples/mfs-sign.rough.nc"
     );
 }
 
@@ -408,7 +409,10 @@ fn readme_jobs_table_levels_match_the_samples() {
 fn readme_jobs_table_times_are_the_headers() {
     let readme = doc_figures::read("README.md");
     let rows: [(&str, &[&str]); 11] = [
-        ("`jobs/mfs-sign.toml`", &["mfs-sign"]),
+        (
+            "`jobs/mfs-sign.toml`",
+            &["mfs-sign.rough", "mfs-sign.finish"],
+        ),
         (
             "`jobs/mfs-mould.toml`",
             &["mfs-mould.rough", "mfs-mould.finish"],

@@ -48,11 +48,38 @@ fn assert_simulation_clean(job: &Job, out: &RunOutput) {
     assert!(v.is_ok(), "{v:?}");
 }
 
+/// jobs/mfs-sign.toml as one program for one tool, as it shipped before it
+/// had a finishing ball: no `[finish]` table, no `stock_to_leave`, and the
+/// end mill's terraces at most `max_scallop = 1.0` mm wide (55 levels).
+fn one_tool_sign() -> Job {
+    let path = shipped("mfs-sign.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let (head, finish) = text.split_once("[finish]").expect("a [finish] table");
+    let rest = &finish[finish.find("\n[").expect("a table after [finish]")..];
+    let lines: Vec<String> = head
+        .lines()
+        .filter(|l| !l.starts_with("stock_to_leave"))
+        .map(|l| match l.starts_with("max_scallop") {
+            true => "max_scallop = 1.0".to_string(),
+            false => l.to_string(),
+        })
+        .collect();
+    let text = format!("{}\n{rest}", lines.join("\n"));
+    let job = parse_job(&text, "mfs-sign", path.parent().unwrap()).unwrap();
+    assert!(job.finishing().is_none());
+    job
+}
+
 #[test]
 fn mfs_sign_boss_levels_are_gouge_free_ramped_and_reported() {
-    let job = load_job(&shipped("mfs-sign.toml")).unwrap();
+    let shipped_job = load_job(&shipped("mfs-sign.toml")).unwrap();
+    assert!(
+        shipped_job.finishing().is_some(),
+        "the shipped sign is roughed, then finished"
+    );
+    let job = one_tool_sign();
     let out = run(&job);
-    assert_eq!(out.levels.len(), 55, "the shipped sign has 55 levels");
+    assert_eq!(out.levels.len(), 55, "the one-tool sign has 55 levels");
     assert_eq!(out.toolpath.sections.len(), 55);
     // z strictly decreasing, s increasing toward the foot... decreasing: a boss's
     // contours widen as it goes down.
