@@ -816,7 +816,8 @@ pub fn moves(
 }
 
 /// The entry's ramp from `top` over the first of `tips` down to the pass at
-/// `tan` (the ramp angle's tangent), then back at depth to the first tip:
+/// `tan` (the ramp angle's tangent) and the ramp feed
+/// ([`crate::toolpath::entry::ramp_feed`]), then back at depth to the first tip:
 /// along a closed loop round and round until the ramp line is below every
 /// tip, then on round to the start; along an arc to and fro, then back.
 fn ramp(tips: &[Vec3], closed: bool, top: f64, tan: f64, p: &FinishParams) -> Vec<Move> {
@@ -842,6 +843,7 @@ fn ramp(tips: &[Vec3], closed: bool, top: f64, tan: f64, p: &FinishParams) -> Ve
     };
     let zmin = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
     let first = tips[0];
+    let feed = crate::toolpath::entry::ramp_feed(p.feed, p.plunge_feed, p.ramp_angle);
     // Enough steps to descend from `top` to `zmin` at `tan` (each walk of
     // the pass runs its XY length), with one walk to spare.
     let walk: f64 = (1..=period.min(n))
@@ -854,10 +856,7 @@ fn ramp(tips: &[Vec3], closed: bool, top: f64, tan: f64, p: &FinishParams) -> Ve
         let q = tips[index(k)];
         z -= prev.dist(Vec3::new(q.x, q.y, prev.z)) * tan;
         let to = Vec3::new(q.x, q.y, q.z.max(z));
-        mv.push(Move::Linear {
-            to,
-            feed: p.plunge_feed,
-        });
+        mv.push(Move::Linear { to, feed });
         prev = to;
         k += 1;
     }
@@ -997,6 +996,39 @@ fn seg_dist(q: Vec3, a: Vec3, b: Vec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An entry's ramp onto a flat open pass runs at the cutting feed where
+    /// that descends no faster than the plunge feed (as the roughing's
+    /// entries do, `toolpath::entry::ramp_feed`): at 3° a 1000 mm/min feed
+    /// goes down at 52 mm/min, under the 200 mm/min plunge feed. Every ramp
+    /// move goes down no faster than the plunge feed, and the ramp reaches
+    /// the pass.
+    #[test]
+    fn an_entry_ramp_descends_no_faster_than_the_plunge_feed() {
+        let profile = crate::finish::testing::step_profile();
+        let p = crate::finish::testing::params(&profile);
+        let tips: Vec<Vec3> = (0..=20)
+            .map(|i| Vec3::new(0.5 * i as f64, 0.0, -1.0))
+            .collect();
+        let top = 0.7;
+        let mv = ramp(&tips, false, top, p.ramp_angle.to_radians().tan(), &p);
+        let mut at = Vec3::new(0.0, 0.0, top);
+        let mut ramped = 0;
+        for m in &mv {
+            let Move::Linear { to, feed } = *m else {
+                panic!("{m:?}")
+            };
+            let minutes = at.dist(to) / feed;
+            if to.z < at.z - 1e-12 {
+                ramped += 1;
+                assert_eq!(feed, p.feed, "{m:?}");
+                assert!((at.z - to.z) / minutes <= p.plunge_feed, "{at:?} to {m:?}");
+            }
+            at = to;
+        }
+        assert!(ramped >= 10, "{ramped} ramp moves");
+        assert!((at.z + 1.0).abs() < 1e-12 && at.x.abs() < 1e-12, "{at:?}");
+    }
 
     /// A link that climbs from the floor to the top edge of a vertical wall:
     /// between two samples 0.1 mm apart the ball's drop height rises like a

@@ -45,16 +45,22 @@ impl Entry {
         drop.max(0.0) / self.ramp_angle.to_radians().tan()
     }
 
-    /// Feed along a ramp, mm/min: the cutting feed, slowed only as far as
-    /// needed for the tool to go down no faster than the plunge feed
-    /// (F·sin(angle) ≤ plunge feed).
+    /// Feed along a ramp, mm/min ([`ramp_feed`]).
     pub fn ramp_feed(&self) -> f64 {
-        let sin = self.ramp_angle.to_radians().sin();
-        if sin > 0.0 {
-            self.feed.min(self.plunge_feed / sin)
-        } else {
-            self.feed
-        }
+        ramp_feed(self.feed, self.plunge_feed, self.ramp_angle)
+    }
+}
+
+/// Feed along a ramp at `ramp_angle` degrees, mm/min: the cutting `feed`,
+/// slowed only as far as needed for the tool to go down no faster than
+/// `plunge_feed` (F·sin(angle) ≤ plunge feed). The roughing's entries and the
+/// finisher's both ramp at it.
+pub fn ramp_feed(feed: f64, plunge_feed: f64, ramp_angle: f64) -> f64 {
+    let sin = ramp_angle.to_radians().sin();
+    if sin > 0.0 {
+        feed.min(plunge_feed / sin)
+    } else {
+        feed
     }
 }
 
