@@ -13,9 +13,17 @@ use svg::node::element::Group;
 /// for a finishing program; and the first warning, if any, in orange.
 pub(super) fn header(job: &Job, report: &RunReport, depths: &Depths, frame: &Frame) -> Group {
     let (fs, x0, top_y) = (frame.fs, frame.x0, frame.top_y);
-    let mut lines = figure_lines(job, report, depths);
+    // Each line with its colour: the finishing program's in the colour its
+    // passes are drawn in, a warning in dark orange.
+    let mut lines: Vec<(String, &str)> = figure_lines(job, report, depths)
+        .into_iter()
+        .map(|l| (l, "#000000"))
+        .collect();
+    if let Some(f) = finish_line(job, report) {
+        lines.push((f, super::FINISH_COLOUR));
+    }
     if let Some(w) = warning_line(report, frame.doc_w - 2.0 * fs, fs) {
-        lines.push(w);
+        lines.push((w, "#b34700"));
     }
     let mut head = Group::new()
         .set("font-family", FONT)
@@ -23,16 +31,18 @@ pub(super) fn header(job: &Job, report: &RunReport, depths: &Depths, frame: &Fra
         .set("class", "header");
     head = head
         .add(text(x0 + fs, top_y + 1.5 * fs, 1.25 * fs, &report.job).set("font-weight", "bold"));
-    for (k, l) in lines.iter().enumerate() {
+    for (k, (l, colour)) in lines.iter().enumerate() {
         let t = text(x0 + fs, top_y + (2.9 + 1.2 * k as f64) * fs, 0.9 * fs, l);
-        // The fourth line, if any, is a warning.
-        head = head.add(if k == 3 { t.set("fill", "#b34700") } else { t });
+        head = head.add(if *colour == "#000000" {
+            t
+        } else {
+            t.set("fill", *colour)
+        });
     }
     head
 }
 
-/// The header's lines of figures, and a line for the finishing program (its
-/// own file, not drawn here) with its figures as the report gives them.
+/// The header's lines of figures (the roughing program's, or the only one).
 fn figure_lines(job: &Job, report: &RunReport, depths: &Depths) -> Vec<String> {
     let t = &report.totals;
     let n_lv = depths.count();
@@ -47,7 +57,7 @@ fn figure_lines(job: &Job, report: &RunReport, depths: &Depths) -> Vec<String> {
             num(depths.zmin)
         )
     };
-    let mut lines = vec![
+    vec![
         format!(
             "{} · tool ⌀{} mm · {}",
             report.operation,
@@ -66,18 +76,21 @@ fn figure_lines(job: &Job, report: &RunReport, depths: &Depths) -> Vec<String> {
             t.min_clearance_mm
                 .map_or("-".into(), |c| format!("{c:.4} mm"))
         ),
-    ];
-    if let (Some(f), Some(p)) = (&job.finish, report.programs.get(1)) {
-        lines.push(format!(
-            "then {}: {} ⌀{} mm · {:.1} mm cutting · est. time {} (not drawn)",
-            p.file,
-            f.shape.header_words(),
-            num(f.diameter),
-            p.cut_length_mm,
-            format_duration(p.time_s)
-        ));
-    }
-    lines
+    ]
+}
+
+/// The line for the finishing program (its own file, its passes drawn over
+/// the cut) with its figures as the report gives them.
+fn finish_line(job: &Job, report: &RunReport) -> Option<String> {
+    let (f, p) = (job.finish.as_ref()?, report.programs.get(1)?);
+    Some(format!(
+        "then {}: {} ⌀{} mm · {:.1} mm cutting · est. time {}",
+        p.file,
+        f.shape.header_words(),
+        num(f.diameter),
+        p.cut_length_mm,
+        format_duration(p.time_s)
+    ))
 }
 
 /// The first warning, with how many there are, cut with `…` to fit `width`

@@ -48,6 +48,7 @@ pub(super) fn footer(
     d: f64,
     levels: &[f64],
     shown: &[f64],
+    finish: bool,
 ) -> (Group, f64) {
     let (fs, x0) = (frame.fs, frame.x0);
     let foot_y = -frame.lo.y + 0.8 * fs; // top of the footer
@@ -74,7 +75,7 @@ pub(super) fn footer(
     let mut x = bx + bar + 5.0 * fs;
     let mut row_y = by;
     let right = x0 + frame.doc_w - fs;
-    for (sw, label) in entries(frame, depths, d, levels, shown) {
+    for (sw, label) in entries(frame, depths, d, levels, shown, finish) {
         // The swatch is 1.6 fs long (the colour bar 6 fs), its label follows.
         let sw_w = if matches!(sw, Swatch::Bar) { 6.0 } else { 1.6 } * fs;
         let ew = sw_w + 0.9 * fs + 0.5 * fs * label.chars().count() as f64;
@@ -95,13 +96,15 @@ pub(super) fn footer(
 }
 
 /// The legend's entries: the levels (each, or the colour bar when there are
-/// more than [`BAND_LEVELS`]), rapids, the start, and the equipotentials.
+/// more than [`BAND_LEVELS`]), the finishing passes (when `finish`), rapids,
+/// the start, and the equipotentials.
 fn entries(
     frame: &Frame,
     depths: &Depths,
     d: f64,
     levels: &[f64],
     shown: &[f64],
+    finish: bool,
 ) -> Vec<(Swatch, String)> {
     let (fs, lw) = (frame.fs, frame.lw);
     let n_lv = depths.count();
@@ -123,6 +126,12 @@ fn entries(
                 format!("z {}", num(l.z)),
             ));
         }
+    }
+    if finish {
+        entries.push((
+            Swatch::Line(super::FINISH_COLOUR.into(), 0.5 * lw, false),
+            "finish".into(),
+        ));
     }
     entries.push((Swatch::Line("#6b6b6b".into(), lw, true), "rapid".into()));
     entries.push((Swatch::Dot("#00a650".into()), "start, tool ⌀".into()));

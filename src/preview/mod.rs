@@ -13,7 +13,8 @@
 //! ([`svg_marker`]), which is how pfcam recognises its own files.
 //!
 //! One file a part of the drawing: `frame` (the page and its sizes),
-//! `equipotentials`, `cut` (the levels' bands), `arrows`, `travel` (rapids and
+//! `equipotentials`, `cut` (the levels' bands), `finish` (the finishing
+//! program's passes), `arrows`, `travel` (rapids and
 //! the start), `stock`, `header`, `legend`; `polyline` turns the tool path into
 //! XY tracks, `colours` and `svgfmt` are the shared styles and formatting.
 
@@ -22,6 +23,7 @@ pub mod colormap;
 mod colours;
 mod cut;
 mod equipotentials;
+mod finish;
 mod frame;
 mod header;
 mod legend;
@@ -35,6 +37,7 @@ mod travel;
 pub use arrows::ARROW_TRACKS;
 pub use colours::depth_colour;
 pub use cut::BAND_LEVELS;
+pub use finish::FINISH_COLOUR;
 pub use frame::drawing_area;
 pub use marker::{is_pfcam_svg, svg_marker, SVG_MARKER_PREFIX};
 pub use section::section_svg;
@@ -142,8 +145,9 @@ pub enum PreviewError {
 /// The preview of a finished run as an SVG document (first line: [`svg_marker`]).
 ///
 /// Drawn bottom to top: the field image (optional), the equipotentials, the
-/// part, rapids, the cut, direction arrows, the start, the stock and work
-/// zero; then the header above and the legend below.
+/// part, rapids, the cut, the finishing program's passes (a job with
+/// `[finish]`), direction arrows, the start, the stock and work zero; then
+/// the header above and the legend below.
 pub fn preview_svg(
     job: &Job,
     out: &RunOutput,
@@ -189,6 +193,10 @@ pub fn preview_svg(
     let depths = cut::Depths::new(run_levels(out));
     let (cut, deepest) = cut::cut_group(&depths, frame.lw, d, frame.tol_draw);
     body = body.add(cut);
+    let finish = out.finish.as_ref();
+    if let Some(passes) = finish.and_then(|f| finish::finish_passes(&f.toolpath, &frame)) {
+        body = body.add(passes);
+    }
     if let Some(arrows) = arrows::direction_arrows(deepest, &frame) {
         body = body.add(arrows);
     }
@@ -198,7 +206,7 @@ pub fn preview_svg(
     // On top: the stock's edge and the work zero, what the machine is set up by.
     body = body.add(stock::stock_and_zero(job, out, &frame));
     let head = header::header(job, report, &depths, &frame);
-    let (foot, bottom) = legend::footer(&frame, &depths, d, &levels, &shown);
+    let (foot, bottom) = legend::footer(&frame, &depths, d, &levels, &shown, finish.is_some());
     Ok(document(job, &frame, bottom, [body, head, foot]))
 }
 

@@ -671,10 +671,12 @@ fn preview_header_and_report_count_the_same_levels() {
     assert!(svg.contains(&format!("z {range} mm")), "{name}: z {range}");
 }
 
-/// A job with a finishing tool: the preview draws the roughing program and
-/// names the finishing one in its header with the report's figures.
+/// A job with a finishing tool: the preview draws the roughing program,
+/// names the finishing one in its header with the report's figures, and
+/// draws its passes: every feed move's end of the finishing program lies on
+/// the drawn lines (within the drawing's thinning and rounding).
 #[test]
-fn the_preview_names_the_finishing_program() {
+fn the_preview_names_and_draws_the_finishing_program() {
     let text = "[job]\nname = \"fi\"\n[shape]\ntext = \"I\"\nheight = 20.0\n[tool]\ndiameter = 3.175\nstepdown = 1.5\n[stock]\nmargin = 4.0\n[operation]\nkind = \"boss\"\ndepth = 2.0\nmax_scallop = 1.0\n[profile]\nkind = \"sigmoid\"\ns1 = 0.97\ns2 = 0.85\n[finish]\ndiameter = 2.0\nfeed = 1200.0\n";
     let job = pfcam::job::parse_job(text, "fi", Path::new(".")).expect("job");
     let out = pipeline::run(&job, &mut |_| {}).expect("runs");
@@ -683,12 +685,34 @@ fn the_preview_names_the_finishing_program() {
     let svg = preview_svg(&job, &out, &report, &PreviewOptions::default()).expect("preview");
     let p = &report.programs[1];
     let want = format!(
-        "then fi.finish.nc: ball end mill ⌀2 mm · {:.1} mm cutting · est. time {} (not drawn)",
+        "then fi.finish.nc: ball end mill ⌀2 mm · {:.1} mm cutting · est. time {}",
         p.cut_length_mm,
         pfcam::gcode::format_duration(p.time_s)
     );
     assert!(svg.contains(&want), "no {want:?} in the header");
-    // Without [finish], no such line.
+    let drawn = finish_lines(&svg);
+    let finish = &out.finish.as_ref().expect("a finishing program").toolpath;
+    let mut ends = 0;
+    for m in finish.moves() {
+        if matches!(m, Move::Rapid { .. }) {
+            continue;
+        }
+        let p = m.to();
+        let d = drawn
+            .iter()
+            .flat_map(|pl| pl.windows(2))
+            .map(|w| {
+                pfcam::geometry::seg_seg_dist(Vec2::new(p.x, p.y), Vec2::new(p.x, p.y), w[0], w[1])
+            })
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            d <= 0.02,
+            "the finishing move to {p:?} is {d} mm off the drawn passes"
+        );
+        ends += 1;
+    }
+    assert!(ends > 100, "{ends} finishing moves");
+    // Without [finish], no such line and no passes.
     let plain = pfcam::job::parse_job(
         &text.replace("[finish]\ndiameter = 2.0\nfeed = 1200.0\n", ""),
         "fi",
@@ -698,5 +722,27 @@ fn the_preview_names_the_finishing_program() {
     let out = pipeline::run(&plain, &mut |_| {}).expect("runs");
     let report = RunReport::new(&plain, &out);
     let svg = preview_svg(&plain, &out, &report, &PreviewOptions::default()).expect("preview");
-    assert!(!svg.contains("(not drawn)"));
+    assert!(!svg.contains("then fi.finish.nc") && finish_lines(&svg).is_empty());
+}
+
+/// The polylines of the preview's finishing passes (`class="finish"`), in
+/// part coordinates.
+fn finish_lines(svg: &str) -> Vec<Vec<Vec2>> {
+    let Some(tag) = svg.split("<path").find(|t| t.contains("class=\"finish\"")) else {
+        return Vec::new();
+    };
+    let d = tag
+        .split(" d=\"")
+        .nth(1)
+        .and_then(|r| r.split('"').next())
+        .expect("d");
+    let mut lines: Vec<Vec<Vec2>> = Vec::new();
+    for pl in d.split('M').skip(1) {
+        let point = |xy: &str| {
+            let v: Vec<f64> = xy.split_whitespace().map(|n| n.parse().unwrap()).collect();
+            Vec2::new(v[0], -v[1])
+        };
+        lines.push(pl.split('L').map(point).collect());
+    }
+    lines
 }
