@@ -255,3 +255,102 @@ fn walk(
         high_left: forward == (a == start),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use Edge::{H, V};
+
+    /// A lattice of `n` × `n` points, row-major values.
+    fn lattice(n: usize, values: &[f64], s: f64, gaps: Gaps) -> Level {
+        level(n - 1, n - 1, |i, j| values[j * n + i], s, gaps)
+    }
+
+    /// 5 × 5 points, 0 except 1 at (2, 2), and `right` at (3, 2).
+    fn bump(right: f64) -> Vec<f64> {
+        let mut v = vec![0.0; 25];
+        v[2 * 5 + 2] = 1.0;
+        v[2 * 5 + 3] = right;
+        v
+    }
+
+    #[test]
+    fn a_peak_gives_one_ring_clockwise_then_turned_high_left() {
+        let l = lattice(5, &bump(0.0), 0.5, Gaps::Compare);
+        // In the order the scan meets them: cell (1, 1)'s right side and top,
+        // then (2, 1)'s top, then (1, 2)'s right side.
+        assert_eq!(l.edges, [V(2, 1), H(1, 2), H(2, 2), V(2, 2)]);
+        assert_eq!(l.curves.len(), 1);
+        assert!(l.curves[0].closed);
+        // From the first cell's right side toward its top, around (2, 2).
+        assert_eq!(l.curves[0].crossings, [0, 1, 3, 2]);
+        // Below, left, above, right of the peak: clockwise, the high side on the
+        // right; turned from the same first edge, counter-clockwise.
+        assert!(!l.curves[0].high_left);
+        assert_eq!(l.rings(), [[V(2, 1), H(2, 2), V(2, 2), H(1, 2)]]);
+        // A pit: the low side is inside, and clockwise already has it on the right.
+        let pit: Vec<f64> = bump(0.0).into_iter().map(|x| 1.0 - x).collect();
+        let l = lattice(5, &pit, 0.5, Gaps::Compare);
+        assert!(l.curves[0].high_left);
+        assert_eq!(l.rings(), [[V(2, 1), H(1, 2), V(2, 2), H(2, 2)]]);
+    }
+
+    #[test]
+    fn gaps_skip_opens_the_curve_and_compare_reads_nan_as_below() {
+        // NaN right of the peak: skipped, the four cells around it leave the
+        // curve open from the crossing below the peak to the one above.
+        let l = lattice(5, &bump(f64::NAN), 0.5, Gaps::Skip);
+        assert_eq!(l.edges, [V(2, 1), H(1, 2), V(2, 2)]);
+        assert_eq!(l.curves.len(), 1);
+        assert!(!l.curves[0].closed);
+        assert_eq!(l.curves[0].crossings, [0, 1, 2]);
+        assert!(l.rings().is_empty());
+        // Compared, NaN is below 0.5 like the zeros: the full ring.
+        let l = lattice(5, &bump(f64::NAN), 0.5, Gaps::Compare);
+        assert_eq!(l, lattice(5, &bump(0.0), 0.5, Gaps::Compare));
+    }
+
+    #[test]
+    fn gaps_compare_closes_a_plateau_on_a_border_of_minus_infinity() {
+        // 3 × 3 points at 1 inside a border of −∞.
+        let mut v = vec![f64::NEG_INFINITY; 25];
+        for j in 1..4 {
+            for i in 1..4 {
+                v[j * 5 + i] = 1.0;
+            }
+        }
+        // Skipped, every cell that crosses touches the border: nothing.
+        let l = lattice(5, &v, 0.5, Gaps::Skip);
+        assert!(l.edges.is_empty() && l.curves.is_empty());
+        // Compared: one ring through the 12 edges from the plateau to the border,
+        // counter-clockwise once turned (the plateau on the left).
+        let rings = lattice(5, &v, 0.5, Gaps::Compare).rings();
+        assert_eq!(rings.len(), 1);
+        assert_eq!(rings[0].len(), 12);
+        assert_eq!(rings[0][..4], [V(1, 0), V(2, 0), V(3, 0), H(3, 1)]);
+    }
+
+    #[test]
+    fn a_saddle_follows_the_mean_of_its_corners() {
+        // Corners 0 and 2 at 1, 1 and 3 at 0: the mean is 0.5.
+        let v = [1.0, 0.0, 0.0, 1.0];
+        // At 0.5 the centre is above: 0 and 2 connect, 1 and 3 are cut off.
+        let l = lattice(2, &v, 0.5, Gaps::Compare);
+        assert_eq!(l.edges, [H(0, 0), V(1, 0), H(0, 1), V(0, 0)]);
+        let pieces: Vec<_> = l
+            .curves
+            .iter()
+            .map(|c| (c.crossings.clone(), c.closed))
+            .collect();
+        assert_eq!(pieces, [(vec![0, 1], false), (vec![2, 3], false)]);
+        // At 0.6 it is below: 0 and 2 are cut off.
+        let l = lattice(2, &v, 0.6, Gaps::Compare);
+        assert_eq!(l.edges, [V(0, 0), H(0, 0), V(1, 0), H(0, 1)]);
+        let pieces: Vec<_> = l
+            .curves
+            .iter()
+            .map(|c| (c.crossings.clone(), c.closed))
+            .collect();
+        assert_eq!(pieces, [(vec![0, 1], false), (vec![2, 3], false)]);
+    }
+}
