@@ -332,25 +332,22 @@ mod tests {
 
     #[test]
     fn a_saddle_follows_the_mean_of_its_corners() {
-        // Corners 0 and 2 at 1, 1 and 3 at 0: the mean is 0.5.
+        // Corners 0 and 2 at 1, 1 and 3 at 0: the mean is 0.5. At 0.5 the centre
+        // is above: 0 and 2 connect, 1 and 3 are cut off. At 0.6 it is below: 0
+        // and 2 are cut off. Either way two open pieces, one per cut corner.
         let v = [1.0, 0.0, 0.0, 1.0];
-        // At 0.5 the centre is above: 0 and 2 connect, 1 and 3 are cut off.
-        let l = lattice(2, &v, 0.5, Gaps::Compare);
-        assert_eq!(l.edges, [H(0, 0), V(1, 0), H(0, 1), V(0, 0)]);
-        let pieces: Vec<_> = l
-            .curves
-            .iter()
-            .map(|c| (c.crossings.clone(), c.closed))
-            .collect();
-        assert_eq!(pieces, [(vec![0, 1], false), (vec![2, 3], false)]);
-        // At 0.6 it is below: 0 and 2 are cut off.
-        let l = lattice(2, &v, 0.6, Gaps::Compare);
-        assert_eq!(l.edges, [V(0, 0), H(0, 0), V(1, 0), H(0, 1)]);
-        let pieces: Vec<_> = l
-            .curves
-            .iter()
-            .map(|c| (c.crossings.clone(), c.closed))
-            .collect();
-        assert_eq!(pieces, [(vec![0, 1], false), (vec![2, 3], false)]);
+        for (s, edges) in [
+            (0.5, [H(0, 0), V(1, 0), H(0, 1), V(0, 0)]),
+            (0.6, [V(0, 0), H(0, 0), V(1, 0), H(0, 1)]),
+        ] {
+            let l = lattice(2, &v, s, Gaps::Compare);
+            assert_eq!(l.edges, edges, "s = {s}");
+            let pieces: Vec<_> = l
+                .curves
+                .iter()
+                .map(|c| (&c.crossings[..], c.closed))
+                .collect();
+            assert_eq!(pieces, [(&[0, 1][..], false), (&[2, 3][..], false)]);
+        }
     }
 }
