@@ -8,7 +8,9 @@
 //!    level s < 1 is still bracketed between a masked point and a free one and the
 //!    curve closes around the part) or NaN (cells touching them are skipped and the
 //!    curve ends there, open). A cell's saddle (two opposite corners above s, two
-//!    below) is resolved by the mean of its four corners.
+//!    below) is resolved by the mean of its four corners. (The marching itself
+//!    is `field::march`'s, shared with `field::isolines`; here cells with a
+//!    non-finite corner are skipped.)
 //! 2. **Refinement**: each vertex, first placed by linear interpolation along a
 //!    cell edge, is moved onto the level by Newton steps along the gradient,
 //!    P ← P − (u(P) − s) ∇u / |∇u|², at most [`NEWTON_STEPS`] of them, each no
@@ -34,10 +36,10 @@
 //! that 124-charge field samples in about 0.15 s and four levels extract in
 //! 0.05 s on two cores.
 
+use super::march::{self, Edge, Gaps, Level};
 use super::Field;
 use crate::geometry::{polygon_winding_number, Vec2};
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 /// Newton steps per vertex. From the linear interpolant on a cell of a smooth
 /// field the error is already O(h²); two steps bring it to rounding, the rest are
@@ -110,14 +112,6 @@ pub enum ContourError {
     /// Bad rectangle or cell size.
     #[error("equipotential grid: {0}")]
     Grid(String),
-}
-
-/// Edge of the grid, by its lower/left grid point: horizontal (i, j)–(i+1, j) or
-/// vertical (i, j)–(i, j+1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum Edge {
-    H(usize, usize),
-    V(usize, usize),
 }
 
 impl FieldGrid {
@@ -217,15 +211,17 @@ impl FieldGrid {
         s: f64,
         masked: &(dyn Fn(Vec2) -> bool + Sync),
     ) -> Vec<Equipotential> {
-        let (edges, segs) = self.march(s);
+        let Level { edges, curves } =
+            march::level(self.nx, self.ny, |i, j| self.value(i, j), s, Gaps::Skip);
         // Refine every crossing once (each edge is shared by two cells). A linear
         // position inside the mask (on an edge from a masked grid point) starts
         // from the edge's free end instead: u is not to be evaluated in there.
         let points: Vec<Vec2> = edges
             .par_iter()
-            .map(|&(e, p)| {
+            .map(|&e| {
+                let p = self.linear(e, s);
                 let start = if masked(p) {
-                    let (a, b) = self.edge_ends(e);
+                    let [a, b] = e.ends();
                     if self.is_masked(a.0, a.1) {
                         self.point(b.0, b.1)
                     } else {
@@ -237,100 +233,24 @@ impl FieldGrid {
                 refine(field, start, s, self.cell, masked)
             })
             .collect();
-        chain(&segs, edges.len())
+        curves
             .into_iter()
-            .filter(|(idx, _)| idx.len() >= 2)
-            .map(|(idx, closed)| Equipotential {
+            .filter(|c| c.crossings.len() >= 2)
+            .map(|c| Equipotential {
                 s,
-                points: idx.into_iter().map(|k| points[k]).collect(),
-                closed,
+                points: c.crossings.into_iter().map(|k| points[k]).collect(),
+                closed: c.closed,
             })
             .collect()
     }
 
-    /// The grid points at the two ends of an edge.
-    fn edge_ends(&self, e: Edge) -> ((usize, usize), (usize, usize)) {
-        match e {
-            Edge::H(i, j) => ((i, j), (i + 1, j)),
-            Edge::V(i, j) => ((i, j), (i, j + 1)),
-        }
-    }
-
-    /// The crossings of level `s` on cell edges (with their linear positions) and
-    /// the segments joining them, as pairs of crossing indices.
-    #[allow(clippy::type_complexity)]
-    fn march(&self, s: f64) -> (Vec<(Edge, Vec2)>, Vec<(usize, usize)>) {
-        let mut ids: HashMap<Edge, usize> = HashMap::new();
-        let mut edges: Vec<(Edge, Vec2)> = Vec::new();
-        let mut segs = Vec::new();
-        let mut crossing = |e: Edge, edges: &mut Vec<(Edge, Vec2)>| -> usize {
-            *ids.entry(e).or_insert_with(|| {
-                let (a, b) = self.edge_ends(e);
-                let (va, vb) = (self.value(a.0, a.1), self.value(b.0, b.1));
-                let t = ((s - va) / (vb - va)).clamp(0.0, 1.0);
-                let p = self.point(a.0, a.1).lerp(self.point(b.0, b.1), t);
-                edges.push((e, p));
-                edges.len() - 1
-            })
-        };
-        for j in 0..self.ny {
-            for i in 0..self.nx {
-                // Corners counter-clockwise from the lower left: 0 (i,j), 1 (i+1,j),
-                // 2 (i+1,j+1), 3 (i,j+1).
-                let v = [
-                    self.value(i, j),
-                    self.value(i + 1, j),
-                    self.value(i + 1, j + 1),
-                    self.value(i, j + 1),
-                ];
-                if v.iter().any(|x| !x.is_finite()) {
-                    continue;
-                }
-                let above: [bool; 4] = [v[0] >= s, v[1] >= s, v[2] >= s, v[3] >= s];
-                let case = above
-                    .iter()
-                    .enumerate()
-                    .fold(0u8, |c, (k, &a)| c | (u8::from(a) << k));
-                if case == 0 || case == 15 {
-                    continue;
-                }
-                // Cell sides: 0 bottom, 1 right, 2 top, 3 left.
-                let side = [
-                    Edge::H(i, j),
-                    Edge::V(i + 1, j),
-                    Edge::H(i, j + 1),
-                    Edge::V(i, j),
-                ];
-                let pairs: &[(usize, usize)] = match case {
-                    1 | 14 => &[(3, 0)],
-                    2 | 13 => &[(0, 1)],
-                    3 | 12 => &[(3, 1)],
-                    4 | 11 => &[(1, 2)],
-                    6 | 9 => &[(0, 2)],
-                    7 | 8 => &[(3, 2)],
-                    5 | 10 => {
-                        // Saddle: corners 0 and 2 on one side, 1 and 3 on the other.
-                        let centre_above = 0.25 * (v[0] + v[1] + v[2] + v[3]) >= s;
-                        // Case 5: 0 and 2 above. If the centre is above too, 0 and 2
-                        // connect through the middle: cut off corners 1 and 3.
-                        if (case == 5) == centre_above {
-                            &[(0, 1), (2, 3)]
-                        } else {
-                            &[(3, 0), (1, 2)]
-                        }
-                    }
-                    _ => &[],
-                };
-                for &(a, b) in pairs {
-                    let ka = crossing(side[a], &mut edges);
-                    let kb = crossing(side[b], &mut edges);
-                    if ka != kb {
-                        segs.push((ka, kb));
-                    }
-                }
-            }
-        }
-        (edges, segs)
+    /// Where the linear interpolant of the edge's two values reaches s: the
+    /// end a + t (b − a), t = (s − u(a)) / (u(b) − u(a)) clamped to [0, 1].
+    fn linear(&self, e: Edge, s: f64) -> Vec2 {
+        let [a, b] = e.ends();
+        let (va, vb) = (self.value(a.0, a.1), self.value(b.0, b.1));
+        let t = ((s - va) / (vb - va)).clamp(0.0, 1.0);
+        self.point(a.0, a.1).lerp(self.point(b.0, b.1), t)
     }
 }
 
@@ -370,58 +290,6 @@ fn refine(
         g = gq;
     }
     p
-}
-
-/// Join segments (pairs of crossing indices) into polylines. Each crossing is
-/// shared by at most two segments (the two cells on either side of its edge).
-fn chain(segs: &[(usize, usize)], n_points: usize) -> Vec<(Vec<usize>, bool)> {
-    let mut adj: Vec<[usize; 2]> = vec![[usize::MAX; 2]; n_points];
-    let link = |adj: &mut Vec<[usize; 2]>, a: usize, k: usize| {
-        if adj[a][0] == usize::MAX {
-            adj[a][0] = k;
-        } else {
-            adj[a][1] = k;
-        }
-    };
-    for (k, &(a, b)) in segs.iter().enumerate() {
-        link(&mut adj, a, k);
-        link(&mut adj, b, k);
-    }
-    let mut used = vec![false; segs.len()];
-    let other = |k: usize, a: usize| if segs[k].0 == a { segs[k].1 } else { segs[k].0 };
-    let walk = |start: usize, first_seg: usize, used: &mut Vec<bool>| -> Vec<usize> {
-        let mut out = vec![start];
-        let (mut at, mut k) = (start, first_seg);
-        loop {
-            used[k] = true;
-            at = other(k, at);
-            out.push(at);
-            let next = adj[at].into_iter().find(|&n| n != usize::MAX && !used[n]);
-            match next {
-                Some(n) => k = n,
-                None => break,
-            }
-        }
-        out
-    };
-    let mut curves = Vec::new();
-    // Open curves first: start at every end (a crossing with one segment).
-    for (a, nb) in adj.iter().enumerate() {
-        if nb[0] != usize::MAX && nb[1] == usize::MAX && !used[nb[0]] {
-            curves.push((walk(a, nb[0], &mut used), false));
-        }
-    }
-    // What is left are closed loops.
-    for k in 0..segs.len() {
-        if !used[k] {
-            let mut pts = walk(segs[k].0, k, &mut used);
-            if pts.len() > 1 && pts.first() == pts.last() {
-                pts.pop();
-            }
-            curves.push((pts, true));
-        }
-    }
-    curves
 }
 
 /// Γ(s) of `field` in the rectangle of `spec`, with grid points for which

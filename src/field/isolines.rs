@@ -1,7 +1,8 @@
 //! Equipotential curves Γ(s) = {u = s} (the paper's (2.2)) as closed polygons.
 //!
-//! u is sampled once on a grid, then each level is extracted by oriented marching
-//! squares and every vertex is placed on its grid edge by regula falsi on u, so it
+//! u is sampled once on a grid, then each level is extracted by marching squares
+//! (`field::march`, shared with `field::contour`, its rings turned to have u ≥ s
+//! on their left; non-finite values compared as they are) and every vertex is placed on its grid edge by regula falsi on u, so it
 //! lies on Γ(s) to 1e-9 of the field's value. Inside the material the MFS sum is
 //! meaningless (the singularities live there), so grid points in the material
 //! count as u = 1, the value on the generating boundary.
@@ -10,10 +11,10 @@
 //! they run counter-clockwise, around a hole (a counter's sink) clockwise, the same
 //! "material on the left" convention as the glyph contours.
 
+use super::march::{self, Edge, Gaps};
 use super::Field;
 use crate::geometry::Vec2;
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 /// Values of u on a regular grid, with the material marked.
 #[derive(Clone, Debug)]
@@ -115,103 +116,12 @@ impl Grid {
     }
 }
 
-/// The loops of grid edges crossed by {u = s}, chained in order.
+/// The rings of {u = s} on the grid (its points are the lattice's, values only),
+/// as chains of crossed edges with u ≥ s on their left.
 fn trace_loops(grid: &Grid, s: f64) -> Vec<Vec<Edge>> {
     let nx = grid.nx;
-    let high = |i: usize, j: usize| grid.values[j * nx + i] >= s;
-    // Segments, each from one edge crossing to another, high side on the left.
-    let mut next: HashMap<Edge, Edge> = HashMap::new();
-    for j in 0..grid.ny - 1 {
-        for i in 0..nx - 1 {
-            // Corners counter-clockwise: (i,j), (i+1,j), (i+1,j+1), (i,j+1).
-            let c = [
-                high(i, j),
-                high(i + 1, j),
-                high(i + 1, j + 1),
-                high(i, j + 1),
-            ];
-            if c.iter().all(|&b| b) || c.iter().all(|&b| !b) {
-                continue;
-            }
-            // Cell edges counter-clockwise from corner k to corner k+1.
-            let edges = [
-                Edge::H(i, j),
-                Edge::V(i + 1, j),
-                Edge::H(i, j + 1),
-                Edge::V(i, j),
-            ];
-            let mut a_list = Vec::new(); // low → high along the boundary
-            let mut b_list = Vec::new(); // high → low
-            for k in 0..4 {
-                let (p, q) = (c[k], c[(k + 1) % 4]);
-                if !p && q {
-                    a_list.push((k, edges[k]));
-                } else if p && !q {
-                    b_list.push((k, edges[k]));
-                }
-            }
-            if a_list.len() == 1 {
-                next.insert(b_list[0].1, a_list[0].1);
-            } else {
-                // Saddle: decide by the value at the centre.
-                let centre = 0.25
-                    * (grid.values[j * nx + i]
-                        + grid.values[j * nx + i + 1]
-                        + grid.values[(j + 1) * nx + i + 1]
-                        + grid.values[(j + 1) * nx + i]);
-                // Order crossings along the boundary: A1, B1, A2, B2 starting from A1.
-                let (a1, a2) = (a_list[0], a_list[1]);
-                let b_after = |a: (usize, Edge)| {
-                    *b_list
-                        .iter()
-                        .min_by_key(|b| (b.0 + 4 - a.0) % 4)
-                        .unwrap_or(&b_list[0])
-                };
-                let (b1, b2) = (b_after(a1), b_after(a2));
-                if centre >= s {
-                    // High connected through the centre: cut off the low corners.
-                    next.insert(b1.1, a2.1);
-                    next.insert(b2.1, a1.1);
-                } else {
-                    next.insert(b1.1, a1.1);
-                    next.insert(b2.1, a2.1);
-                }
-            }
-        }
-    }
-    // Chain the segments into loops.
-    let mut loops_edges: Vec<Vec<Edge>> = Vec::new();
-    let mut keys: Vec<Edge> = next.keys().copied().collect();
-    keys.sort_by_key(|e| match *e {
-        Edge::H(i, j) => (j, i, 0),
-        Edge::V(i, j) => (j, i, 1),
-    });
-    let mut used: HashMap<Edge, bool> = HashMap::new();
-    for start in keys {
-        if used.contains_key(&start) {
-            continue;
-        }
-        let mut lp = vec![start];
-        used.insert(start, true);
-        let mut e = start;
-        let mut closed = false;
-        while let Some(&n) = next.get(&e) {
-            if n == start {
-                closed = true;
-                break;
-            }
-            if used.contains_key(&n) {
-                break;
-            }
-            used.insert(n, true);
-            lp.push(n);
-            e = n;
-        }
-        if closed && lp.len() >= 3 {
-            loops_edges.push(lp);
-        }
-    }
-    loops_edges
+    let value = |i: usize, j: usize| grid.values[j * nx + i];
+    march::level(nx - 1, grid.ny - 1, value, s, Gaps::Compare).rings()
 }
 
 /// The loops of {u = s} on `grid` (values only: `origin`, `h` and `inside`
@@ -221,22 +131,8 @@ fn trace_loops(grid: &Grid, s: f64) -> Vec<Vec<Edge>> {
 pub fn edge_loops(grid: &Grid, s: f64) -> Vec<Vec<[(usize, usize); 2]>> {
     trace_loops(grid, s)
         .into_iter()
-        .map(|lp| {
-            lp.into_iter()
-                .map(|e| match e {
-                    Edge::H(i, j) => [(i, j), (i + 1, j)],
-                    Edge::V(i, j) => [(i, j), (i, j + 1)],
-                })
-                .collect()
-        })
+        .map(|lp| lp.into_iter().map(Edge::ends).collect())
         .collect()
-}
-
-/// An edge of the grid: horizontal (i, j)–(i+1, j) or vertical (i, j)–(i, j+1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum Edge {
-    H(usize, usize),
-    V(usize, usize),
 }
 
 /// The closed curves {u = s} on the grid, material on their left. Vertices are
@@ -269,10 +165,7 @@ pub fn isolines_in(
         .map(|lp| {
             lp.iter()
                 .map(|e| {
-                    let (a, b) = match *e {
-                        Edge::H(i, j) => ((i, j), (i + 1, j)),
-                        Edge::V(i, j) => ((i, j), (i, j + 1)),
-                    };
+                    let [a, b] = e.ends();
                     let (pa, pb) = (grid.point(a.0, a.1), grid.point(b.0, b.1));
                     let (ia, ib) = (a.1 * nx + a.0, b.1 * nx + b.0);
                     let (fa, fb) = (grid.values[ia] - s, grid.values[ib] - s);
@@ -356,10 +249,7 @@ pub fn isolines_linear(grid: &Grid, s: f64) -> Vec<Vec<Vec2>> {
 }
 
 fn edge_ends(grid: &Grid, e: Edge, s: f64) -> ((Vec2, f64), (Vec2, f64)) {
-    let (a, b) = match e {
-        Edge::H(i, j) => ((i, j), (i + 1, j)),
-        Edge::V(i, j) => ((i, j), (i, j + 1)),
-    };
+    let [a, b] = e.ends();
     let nx = grid.nx;
     (
         (grid.point(a.0, a.1), grid.values[a.1 * nx + a.0] - s),
