@@ -934,31 +934,12 @@ type Under<'a> = dyn Fn(Vec3) -> bool + Sync + 'a;
 /// wall measured vertically (the README sign's power wall: 0.0013 mm in Y,
 /// a 0.021 mm gouge).
 fn douglas_peucker(pts: &[Vec3], eps: f64, under: &Under<'_>) -> Vec<Vec3> {
-    let n = pts.len();
-    let mut keep = vec![false; n];
-    keep[0] = true;
-    keep[n - 1] = true;
-    let mut stack = vec![(0, n - 1)];
-    while let Some((a, b)) = stack.pop() {
-        let (pa, pb) = (pts[a], pts[b]);
-        let mut worst = (0.0, 0);
-        for (k, q) in pts.iter().enumerate().take(b).skip(a + 1) {
-            let d = seg_dist(*q, pa, pb);
-            if d > worst.0 {
-                worst = (d, k);
-            }
-        }
-        let split = if worst.0 > eps {
-            Some(worst.1)
-        } else {
-            (a + 1..b).find(|&k| under(on_chord(pts[k], pa, pb)))
-        };
-        if let Some(k) = split {
-            keep[k] = true;
-            stack.push((a, k));
-            stack.push((k, b));
-        }
-    }
+    let keep = crate::geometry::thin::keep_mask(
+        pts.len(),
+        eps,
+        |k, a, b| seg_dist(pts[k], pts[a], pts[b]),
+        |a, b| (a + 1..b).find(|&k| under(on_chord(pts[k], pts[a], pts[b]))),
+    );
     pts.iter()
         .zip(keep)
         .filter(|(_, k)| *k)

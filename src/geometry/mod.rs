@@ -19,6 +19,7 @@ pub mod shaping;
 pub mod svgfile;
 pub mod svgpath;
 pub mod text;
+pub(crate) mod thin;
 mod vec2;
 
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};

@@ -5,6 +5,7 @@
 use super::frame::Frame;
 use super::polyline::level_polylines;
 use super::svgfmt::{num, path_data};
+use crate::geometry::thin::keep_mask;
 use crate::geometry::{seg_seg_dist, Vec2};
 use crate::toolpath::{Move, Toolpath};
 use svg::node::element::Path;
@@ -47,23 +48,12 @@ pub(super) fn finish_passes(tp: &Toolpath, frame: &Frame) -> Option<Path> {
 /// finishing passes climb and fall along the walls, so seen from above they
 /// are dense where the drawing needs few points.
 fn thin(pl: &[Vec2], tol: f64) -> Vec<Vec2> {
-    if pl.len() < 3 {
-        return pl.to_vec();
-    }
-    let mut keep = vec![false; pl.len()];
-    keep[0] = true;
-    keep[pl.len() - 1] = true;
-    let mut stack = vec![(0, pl.len() - 1)];
-    while let Some((i, j)) = stack.pop() {
-        let (far, d) = (i + 1..j)
-            .map(|k| (k, seg_seg_dist(pl[k], pl[k], pl[i], pl[j])))
-            .fold((i, 0.0), |a, b| if b.1 > a.1 { b } else { a });
-        if d > tol {
-            keep[far] = true;
-            stack.push((i, far));
-            stack.push((far, j));
-        }
-    }
+    let keep = keep_mask(
+        pl.len(),
+        tol,
+        |k, a, b| seg_seg_dist(pl[k], pl[k], pl[a], pl[b]),
+        |_, _| None,
+    );
     pl.iter()
         .zip(keep)
         .filter(|(_, k)| *k)
