@@ -82,24 +82,20 @@ pub fn split_levels(tp: &Toolpath) -> Vec<LevelMoves> {
             moves: Vec::new(),
         })
         .collect();
-    let mut at = tp.start;
-    for m in tp.moves() {
+    for (at, m) in tp.feed_moves() {
         let to = m.to();
-        if !matches!(m, Move::Rapid { .. }) {
-            let k = zs
-                .iter()
-                .position(|&z| z <= to.z + Z_EPS)
-                .unwrap_or(zs.len().saturating_sub(1));
-            if let Some(l) = levels.get_mut(k) {
-                l.moves.push((at, *m));
-            } else {
-                levels.push(LevelMoves {
-                    z: to.z,
-                    moves: vec![(at, *m)],
-                });
-            }
+        let k = zs
+            .iter()
+            .position(|&z| z <= to.z + Z_EPS)
+            .unwrap_or(zs.len().saturating_sub(1));
+        if let Some(l) = levels.get_mut(k) {
+            l.moves.push((at, m));
+        } else {
+            levels.push(LevelMoves {
+                z: to.z,
+                moves: vec![(at, m)],
+            });
         }
-        at = to;
     }
     levels
 }

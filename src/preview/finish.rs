@@ -7,7 +7,7 @@ use super::polyline::level_polylines;
 use super::svgfmt::{num, path_data};
 use crate::geometry::thin::keep_mask;
 use crate::geometry::{seg_seg_dist, Vec2};
-use crate::toolpath::{Move, Toolpath};
+use crate::toolpath::Toolpath;
 use svg::node::element::Path;
 
 /// The colour of the finishing passes and of the header's line about them.
@@ -17,14 +17,7 @@ pub const FINISH_COLOUR: &str = "#e66a00";
 /// the tracks thinned within the drawing's tolerance `frame.tol_draw`), or
 /// `None` when it has none.
 pub(super) fn finish_passes(tp: &Toolpath, frame: &Frame) -> Option<Path> {
-    let mut at = tp.start;
-    let mut moves = Vec::new();
-    for m in tp.moves() {
-        if !matches!(m, Move::Rapid { .. }) {
-            moves.push((at, *m));
-        }
-        at = m.to();
-    }
+    let moves: Vec<_> = tp.feed_moves().collect();
     let tracks: Vec<Vec<Vec2>> = level_polylines(&moves, frame.tol_draw)
         .iter()
         .map(|pl| thin(pl, frame.tol_draw))

@@ -13,17 +13,18 @@ use svg::node::element::Group;
 /// for a finishing program; and the first warning, if any, in orange.
 pub(super) fn header(job: &Job, report: &RunReport, depths: &Depths, frame: &Frame) -> Group {
     let (fs, x0, top_y) = (frame.fs, frame.x0, frame.top_y);
-    // Each line with its colour: the finishing program's in the colour its
-    // passes are drawn in, a warning in dark orange.
-    let mut lines: Vec<(String, &str)> = figure_lines(job, report, depths)
+    // Each line with its colour where it is not the header's black: the
+    // finishing program's in the colour its passes are drawn in, a warning
+    // in dark orange.
+    let mut lines: Vec<(String, Option<&str>)> = figure_lines(job, report, depths)
         .into_iter()
-        .map(|l| (l, "#000000"))
+        .map(|l| (l, None))
         .collect();
     if let Some(f) = finish_line(job, report) {
-        lines.push((f, super::FINISH_COLOUR));
+        lines.push((f, Some(super::FINISH_COLOUR)));
     }
     if let Some(w) = warning_line(report, frame.doc_w - 2.0 * fs, fs) {
-        lines.push((w, "#b34700"));
+        lines.push((w, Some("#b34700")));
     }
     let mut head = Group::new()
         .set("font-family", FONT)
@@ -33,10 +34,9 @@ pub(super) fn header(job: &Job, report: &RunReport, depths: &Depths, frame: &Fra
         .add(text(x0 + fs, top_y + 1.5 * fs, 1.25 * fs, &report.job).set("font-weight", "bold"));
     for (k, (l, colour)) in lines.iter().enumerate() {
         let t = text(x0 + fs, top_y + (2.9 + 1.2 * k as f64) * fs, 0.9 * fs, l);
-        head = head.add(if *colour == "#000000" {
-            t
-        } else {
-            t.set("fill", *colour)
+        head = head.add(match colour {
+            Some(c) => t.set("fill", *c),
+            None => t,
         });
     }
     head

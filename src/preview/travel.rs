@@ -34,14 +34,7 @@ pub(super) fn rapids(out: &RunOutput, frame: &Frame) -> Path {
 
 /// Where the first feed move begins, if there is one.
 fn start_point(out: &RunOutput) -> Option<Vec2> {
-    let mut at = out.toolpath.start;
-    for m in out.toolpath.moves() {
-        if !matches!(m, crate::toolpath::Move::Rapid { .. }) {
-            return Some(xy(at));
-        }
-        at = m.to();
-    }
-    None
+    out.toolpath.feed_moves().next().map(|(at, _)| xy(at))
 }
 
 /// The start: the tool's disk (radius `tool_radius`) at the first feed

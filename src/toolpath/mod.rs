@@ -145,6 +145,16 @@ impl Toolpath {
         self.sections.iter().flat_map(|s| s.moves.iter())
     }
 
+    /// Every feed move in order, with where it starts (rapids skipped).
+    pub fn feed_moves(&self) -> impl Iterator<Item = (Vec3, Move)> + '_ {
+        self.moves()
+            .scan(self.start, |at, m| {
+                let from = std::mem::replace(at, m.to());
+                Some((from, *m))
+            })
+            .filter(|(_, m)| !matches!(m, Move::Rapid { .. }))
+    }
+
     /// Lengths and estimated time, with rapids at `rapid_rate` mm/min.
     pub fn stats(&self, rapid_rate: f64) -> PathStats {
         let mut st = PathStats::default();
