@@ -592,14 +592,27 @@ pub(crate) fn check_levels(
     let tol = job.operation.tolerance;
     let leave = job.operation.stock_to_leave;
     let radius = job.tool.diameter / 2.0;
+    // Each section starts where the one before it left the tool (a level
+    // may begin straight below where the last one ended, with no move in
+    // the plane: checked from the program's start, its first rapid down
+    // would be a diagonal through the part).
+    let starts: Vec<crate::toolpath::Vec3> = std::iter::once(toolpath.start)
+        .chain(toolpath.sections.iter().scan(toolpath.start, |at, s| {
+            if let Some(m) = s.moves.last() {
+                *at = m.to();
+            }
+            Some(*at)
+        }))
+        .collect();
     let reports: Vec<GougeReport> = toolpath
         .sections
         .par_iter()
         .zip(in_order)
-        .map(|(section, cut)| {
+        .zip(&starts)
+        .map(|((section, cut), &start)| {
             let part = DistanceIndex::new(&cut.part);
             let one = Toolpath {
-                start: toolpath.start,
+                start,
                 sections: vec![section.clone()],
             };
             gouge::check(&one, &part, radius + leave, job.stock.top)

@@ -20,6 +20,10 @@ pub enum FillRule {
     NonZero,
     /// Inside where the winding number is odd.
     EvenOdd,
+    /// Inside where the winding number is positive: a region wound
+    /// counter-clockwise less those wound clockwise inside it (a set
+    /// difference, whatever the overlaps).
+    Positive,
 }
 
 impl FillRule {
@@ -27,6 +31,7 @@ impl FillRule {
         match self {
             FillRule::NonZero => w != 0,
             FillRule::EvenOdd => w % 2 != 0,
+            FillRule::Positive => w > 0,
         }
     }
 }
@@ -374,6 +379,29 @@ mod tests {
         let loops = fill_outlines(&[a, b], FillRule::EvenOdd).unwrap();
         let total: f64 = loops.iter().map(|l| polygon_area(l)).sum();
         assert!((total - 150.0).abs() < 1e-6, "{total}");
+    }
+
+    /// Positive: a counter-clockwise square less the clockwise ones, an
+    /// area by hand; a clockwise square around it leaves nothing, one drawn
+    /// twice takes off no more than once.
+    #[test]
+    fn positive_is_a_difference() {
+        let a = square(0.0, 0.0, 10.0, true);
+        let corner = square(5.0, 5.0, 10.0, false);
+        let inside = square(2.0, 2.0, 2.0, false);
+        let loops = fill_outlines(
+            &[a.clone(), corner.clone(), corner, inside],
+            FillRule::Positive,
+        )
+        .unwrap();
+        let total: f64 = loops.iter().map(|l| polygon_area(l)).sum();
+        assert!((total - (100.0 - 25.0 - 4.0)).abs() < 1e-6, "{total}");
+        assert_eq!(loops.len(), 2);
+        assert_eq!(loops.iter().filter(|l| polygon_area(l) < 0.0).count(), 1);
+        let around = square(-1.0, -1.0, 12.0, false);
+        assert!(fill_outlines(&[a, around], FillRule::Positive)
+            .unwrap()
+            .is_empty());
     }
 
     #[test]

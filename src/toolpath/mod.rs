@@ -5,6 +5,7 @@ pub mod air;
 pub mod arcfit;
 pub mod band;
 pub mod bays;
+pub mod clearing;
 pub mod dropcutter;
 pub mod entry;
 pub mod farthest;

@@ -73,6 +73,11 @@ pub enum ProfileError {
     /// A field solved for a path (a cavity's inverse problem) failed.
     #[error("{0}")]
     Field(#[from] crate::field::FieldError),
+    /// A boss level's clearing loop has too many points for the exact
+    /// difference of the stock rectangle and the part's ring
+    /// ([`clearing`](super::clearing)).
+    #[error("{0}: too many points for the exact difference of the stock and the part's ring; raise operation.tolerance")]
+    TooComplex(String),
     /// A measure that must be a number came out NaN.
     #[error("{0} is not a number (NaN): this is a pfcam bug, please report it with the job file")]
     NotFinite(String),

@@ -103,7 +103,7 @@ pub struct LevelCut {
 /// not clear), each run extended by one point at both ends so that it starts
 /// and ends where the tool is clear of the stock. A ring wholly over it stays
 /// closed.
-fn clip_ring(ring: &[Vec2], keep: &Keepout) -> Vec<(Vec<Vec2>, bool)> {
+pub(super) fn clip_ring(ring: &[Vec2], keep: &Keepout) -> Vec<(Vec<Vec2>, bool)> {
     let n = ring.len() - 1; // last = first
     let inside: Vec<bool> = ring[..n].iter().map(|&p| !keep.clear(p)).collect();
     if inside.iter().all(|&b| b) {
@@ -145,11 +145,14 @@ pub(super) fn lowest(poly: &[Vec2]) -> Vec2 {
     })
 }
 
-/// The paths of one boss level: around every outer loop of the part, clearing
-/// rings (rolling-disk offsets of radius r + j·stepover) from the outermost that
-/// still reaches into the stock (or, with `reach`, the band of that width) down to
-/// the finishing ring at r, clipped to the stock grown by r; inside every hole of
-/// the part, rings from the innermost out.
+/// The paths of one boss level. A level that clears its whole area: the
+/// clearing loops ([`clearing`](super::clearing)), each the boundary of the
+/// stock rectangle, inset a stepover further for each, less the inside of
+/// ring j (the rolling-disk offset of radius r + j·stepover), cut from the
+/// inside out, down to the finishing ring at r. A level added for the scallop
+/// bound (`reach`, the band of that width): the rings around every outer loop
+/// of the part out to the band's width, clipped to the stock grown by r.
+/// Inside every hole of the part, rings from the innermost out.
 pub fn boss_paths<N: Navigator + Sync>(
     part: &[Vec<Vec2>],
     nav: &N,
@@ -181,7 +184,13 @@ pub fn boss_paths<N: Navigator + Sync>(
         p,
         label,
     };
-    let mut paths = w.outer_rings(rings)?;
+    // A level that clears its whole area does so by the clearing loops, up to
+    // the last whose ring still lies in the stock (beyond it A_j is empty).
+    let mut paths = if reach.is_some() {
+        w.outer_rings(rings)?
+    } else {
+        w.clearing_loops(((dmax - r) / p.stepover).ceil().max(0.0) as usize)?
+    };
     // On a level added for the scallop bound, only the band next to a hole's
     // wall (the level below cleared the counter inside its own contour).
     let most = if reach.is_some() { rings } else { usize::MAX };
@@ -254,6 +263,87 @@ impl<N: Navigator + Sync> Walls<'_, N> {
         let mut paths: Vec<CutPath> = open.into_iter().map(|r| ring_path(r, false)).collect();
         paths.extend(closed.into_iter().map(|r| ring_path(r, true)));
         Ok(paths)
+    }
+
+    /// The clearing loops 0..=`rings` of a level that clears its whole
+    /// area ([`clearing`](super::clearing)): loop j from ring j and the stock
+    /// rectangle, closed, the largest first (the linker orders them,
+    /// `runs::order`).
+    fn clearing_loops(&self, rings: usize) -> Result<Vec<CutPath>, ProfileError> {
+        use rayon::prelude::*;
+        let p = self.p;
+        let frame = super::clearing::Frame {
+            stock_lo: p.stock_lo,
+            stock_hi: p.stock_hi,
+            radius: p.radius,
+            stepover: p.stepover,
+            climb: p.climb,
+        };
+        let label = |j: usize| format!("{}: loop {j} of the clearing", self.label);
+        let too_complex = |j: usize| move |_| ProfileError::TooComplex(label(j));
+        let path = |j: usize, points: Vec<Vec2>, closed: bool| CutPath {
+            label: label(j),
+            points,
+            closed,
+            ring: Some(j),
+        };
+        type Loops = Result<(usize, Vec<(Vec<Vec2>, bool)>), ProfileError>;
+        let traced = |j: usize| -> Result<Vec<Vec<Vec2>>, ProfileError> {
+            Ok(self.rings_at(j)?.into_iter().map(|(_, r)| r).collect())
+        };
+        let keep = Keepout::around_stock(p.stock_lo, p.stock_hi, p.radius);
+        let loops: Vec<Loops> = (1..=rings)
+            .rev()
+            .collect::<Vec<_>>()
+            .par_iter()
+            .map(|&j| {
+                let rings = traced(j)?;
+                let l =
+                    super::clearing::clearing_loops(&frame, j, &rings).map_err(too_complex(j))?;
+                if self.keeps_clear(&l, j) {
+                    return Ok((j, l));
+                }
+                // A side of R_j crosses a loop of the part that no ring
+                // went round: the rings clipped to the stock instead.
+                Ok((j, rings.iter().flat_map(|r| clip_ring(r, &keep)).collect()))
+            })
+            .collect();
+        let mut paths = Vec::new();
+        let mut next: Vec<Vec<Vec2>> = Vec::new();
+        for l in loops {
+            let (j, l) = l?;
+            if j == 1 {
+                // Closed loops only: a distance index closes every polygon.
+                next = l.iter().filter(|c| c.1).map(|c| c.0.clone()).collect();
+            }
+            paths.extend(l.into_iter().map(|(pts, closed)| path(j, pts, closed)));
+        }
+        let rings0 = traced(0)?;
+        let mut first =
+            super::clearing::first_loop_pieces(&frame, &rings0, &next).map_err(too_complex(0))?;
+        if !self.keeps_clear(&first, 0) {
+            first = rings0.iter().flat_map(|r| clip_ring(r, &keep)).collect();
+        }
+        paths.extend(first.into_iter().map(|(pts, closed)| path(0, pts, closed)));
+        Ok(paths)
+    }
+
+    /// Whether every segment of loop j's `pieces` keeps its distance from the
+    /// part: the wall radius (less two tolerances) on loop 0, half a stepover
+    /// less than ring j's radius beyond. R_j's sides are not traced against
+    /// the part; they keep clear of it only where the rings go round every
+    /// loop of it.
+    fn keeps_clear(&self, pieces: &[(Vec<Vec2>, bool)], j: usize) -> bool {
+        let p = self.p;
+        let least = if j == 0 {
+            p.wall() - 2.0 * p.tol
+        } else {
+            p.wall() + (j as f64 - 0.5) * p.stepover
+        };
+        pieces.iter().all(|(pts, _)| {
+            pts.windows(2)
+                .all(|w| self.index.segment_distance(w[0], w[1], least + 1.0) >= least)
+        })
     }
 
     /// The rings of index `j` around the part's outer loops (see
