@@ -147,15 +147,13 @@ pub enum PipelineError {
     /// A part of a composed shape (`[[shape.part]]`) could not be built:
     /// `part` is its 1-based index in the job file when the name is one of
     /// them.
-    #[error("{}", compose_message(*.part, .name, .message, .source))]
+    #[error("{}", compose_message(*.part, .name, .source))]
     Compose {
         /// `shape.part[i]`'s i, from 1, when the failing name is a part's.
         part: Option<usize>,
         /// The name the composition gave.
         name: String,
-        /// What went wrong there.
-        message: String,
-        /// The composition's own error.
+        /// The composition's own error (what went wrong there).
         source: Box<crate::compose::ComposeError>,
     },
     /// The shape has no outline to cut.
@@ -232,11 +230,10 @@ fn top_edge_message(t: &TopEdge) -> String {
 fn compose_message(
     part: Option<usize>,
     name: &str,
-    message: &str,
     source: &crate::compose::ComposeError,
 ) -> String {
     match part {
-        Some(i) => format!("shape.part[{i}] \"{name}\": {message}"),
+        Some(i) => format!("shape.part[{i}] \"{name}\": {}", source.detail()),
         None => format!("shape: {source}"),
     }
 }
@@ -460,12 +457,7 @@ pub fn job_shape(
     });
     let built = crate::compose::build(comp, &mut |_, _| progress(Progress::Step)).map_err(|e| {
         // Name the part as the job file does: shape.part[i], numbered from 1.
-        let (name, msg) = match &e {
-            crate::compose::ComposeError::Part { part, msg } => (part.clone(), msg.clone()),
-            crate::compose::ComposeError::Geometry { part, source } => {
-                (part.clone(), source.to_string())
-            }
-        };
+        let name = e.part().to_string();
         let base = name.split(':').next().unwrap_or(&name).trim();
         PipelineError::Compose {
             part: comp
@@ -474,7 +466,6 @@ pub fn job_shape(
                 .position(|p| p.name == base)
                 .map(|i| i + 1),
             name,
-            message: msg,
             source: Box::new(e),
         }
     })?;
