@@ -4,17 +4,12 @@
 use crate::geometry::{arc, Vec2};
 use crate::toolpath::{Move, Vec3};
 
-/// The XY projection of a tool-path point.
-pub(super) fn xy(p: Vec3) -> Vec2 {
-    Vec2::new(p.x, p.y)
-}
-
 /// XY polylines of a level's feed moves (arcs flattened within `tol`); plunges
 /// add no length and so no vertex.
 pub(super) fn level_polylines(moves: &[(Vec3, Move)], tol: f64) -> Vec<Vec<Vec2>> {
     let mut out: Vec<Vec<Vec2>> = Vec::new();
     for (from, m) in moves {
-        let a = xy(*from);
+        let a = from.xy();
         let continues = out
             .last()
             .and_then(|pl| pl.last())
@@ -25,8 +20,8 @@ pub(super) fn level_polylines(moves: &[(Vec3, Move)], tol: f64) -> Vec<Vec<Vec2>
         let pts = match *m {
             Move::Arc {
                 to, cx, cy, ccw, ..
-            } => arc::flatten(a, xy(to), Vec2::new(cx, cy), ccw, tol),
-            _ => vec![xy(m.to())],
+            } => arc::flatten(a, to.xy(), Vec2::new(cx, cy), ccw, tol),
+            _ => vec![m.to().xy()],
         };
         if let Some(pl) = out.last_mut() {
             for p in pts {
