@@ -765,10 +765,7 @@ fn cmd_surface(
     let t0 = std::time::Instant::now();
     let job = load(path)?;
     if job.operation.kind == pfcam::job::OperationKind::Profile {
-        return Err(anyhow!(SurfaceError::Invalid(
-            surface::PROFILE_MESSAGE.into()
-        )))
-        .with_context(|| path.display().to_string());
+        return Err(anyhow!(SurfaceError::ProfileJob)).with_context(|| path.display().to_string());
     }
     let target = output.unwrap_or_else(|| Path::new("out").join(format!("{}.stl", job.name)));
     // Refuse before the solve, and again when writing.

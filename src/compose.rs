@@ -79,6 +79,14 @@ pub enum ComposeError {
         /// why
         source: GeometryError,
     },
+    /// A part's field could not be built or solved.
+    #[error("shape.part \"{part}\": field: {source}")]
+    Field {
+        /// the part
+        part: String,
+        /// why
+        source: FieldError,
+    },
     /// A part's field could not be solved or used.
     #[error("shape.part \"{part}\": {msg}")]
     Part {
@@ -89,6 +97,27 @@ pub enum ComposeError {
     },
 }
 
+impl ComposeError {
+    /// The name of the part (or operation) that failed, as the composition
+    /// gave it.
+    pub fn part(&self) -> &str {
+        match self {
+            ComposeError::Geometry { part, .. }
+            | ComposeError::Field { part, .. }
+            | ComposeError::Part { part, .. } => part,
+        }
+    }
+
+    /// What went wrong there, without the part's name.
+    pub fn detail(&self) -> String {
+        match self {
+            ComposeError::Geometry { source, .. } => source.to_string(),
+            ComposeError::Field { source, .. } => format!("field: {source}"),
+            ComposeError::Part { msg, .. } => msg.clone(),
+        }
+    }
+}
+
 fn part_err(part: &str, msg: impl Into<String>) -> ComposeError {
     ComposeError::Part {
         part: part.to_string(),
@@ -97,7 +126,10 @@ fn part_err(part: &str, msg: impl Into<String>) -> ComposeError {
 }
 
 fn field_err(part: &str, e: FieldError) -> ComposeError {
-    part_err(part, format!("field: {e}"))
+    ComposeError::Field {
+        part: part.to_string(),
+        source: e,
+    }
 }
 
 /// Exact membership: the primitives' polygons (non-zero winding, Appendix I)

@@ -140,21 +140,20 @@ pub enum PipelineError {
     /// A job value that only the built shape shows to be wrong (its size).
     #[error("{0}")]
     Job(#[from] crate::job::JobError),
-    /// A level could not be planned (its field, its paths, or in words).
+    /// A level could not be planned (its field, its paths, its levels; the
+    /// time guard's error is [`PipelineError::Guard`]).
     #[error("{0}")]
     Plan(crate::levels::plan::PlanError),
     /// A part of a composed shape (`[[shape.part]]`) could not be built:
     /// `part` is its 1-based index in the job file when the name is one of
     /// them.
-    #[error("{}", compose_message(*.part, .name, .message, .source))]
+    #[error("{}", compose_message(*.part, .name, .source))]
     Compose {
         /// `shape.part[i]`'s i, from 1, when the failing name is a part's.
         part: Option<usize>,
         /// The name the composition gave.
         name: String,
-        /// What went wrong there.
-        message: String,
-        /// The composition's own error.
+        /// The composition's own error (what went wrong there).
         source: Box<crate::compose::ComposeError>,
     },
     /// The shape has no outline to cut.
@@ -176,6 +175,17 @@ pub enum PipelineError {
     /// A broken invariant of pfcam itself, never the input's fault.
     #[error("internal error: {0} (this is a pfcam bug, please report it)")]
     Internal(String),
+}
+
+/// A planning error: the time guard's as [`PipelineError::Guard`] (so that
+/// callers match one variant for it), the rest as [`PipelineError::Plan`].
+impl From<crate::levels::plan::PlanError> for PipelineError {
+    fn from(e: crate::levels::plan::PlanError) -> Self {
+        match e {
+            crate::levels::plan::PlanError::Guard(g) => PipelineError::Guard(g),
+            e => PipelineError::Plan(e),
+        }
+    }
 }
 
 impl From<crate::surface::SurfaceError> for PipelineError {
@@ -220,11 +230,10 @@ fn top_edge_message(t: &TopEdge) -> String {
 fn compose_message(
     part: Option<usize>,
     name: &str,
-    message: &str,
     source: &crate::compose::ComposeError,
 ) -> String {
     match part {
-        Some(i) => format!("shape.part[{i}] \"{name}\": {message}"),
+        Some(i) => format!("shape.part[{i}] \"{name}\": {}", source.detail()),
         None => format!("shape: {source}"),
     }
 }
@@ -448,12 +457,7 @@ pub fn job_shape(
     });
     let built = crate::compose::build(comp, &mut |_, _| progress(Progress::Step)).map_err(|e| {
         // Name the part as the job file does: shape.part[i], numbered from 1.
-        let (name, msg) = match &e {
-            crate::compose::ComposeError::Part { part, msg } => (part.clone(), msg.clone()),
-            crate::compose::ComposeError::Geometry { part, source } => {
-                (part.clone(), source.to_string())
-            }
-        };
+        let name = e.part().to_string();
         let base = name.split(':').next().unwrap_or(&name).trim();
         PipelineError::Compose {
             part: comp
@@ -462,7 +466,6 @@ pub fn job_shape(
                 .position(|p| p.name == base)
                 .map(|i| i + 1),
             name,
-            message: msg,
             source: Box::new(e),
         }
     })?;
@@ -705,7 +708,7 @@ fn mfs_sections(
         cavity: job.operation.kind == OperationKind::Cavity,
         tol,
     })
-    .map_err(PipelineError::Plan)
+    .map_err(PipelineError::from)
 }
 
 /// The part of a job as [`Sections`], for `pfcam sections`: a boss or
@@ -994,15 +997,12 @@ pub(crate) fn plan_with_progress(
     rayon::in_place_scope(|scope| {
         scope.spawn(|_| {
             // A panic must still end the wait below (and is then an error).
-            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            let r = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 plan_levels_reporting(lj, &counter)
-            }))
-            .unwrap_or_else(|_| {
-                Err(crate::levels::plan::PlanError::Invalid(
-                    "internal error: the level planner panicked (please report this pfcam bug)"
-                        .into(),
-                ))
-            });
+            })) {
+                Ok(planned) => planned.map_err(PipelineError::from),
+                Err(_) => Err(PipelineError::Internal("the level planner panicked".into())),
+            };
             *result.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
         });
         loop {
@@ -1030,14 +1030,10 @@ pub(crate) fn plan_with_progress(
             }
         }
     });
-    let planned = result
+    result
         .into_inner()
         .unwrap_or_else(|e| e.into_inner())
-        .ok_or_else(|| PipelineError::Internal("the level planner did not finish".into()))?;
-    planned.map_err(|e| match e {
-        crate::levels::plan::PlanError::Guard(g) => PipelineError::Guard(g),
-        e => PipelineError::Plan(e),
-    })
+        .ok_or_else(|| PipelineError::Internal("the level planner did not finish".into()))?
 }
 
 fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {

@@ -64,9 +64,44 @@ pub enum DepthProfile {
 /// Why a profile is not usable.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum ProfileError {
-    /// A value out of range.
-    #[error("{0}")]
-    Invalid(String),
+    /// Fewer than two (s, z) points.
+    #[error("needs at least two (s, z) points, got {got}")]
+    TooFewPoints {
+        /// How many there are.
+        got: usize,
+    },
+    /// A point whose s is outside (0, 1] or whose s or z is not finite.
+    #[error("every s must be in (0, 1] and every z finite, got ({s}, {z})")]
+    PointOutOfRange {
+        /// The point's s.
+        s: f64,
+        /// The point's z, mm.
+        z: f64,
+    },
+    /// Two neighbouring points whose s does not increase.
+    #[error("s must increase from point to point, but ({}, {}) is followed by ({}, {})", before[0], before[1], after[0], after[1])]
+    SNotIncreasing {
+        /// The first point, (s, z).
+        before: [f64; 2],
+        /// The point after it.
+        after: [f64; 2],
+    },
+    /// Two neighbouring points whose z does not increase (φ not monotone).
+    #[error("φ must be strictly monotone: z must increase with s, but ({}, {}) is followed by ({}, {})", before[0], before[1], after[0], after[1])]
+    ZNotIncreasing {
+        /// The first point, (s, z).
+        before: [f64; 2],
+        /// The point after it.
+        after: [f64; 2],
+    },
+    /// The last point, the part's top, is not at z = 0.
+    #[error("the last point is the top of the part and must have z = 0 (heights are relative to stock.top), got ({s}, {z})")]
+    TopNotZero {
+        /// The last point's s.
+        s: f64,
+        /// The last point's z, mm.
+        z: f64,
+    },
 }
 
 fn logistic(x: f64) -> f64 {
@@ -114,40 +149,34 @@ impl DepthProfile {
     /// Errors name the offending points.
     pub fn from_points(points: &[[f64; 2]], spline: bool) -> Result<DepthProfile, ProfileError> {
         if points.len() < 2 {
-            return Err(ProfileError::Invalid(format!(
-                "needs at least two (s, z) points, got {}",
-                points.len()
-            )));
+            return Err(ProfileError::TooFewPoints { got: points.len() });
         }
         for p in points {
             if !(p[0].is_finite() && p[1].is_finite()) || p[0] <= 0.0 || p[0] > 1.0 {
-                return Err(ProfileError::Invalid(format!(
-                    "every s must be in (0, 1] and every z finite, got ({}, {})",
-                    p[0], p[1]
-                )));
+                return Err(ProfileError::PointOutOfRange { s: p[0], z: p[1] });
             }
         }
         for w in points.windows(2) {
             let (a, b) = (w[0], w[1]);
             if b[0] <= a[0] {
-                return Err(ProfileError::Invalid(format!(
-                    "s must increase from point to point, but ({}, {}) is followed by ({}, {})",
-                    a[0], a[1], b[0], b[1]
-                )));
+                return Err(ProfileError::SNotIncreasing {
+                    before: a,
+                    after: b,
+                });
             }
             if b[1] <= a[1] {
-                return Err(ProfileError::Invalid(format!(
-                    "φ must be strictly monotone: z must increase with s, but ({}, {}) is followed by ({}, {})",
-                    a[0], a[1], b[0], b[1]
-                )));
+                return Err(ProfileError::ZNotIncreasing {
+                    before: a,
+                    after: b,
+                });
             }
         }
         let last = points[points.len() - 1];
         if last[1].abs() > 1e-12 {
-            return Err(ProfileError::Invalid(format!(
-                "the last point is the top of the part and must have z = 0 (heights are relative to stock.top), got ({}, {})",
-                last[0], last[1]
-            )));
+            return Err(ProfileError::TopNotZero {
+                s: last[0],
+                z: last[1],
+            });
         }
         let s: Vec<f64> = points.iter().map(|p| p[0]).collect();
         let z: Vec<f64> = points.iter().map(|p| p[1]).collect();

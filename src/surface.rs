@@ -85,9 +85,44 @@ pub enum SurfaceError {
     /// The shape or its field.
     #[error(transparent)]
     Pipeline(#[from] PipelineError),
-    /// Anything else, in words.
+    /// A profile job: it has no modelled surface.
+    #[error("surface: {}", PROFILE_MESSAGE)]
+    ProfileJob,
+    /// A boss or cavity job without its `[profile]` (the job's checks
+    /// require one).
+    #[error("surface: a boss or cavity needs a [profile]")]
+    NoProfile,
+    /// The shape has no contour.
+    #[error("surface: the shape is empty: nothing to model")]
+    EmptyShape,
+    /// The profile's lowest level, found as the run's planner finds it.
     #[error("surface: {0}")]
-    Invalid(String),
+    Plan(#[from] crate::levels::plan::PlanError),
+    /// The profile's lowest level has no contour around the shape.
+    #[error("surface: the level s = {s} has no contour around the shape")]
+    NoBaseContour {
+        /// The level's field value.
+        s: f64,
+    },
+    /// The grid spacing is not a positive number of mm.
+    #[error("surface: the resolution must be a positive number of mm, got {0}")]
+    Resolution(f64),
+    /// The grid over the stock would have more than [`MAX_GRID_POINTS`] points.
+    #[error("surface: a {resolution} mm grid over the {width:.1} × {height:.1} mm stock has more than {MAX_GRID_POINTS} points; choose a coarser --resolution")]
+    GridTooLarge {
+        /// The grid spacing asked for, mm.
+        resolution: f64,
+        /// The stock's width, mm.
+        width: f64,
+        /// The stock's height (y extent), mm.
+        height: f64,
+    },
+    /// More vertices than one mesh's indices can hold.
+    #[error("surface: too many vertices for one mesh; choose a coarser --resolution")]
+    TooManyVertices,
+    /// A polyharmonic source's closed mesh could not be built.
+    #[error("surface: {0}")]
+    Poly(#[from] crate::sources::polyharmonic::PolyError),
 }
 
 /// An indexed triangle mesh, mm. Triangles are counter-clockwise seen from
@@ -327,12 +362,9 @@ pub fn job_surface(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<JobSurface, SurfaceError> {
     if job.operation.kind == OperationKind::Profile {
-        return Err(SurfaceError::Invalid(PROFILE_MESSAGE.into()));
+        return Err(SurfaceError::ProfileJob);
     }
-    let profile = job
-        .profile
-        .as_ref()
-        .ok_or_else(|| SurfaceError::Invalid("a boss or cavity needs a [profile]".into()))?;
+    let profile = job.profile.as_ref().ok_or(SurfaceError::NoProfile)?;
     let (shape, mut solves) = pipeline::job_shape(job, progress)?;
     let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
     let (solved, report, _) = pipeline::solve_shape(&shape, job, flat_tol, progress)?;
@@ -553,19 +585,13 @@ fn space_out(ts: &mut [f64], ascending: bool) {
 /// [`crate::levels::plan::curves`]), plus the margin.
 pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
     if crate::geometry::polygons_bbox(sj.glyphs).is_none() {
-        return Err(SurfaceError::Invalid(
-            "the shape is empty: nothing to model".into(),
-        ));
+        return Err(SurfaceError::EmptyShape);
     }
     let (s_lo, _) = sj.profile.s_range();
-    let (grid, h) = crate::levels::mfs_sections::job_grid(sj.field, sj.glyphs, sj.profile)
-        .map_err(|e| SurfaceError::Invalid(e.to_string()))?;
+    let (grid, h) = crate::levels::mfs_sections::job_grid(sj.field, sj.glyphs, sj.profile)?;
     let base = crate::levels::plan::curves(&grid, sj.field, sj.glyphs, s_lo, h, sj.tol);
-    let (blo, bhi) = crate::geometry::polygons_bbox(&base).ok_or_else(|| {
-        SurfaceError::Invalid(format!(
-            "the level s = {s_lo} has no contour around the shape"
-        ))
-    })?;
+    let (blo, bhi) =
+        crate::geometry::polygons_bbox(&base).ok_or(SurfaceError::NoBaseContour { s: s_lo })?;
     let m = Vec2::new(sj.margin, sj.margin);
     Ok((blo - m, bhi + m))
 }
@@ -599,9 +625,11 @@ impl StockGrid {
         let cx = (w / res).ceil().max(1.0);
         let cy = (h / res).ceil().max(1.0);
         if (cx + 1.0) * (cy + 1.0) > MAX_GRID_POINTS as f64 {
-            return Err(SurfaceError::Invalid(format!(
-                "a {res} mm grid over the {w:.1} × {h:.1} mm stock has more than {MAX_GRID_POINTS} points; choose a coarser --resolution"
-            )));
+            return Err(SurfaceError::GridTooLarge {
+                resolution: res,
+                width: w,
+                height: h,
+            });
         }
         let (nx, ny) = (cx as usize + 1, cy as usize + 1);
         Ok(StockGrid {
@@ -821,9 +849,7 @@ impl<'a> Vertices<'a> {
             }
         }
         if vertices.len() > u32::MAX as usize / 2 {
-            return Err(SurfaceError::Invalid(
-                "too many vertices for one mesh; choose a coarser --resolution".into(),
-            ));
+            return Err(SurfaceError::TooManyVertices);
         }
         Ok(Vertices {
             grid,
@@ -950,9 +976,7 @@ pub fn build(
 ) -> Result<Surface, SurfaceError> {
     let res = opts.resolution;
     if !(res > 0.0 && res.is_finite()) {
-        return Err(SurfaceError::Invalid(format!(
-            "the resolution must be a positive number of mm, got {res}"
-        )));
+        return Err(SurfaceError::Resolution(res));
     }
     let (slo, shi) = match sj.stock {
         Some(stock) => stock,

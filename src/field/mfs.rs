@@ -245,9 +245,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     let m = problem.colloc.len();
     let n = problem.charges.len();
     if n == 0 || m < n {
-        return Err(FieldError::Invalid(format!(
-            "an MFS problem needs at least as many collocation points as singularities (M = {m}, N = {n})"
-        )));
+        return Err(FieldError::TooFewCollocationPoints { m, n });
     }
     crate::count::pairs(m * n);
     // The kernel matrix column by column in parallel (each entry is the same
@@ -304,16 +302,12 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
         }
     };
     if coef.iter().any(|c| !c.is_finite()) {
-        return Err(FieldError::Invalid(
-            "the MFS solve gave coefficients that are not numbers".into(),
-        ));
+        return Err(FieldError::NonFiniteCoefficients);
     }
     let field = Field::new(problem.charges.clone(), coef);
     let max_error = max_error(&field, &problem.checks);
     if max_error.is_nan() {
-        return Err(FieldError::Invalid(
-            "the field is not a number at a check point (a check point on a singularity?)".into(),
-        ));
+        return Err(FieldError::NotANumberAtCheck);
     }
     Ok(Solution {
         field,

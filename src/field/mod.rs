@@ -12,7 +12,7 @@ pub mod setup;
 pub use mfs::{kernel, Condition, Field, Problem, Solution};
 pub use setup::{Boundary, Layout, Prepared, Sink};
 
-use crate::geometry::{glyphs, polygon_winding_number, Contour, Vec2};
+use crate::geometry::{glyphs, polygon_winding_number, Contour, GeometryError, Vec2};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -128,9 +128,7 @@ impl BestSolve {
                 b.solves = self.solves;
                 Ok(b)
             }
-            None => Err(self
-                .last_err
-                .unwrap_or(FieldError::Invalid("no layout could be solved".into()))),
+            None => Err(self.last_err.unwrap_or(FieldError::NoLayoutSolved)),
         }
     }
 }
@@ -187,7 +185,7 @@ pub fn solve_with(
         }
     }
     let Some(mut best) = best else {
-        return Err(first_err.unwrap_or(FieldError::Invalid("no distance could be solved".into())));
+        return Err(first_err.unwrap_or(FieldError::NoDistanceSolved));
     };
     // The refinement stays among well-conditioned solutions when the best is one
     // (those from the fallback count as not solved, as when they were refused).
@@ -281,7 +279,7 @@ pub fn solve_quick(prep: &Prepared, base: Layout) -> Result<Solved, FieldError> 
             solves: 4,
             m,
         }),
-        None => Err(err.unwrap_or(FieldError::Invalid("no distance could be solved".into()))),
+        None => Err(err.unwrap_or(FieldError::NoDistanceSolved)),
     }
 }
 
@@ -310,7 +308,7 @@ pub fn centroid(contours: &[Contour], tol: f64) -> Vec2 {
 /// The boundary of a built-in glyph in font units as in the paper's Section 3:
 /// outer circle of radius 1e4 about the barycentre.
 pub fn paper_boundary(ch: char) -> Result<Boundary, FieldError> {
-    let g = glyphs::paper_glyph(ch).map_err(|e| FieldError::Invalid(e.to_string()))?;
+    let g = glyphs::paper_glyph(ch)?;
     let mut contours = g.outlines.clone();
     let mut is_counter = vec![false; contours.len()];
     for c in &g.counters {
@@ -335,9 +333,46 @@ pub fn inside(poly: &[Vec2], p: Vec2) -> bool {
 /// What can go wrong building or solving a field.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum FieldError {
-    /// A glyph name or shape the field cannot be built for.
-    #[error("{0}")]
-    Invalid(String),
+    /// The built-in glyph could not be had (not in the paper's font, or the
+    /// font unreadable).
+    #[error(transparent)]
+    Glyph(#[from] GeometryError),
+    /// A boundary with no contours at all.
+    #[error("the shape has no contours")]
+    NoContours,
+    /// A counter with no room inside it for a sink.
+    #[error("a counter has no interior")]
+    EmptyCounter,
+    /// A layout asking for fewer singularities than the shape's contours need.
+    #[error("{n} singularities are too few for this shape (at least {needed} needed)")]
+    TooFewSingularities {
+        /// Singularities asked for.
+        n: usize,
+        /// The fewest this shape takes.
+        needed: usize,
+    },
+    /// An MFS problem with fewer collocation points than singularities (or none).
+    #[error(
+        "an MFS problem needs at least as many collocation points as singularities (M = {m}, N = {n})"
+    )]
+    TooFewCollocationPoints {
+        /// Collocation points.
+        m: usize,
+        /// Singularities.
+        n: usize,
+    },
+    /// The least-squares solve gave a coefficient that is NaN or infinite.
+    #[error("the MFS solve gave coefficients that are not numbers")]
+    NonFiniteCoefficients,
+    /// The solved field is NaN at a check point.
+    #[error("the field is not a number at a check point (a check point on a singularity?)")]
+    NotANumberAtCheck,
+    /// No candidate layout was tried, so none was solved.
+    #[error("no layout could be solved")]
+    NoLayoutSolved,
+    /// No candidate pseudo-boundary distance was tried, so none was solved.
+    #[error("no distance could be solved")]
+    NoDistanceSolved,
 }
 
 /// One row of the convergence study (the paper's Table 3.2).

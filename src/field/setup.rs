@@ -204,7 +204,7 @@ impl Prepared {
     /// Precompute flattenings, the distance index, corners and sinks.
     pub fn new(boundary: Boundary) -> Result<Prepared, FieldError> {
         if boundary.contours.is_empty() {
-            return Err(FieldError::Invalid("the shape has no contours".into()));
+            return Err(FieldError::NoContours);
         }
         let polys: Vec<Vec<Vec2>> = boundary
             .contours
@@ -407,11 +407,10 @@ impl Prepared {
         let fixed = outer + n_sinks;
         let contours = self.boundary.contours.len();
         if layout.n_total < fixed + 4 * contours {
-            return Err(FieldError::Invalid(format!(
-                "{} singularities are too few for this shape (at least {} needed)",
-                layout.n_total,
-                fixed + 4 * contours
-            )));
+            return Err(FieldError::TooFewSingularities {
+                n: layout.n_total,
+                needed: fixed + 4 * contours,
+            });
         }
         let free = layout.n_total - fixed;
         let n_corner_each = if layout.corner_clusters && !self.corners.is_empty() {
@@ -654,7 +653,7 @@ fn rotate(v: Vec2, angle: f64) -> Vec2 {
 fn sink_for(poly: &[Vec2], index: &DistanceIndex) -> Result<Sink, FieldError> {
     let (centre, room) = crate::geometry::deepest_point(poly, index);
     if room <= 0.0 {
-        return Err(FieldError::Invalid("a counter has no interior".into()));
+        return Err(FieldError::EmptyCounter);
     }
     Ok(Sink {
         centre,

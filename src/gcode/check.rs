@@ -496,7 +496,7 @@ impl Checker {
         }
         if known(&from) && known(&to) {
             let dz = to[lin].unwrap_or(0.0) - from[lin].unwrap_or(0.0);
-            length = Some((arc.r * arc.sweep).hypot(dz));
+            length = Some(arc.length(dz));
         }
         (extremes, length)
     }

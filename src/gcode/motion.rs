@@ -3,7 +3,7 @@
 //! `pfcam simulate` (the swept material), so both read arcs the same way.
 
 use super::parse::{ModalState, Motion, Units, Word};
-use std::f64::consts::{FRAC_PI_2, TAU};
+use crate::geometry::{arc, Vec2};
 
 const MM_PER_INCH: f64 = 25.4;
 
@@ -99,7 +99,8 @@ pub struct Arc {
     pub r: f64,
     /// Start angle, rad.
     pub a0: f64,
-    /// Angle travelled, rad, in (0, 2π]; a start equal to the end is a full circle.
+    /// Angle travelled, rad, in (0, 2π]; a start equal to the end is a full circle
+    /// ([`arc::sweep_between`]).
     pub sweep: f64,
     /// Counter-clockwise (G3) in the plane's axes.
     pub ccw: bool,
@@ -127,15 +128,13 @@ impl Arc {
             }
             None => [s[0] + offset[0], s[1] + offset[1]],
         };
-        let r = (s[0] - centre[0]).hypot(s[1] - centre[1]);
-        let a0 = (s[1] - centre[1]).atan2(s[0] - centre[0]);
-        let a1 = (t[1] - centre[1]).atan2(t[0] - centre[0]);
-        let mut sweep = if ccw { a1 - a0 } else { a0 - a1 }.rem_euclid(TAU);
-        // GRBL's own rule for a full circle: end and start the same (to its float
-        // precision), so a sweep of almost nothing is a whole turn.
-        if sweep <= 1e-9 {
-            sweep += TAU;
-        }
+        let (s, t, c) = (
+            Vec2::new(s[0], s[1]),
+            Vec2::new(t[0], t[1]),
+            Vec2::new(centre[0], centre[1]),
+        );
+        let (r, a0) = (arc::radius(s, c), arc::angle(s, c));
+        let sweep = arc::sweep(s, t, c, ccw);
         Arc {
             centre,
             r,
@@ -145,45 +144,25 @@ impl Arc {
         }
     }
 
-    /// The point at fraction `f` ∈ [0, 1] of the sweep: angle a0 ± f·sweep.
-    pub fn point(&self, f: f64) -> [f64; 2] {
-        let a = if self.ccw {
-            self.a0 + f * self.sweep
-        } else {
-            self.a0 - f * self.sweep
-        };
-        let (s, c) = a.sin_cos();
-        [self.centre[0] + self.r * c, self.centre[1] + self.r * s]
+    /// Length of the arc while the third axis moves `rise`: the helix's
+    /// ([`arc::helix_length`]).
+    pub fn length(&self, rise: f64) -> f64 {
+        arc::helix_length(self.r, self.sweep, rise)
     }
 
-    /// How many equal chords keep every chord within `tol` mm of the arc: a chord
-    /// spanning angle φ deviates by the sagitta r(1 − cos(φ/2)), so
-    /// φ ≤ 2·acos(1 − tol/r). At least 1, at most `max`.
-    pub fn chords(&self, tol: f64, max: usize) -> usize {
-        if !(self.r > tol && tol > 0.0) {
-            return 1;
-        }
-        let phi = 2.0 * (1.0 - tol / self.r).acos();
-        let n = (self.sweep / phi).ceil();
-        if n.is_finite() {
-            (n as usize).clamp(1, max.max(1))
-        } else {
-            1
-        }
+    /// How many equal chords keep every chord within `tol` mm of the arc
+    /// ([`arc::chords`]).
+    pub fn chords(&self, tol: f64) -> usize {
+        arc::chords(self.r, self.sweep, tol)
     }
 
     /// The points where the arc crosses the quadrant angles (0, 90°, 180°, 270°),
-    /// which with its ends bound it.
+    /// which with its ends bound it ([`arc::extremes`]).
     pub fn extremes(&self) -> Vec<[f64; 2]> {
-        (0..4)
-            .filter_map(|k| {
-                let a = k as f64 * FRAC_PI_2;
-                let d = if self.ccw { a - self.a0 } else { self.a0 - a }.rem_euclid(TAU);
-                (d <= self.sweep).then(|| {
-                    let (s, c) = a.sin_cos();
-                    [self.centre[0] + self.r * c, self.centre[1] + self.r * s]
-                })
-            })
+        let c = Vec2::new(self.centre[0], self.centre[1]);
+        arc::extremes(c, self.r, self.a0, self.sweep, self.ccw)
+            .into_iter()
+            .map(|p| [p.x, p.y])
             .collect()
     }
 }
@@ -195,16 +174,17 @@ mod tests {
     #[test]
     fn chords_stay_within_the_tolerance() {
         let a = Arc::new([0.0, 0.0], [10.0, 0.0], None, [5.0, 0.0], false);
-        let n = a.chords(0.001, 100_000);
+        let n = a.chords(0.001);
         let phi = a.sweep / n as f64;
         assert!(a.r * (1.0 - (phi / 2.0).cos()) <= 0.001 + 1e-12);
         // One chord fewer would not do.
         let phi = a.sweep / (n - 1) as f64;
         assert!(a.r * (1.0 - (phi / 2.0).cos()) > 0.001);
-        assert_eq!(a.chords(0.001, 7), 7);
-        let end = a.point(1.0);
-        assert!((end[0] - 10.0).abs() < 1e-12 && end[1].abs() < 1e-12);
         // G2 (clockwise) from the left of the centre goes over the top.
-        assert!(a.point(0.5)[1] > 4.999);
+        assert!((a.sweep - std::f64::consts::PI).abs() < 1e-12);
+        let top = a.extremes();
+        assert_eq!(top.len(), 3);
+        assert!(top.iter().any(|p| (p[1] - 5.0).abs() < 1e-12));
+        assert!(top.iter().all(|p| p[1] >= -1e-12));
     }
 }

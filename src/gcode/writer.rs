@@ -28,7 +28,7 @@
 //! only words GRBL 1.1 accepts are written. The output depends on nothing but the
 //! input, so the same job gives byte-identical files.
 
-use crate::geometry::Vec2;
+use crate::geometry::{arc, Vec2};
 use crate::job::{Direction, Job, OperationKind, Side};
 use crate::toolpath::arcfit::{self, ArcLimits, MIN_ARC_CHORD};
 use crate::toolpath::{Move, Toolpath, Vec3};
@@ -168,24 +168,11 @@ pub fn cut_bounds(tp: &Toolpath) -> Option<(Vec3, Vec3)> {
                 add(at);
                 add(to);
                 any = true;
-                let r = (at.x - cx).hypot(at.y - cy);
-                let a0 = (at.y - cy).atan2(at.x - cx);
-                let tau = std::f64::consts::TAU;
-                let c = crate::geometry::Vec2::new(cx, cy);
-                let sweep = crate::geometry::arc::sweep(
-                    crate::geometry::Vec2::new(at.x, at.y),
-                    crate::geometry::Vec2::new(to.x, to.y),
-                    c,
-                    ccw,
-                );
-                for k in 0..4 {
-                    let a = k as f64 * std::f64::consts::FRAC_PI_2;
-                    // Angle travelled from the start to reach `a`, in [0, 2π).
-                    let d = if ccw { a - a0 } else { a0 - a }.rem_euclid(tau);
-                    if d <= sweep {
-                        let (s, c) = a.sin_cos();
-                        add(Vec3::new(cx + r * c, cy + r * s, at.z.min(to.z)));
-                    }
+                let c = Vec2::new(cx, cy);
+                let sweep = arc::sweep(at.xy(), to.xy(), c, ccw);
+                let (r, a0) = (arc::radius(at.xy(), c), arc::angle(at.xy(), c));
+                for p in arc::extremes(c, r, a0, sweep, ccw) {
+                    add(Vec3::new(p.x, p.y, at.z.min(to.z)));
                 }
             }
         }

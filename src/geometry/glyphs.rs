@@ -88,9 +88,11 @@ fn build_contour(name: &str, raw: &RawContour) -> Result<Contour, GeometryError>
                 p3: v(s.points[3]),
             },
             (k, n) => {
-                return Err(GeometryError::Invalid(format!(
-                    "glyph {name}: bad segment kind {k} with {n} points"
-                )))
+                return Err(GeometryError::BadGlyphSegment {
+                    glyph: name.to_string(),
+                    kind: k.to_string(),
+                    points: n,
+                })
             }
         };
         segs.push(seg);
@@ -119,8 +121,10 @@ fn build_contour(name: &str, raw: &RawContour) -> Result<Contour, GeometryError>
 }
 
 fn load() -> Result<PaperFont, GeometryError> {
-    let raw: RawFile = toml::from_str(PAPER_GLYPHS_TOML)
-        .map_err(|e| GeometryError::Invalid(format!("built-in paper glyphs: {e}")))?;
+    let raw: RawFile =
+        toml::from_str(PAPER_GLYPHS_TOML).map_err(|e| GeometryError::BuiltInGlyphs {
+            reason: e.to_string(),
+        })?;
     let mut glyphs = Vec::new();
     for g in &raw.glyph {
         let ch = g.name.chars().next().unwrap_or('?');

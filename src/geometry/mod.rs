@@ -86,9 +86,53 @@ pub enum GeometryError {
         /// what is wrong
         message: String,
     },
-    /// Anything else wrong with the shape source, said in words.
-    #[error("{0}")]
-    Invalid(String),
+    /// A number of the shape source (`height`, `letter_spacing`,
+    /// `line_spacing`) that is not finite, or not positive where it must be.
+    #[error("{key} must be {} of {unit}, got {value}", if *positive { "a positive number" } else { "a finite number" })]
+    BadNumber {
+        /// The key, e.g. `height`.
+        key: &'static str,
+        /// What it was given.
+        value: f64,
+        /// Whether it must be positive (else only finite).
+        positive: bool,
+        /// Its unit: `mm`, or `em` for `line_spacing`.
+        unit: &'static str,
+    },
+    /// A point of the shape source (`origin`) that is not finite.
+    #[error("{key} must be finite, got ({}, {})", at.x, at.y)]
+    NotFinitePoint {
+        /// The key, e.g. `origin`.
+        key: &'static str,
+        /// What it was given.
+        at: Vec2,
+    },
+    /// A text whose glyphs draw nothing.
+    #[error("the text {text:?} has no visible glyph to cut")]
+    NoVisibleGlyph {
+        /// The text.
+        text: String,
+    },
+    /// A composed shape asked of the plain shape builder: a broken invariant
+    /// (compositions are built with their fields, by `pipeline::job_shape`).
+    #[error("a composition of parts is built with its fields (pipeline::job_shape)")]
+    CompositeNotHere,
+    /// The built-in paper glyphs could not be read (a broken build).
+    #[error("built-in paper glyphs: {reason}")]
+    BuiltInGlyphs {
+        /// The TOML parser's words.
+        reason: String,
+    },
+    /// A built-in glyph's segment of an unknown kind or point count.
+    #[error("glyph {glyph}: bad segment kind {kind} with {points} points")]
+    BadGlyphSegment {
+        /// The glyph's name.
+        glyph: String,
+        /// The segment's kind as written.
+        kind: String,
+        /// Its number of points.
+        points: usize,
+    },
 }
 
 /// One connected piece of material: an outline (counter-clockwise) and the

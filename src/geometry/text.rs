@@ -100,9 +100,7 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
                 }],
             })
         }
-        ShapeSource::Composite(_) => Err(GeometryError::Invalid(
-            "a composition of parts is built with its fields (pipeline::job_shape)".into(),
-        )),
+        ShapeSource::Composite(_) => Err(GeometryError::CompositeNotHere),
     }
 }
 
@@ -110,27 +108,21 @@ pub fn build_shape(src: &ShapeSource) -> Result<Shape, GeometryError> {
 /// for the preview and the report, not the tool path.
 const TUBE_OUTLINE_POINTS: usize = 512;
 
-fn check_finite(what: &str, x: f64, positive: bool) -> Result<(), GeometryError> {
+fn check_finite(what: &'static str, x: f64, positive: bool) -> Result<(), GeometryError> {
     if !x.is_finite() || (positive && x <= 0.0) {
-        let want = if positive {
-            "a positive number"
-        } else {
-            "a finite number"
-        };
-        let unit = if what == "line_spacing" { "em" } else { "mm" };
-        return Err(GeometryError::Invalid(format!(
-            "{what} must be {want} of {unit}, got {x}"
-        )));
+        return Err(GeometryError::BadNumber {
+            key: what,
+            value: x,
+            positive,
+            unit: if what == "line_spacing" { "em" } else { "mm" },
+        });
     }
     Ok(())
 }
 
-fn check_point(what: &str, p: Vec2) -> Result<(), GeometryError> {
+fn check_point(what: &'static str, p: Vec2) -> Result<(), GeometryError> {
     if !p.is_finite() {
-        return Err(GeometryError::Invalid(format!(
-            "{what} must be finite, got ({}, {})",
-            p.x, p.y
-        )));
+        return Err(GeometryError::NotFinitePoint { key: what, at: p });
     }
     Ok(())
 }
@@ -269,9 +261,9 @@ impl Layout {
             }
         }
         if regions.is_empty() {
-            return Err(GeometryError::Invalid(format!(
-                "the text {text:?} has no visible glyph to cut"
-            )));
+            return Err(GeometryError::NoVisibleGlyph {
+                text: text.to_string(),
+            });
         }
         Ok(Shape { regions })
     }
@@ -614,7 +606,8 @@ mod tests {
         assert_eq!(names, ["I (1:1)", "I (3:1)"]);
         assert!(matches!(
             set("I", FontSource::Paper, 66.2, 0.0, Align::Left, Some(0.0)),
-            Err(GeometryError::Invalid(m)) if m.contains("line_spacing must be a positive number of em")
+            Err(e @ GeometryError::BadNumber { key: "line_spacing", .. })
+                if e.to_string().contains("line_spacing must be a positive number of em")
         ));
     }
 
@@ -648,11 +641,11 @@ mod tests {
         }
         assert!(matches!(
             text("A", FontSource::File(dejavu()), 0.0, 0.0),
-            Err(GeometryError::Invalid(_))
+            Err(GeometryError::BadNumber { key: "height", .. })
         ));
         assert!(matches!(
             text("A", FontSource::Paper, f64::NAN, 0.0),
-            Err(GeometryError::Invalid(_))
+            Err(GeometryError::BadNumber { key: "height", .. })
         ));
         for (s, font) in [("", FontSource::Paper), ("  ", FontSource::File(dejavu()))] {
             let e = text(s, font, 10.0, 0.0).expect_err("nothing to cut");

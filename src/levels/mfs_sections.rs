@@ -179,9 +179,7 @@ pub(crate) fn job_grid(
         tries += 1;
     }
     if grid.border_max() >= s_lo {
-        return Err(PlanError::Invalid(format!(
-            "the level s = {s_lo} does not close within {pad:.0} mm of the shape; raise profile.s_bottom / profile.s2"
-        )));
+        return Err(PlanError::LevelOpen { s: s_lo, pad });
     }
     Ok((grid, h))
 }

@@ -351,17 +351,14 @@ fn level_schedule(job: &LevelJob, c: &LevelCurves) -> Result<Vec<f64>, PlanError
     };
     let max_levels = crate::job::limits::MAX_LEVELS;
     let depth = c.depth();
-    let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, max_levels, &gap)
-        .ok_or_else(|| {
-            PlanError::Invalid(format!(
-                "operation.max_scallop = {} mm needs more than {max_levels} levels on this wall: raise it, or tool.stepdown",
-                job.max_scallop
-            ))
-        })?;
+    let zs = schedule(depth, job.stepdown, job.max_scallop, 0.02, max_levels, &gap).ok_or(
+        PlanError::TooManyLevels {
+            max_scallop: job.max_scallop,
+            max_levels,
+        },
+    )?;
     if gap_nan.get() {
-        return Err(PlanError::Invalid(
-            "the horizontal step between two levels is not a number (NaN): this is a pfcam bug, please report it with the job file".into(),
-        ));
+        return Err(PlanError::GapNotANumber);
     }
     Ok(zs)
 }
@@ -404,10 +401,11 @@ fn plan_level(
         oriented.clone()
     };
     if polys.is_empty() {
-        return Err(PlanError::Invalid(format!(
-            "level {k} (z {:.3}, s = {s:.4}) has no contour",
-            job.top + z
-        )));
+        return Err(PlanError::NoContour {
+            level: k,
+            z: job.top + z,
+            s,
+        });
     }
     let t0 = std::time::Instant::now();
     let label = format!("level {k} (z {:.3})", job.top + z);
@@ -578,7 +576,35 @@ pub enum PlanError {
     /// The job's lower bound passes `machine.max_hours`.
     #[error("{0}")]
     Guard(#[from] GuardError),
-    /// Anything else, in words.
-    #[error("{0}")]
-    Invalid(String),
+    /// The profile's lowest level does not close around the shape within the
+    /// padding the grid grows to.
+    #[error("the level s = {s} does not close within {pad:.0} mm of the shape; raise profile.s_bottom / profile.s2")]
+    LevelOpen {
+        /// The profile's bottom s.
+        s: f64,
+        /// The largest padding tried around the shape, mm.
+        pad: f64,
+    },
+    /// The scallop bound needs more levels than a job may have.
+    #[error("operation.max_scallop = {max_scallop} mm needs more than {max_levels} levels on this wall: raise it, or tool.stepdown")]
+    TooManyLevels {
+        /// The job's `operation.max_scallop`, mm.
+        max_scallop: f64,
+        /// The most levels allowed.
+        max_levels: usize,
+    },
+    /// A level whose section is empty.
+    #[error("level {level} (z {z:.3}, s = {s:.4}) has no contour")]
+    NoContour {
+        /// The level's index.
+        level: usize,
+        /// Its z, mm (absolute).
+        z: f64,
+        /// Its field value.
+        s: f64,
+    },
+    /// A broken invariant: the horizontal step between two levels came out
+    /// NaN.
+    #[error("the horizontal step between two levels is not a number (NaN): this is a pfcam bug, please report it with the job file")]
+    GapNotANumber,
 }

@@ -18,30 +18,26 @@ pub fn closed_surface(
     resolution: f64,
 ) -> Option<Result<Surface, SurfaceError>> {
     let built = spec.closed_mesh(resolution)?;
-    Some(
-        built
-            .map_err(|e| SurfaceError::Invalid(e.to_string()))
-            .map(|iso| {
-                let mut mesh = Mesh {
-                    vertices: iso.vertices,
-                    triangles: iso.triangles,
-                };
-                let dz = placement(job).top - spec.range().max;
-                for v in &mut mesh.vertices {
-                    v[2] += dz;
-                }
-                let (stock_lo, stock_hi) = patch_stock(job, HeightSource::Poly(spec));
-                let z_bottom = mesh.bbox().map_or(dz, |b| b.0[2]);
-                let cells = |k: usize| ((spec.size[k] / resolution).ceil() as usize).max(1) + 1;
-                Surface {
-                    mesh,
-                    stock_lo,
-                    stock_hi,
-                    z_bottom,
-                    levels: Vec::new(),
-                    crossings: Vec::new(),
-                    grid: (cells(0), cells(1)),
-                }
-            }),
-    )
+    Some(built.map_err(SurfaceError::from).map(|iso| {
+        let mut mesh = Mesh {
+            vertices: iso.vertices,
+            triangles: iso.triangles,
+        };
+        let dz = placement(job).top - spec.range().max;
+        for v in &mut mesh.vertices {
+            v[2] += dz;
+        }
+        let (stock_lo, stock_hi) = patch_stock(job, HeightSource::Poly(spec));
+        let z_bottom = mesh.bbox().map_or(dz, |b| b.0[2]);
+        let cells = |k: usize| ((spec.size[k] / resolution).ceil() as usize).max(1) + 1;
+        Surface {
+            mesh,
+            stock_lo,
+            stock_hi,
+            z_bottom,
+            levels: Vec::new(),
+            crossings: Vec::new(),
+            grid: (cells(0), cells(1)),
+        }
+    }))
 }

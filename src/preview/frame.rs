@@ -1,7 +1,6 @@
 //! The page: the rectangle of the part the preview pictures, and the sizes
 //! (type, lines, header, document width) that scale with it. All in mm.
 
-use super::polyline::xy;
 use crate::geometry::Vec2;
 use crate::job::Job;
 use crate::pipeline::RunOutput;
@@ -26,9 +25,9 @@ pub fn drawing_area(job: &Job, out: &RunOutput) -> (Vec2, Vec2) {
         add(b);
     }
     add(Vec2::ZERO);
-    add(xy(out.toolpath.start));
+    add(out.toolpath.start.xy());
     for m in out.toolpath.moves() {
-        add(xy(m.to()));
+        add(m.to().xy());
     }
     let margin = (0.05 * (hi - lo).norm())
         .max(2.0 * job.tool.diameter)

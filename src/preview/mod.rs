@@ -107,14 +107,10 @@ impl PreviewOptions {
     /// Every level strictly between 0 and 1, and at least 10 grid cells.
     fn check(&self) -> Result<(), PreviewError> {
         if let Some(s) = self.levels.iter().find(|s| !(**s > 0.0 && **s < 1.0)) {
-            return Err(PreviewError::Invalid(format!(
-                "equipotential values must lie strictly between 0 and 1, got {s}"
-            )));
+            return Err(PreviewError::Level(*s));
         }
         if self.contour_cells < 10 {
-            return Err(PreviewError::Invalid(
-                "the equipotential grid needs at least 10 cells".into(),
-            ));
+            return Err(PreviewError::TooFewCells);
         }
         Ok(())
     }
@@ -137,9 +133,12 @@ pub enum PreviewError {
     /// The colour map or its PNG encoding.
     #[error("field image: {0}")]
     Image(String),
-    /// A bad option.
-    #[error("{0}")]
-    Invalid(String),
+    /// An equipotential value not strictly between 0 and 1.
+    #[error("equipotential values must lie strictly between 0 and 1, got {0}")]
+    Level(f64),
+    /// An equipotential grid of fewer than 10 cells.
+    #[error("the equipotential grid needs at least 10 cells")]
+    TooFewCells,
 }
 
 /// The preview of a finished run as an SVG document (first line: [`svg_marker`]).

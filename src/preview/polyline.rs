@@ -1,20 +1,15 @@
 //! The tool path as XY polylines for drawing: feed moves joined into tracks,
 //! arcs flattened into chords, and points spaced evenly along a track.
 
-use crate::geometry::Vec2;
+use crate::geometry::{arc, Vec2};
 use crate::toolpath::{Move, Vec3};
-
-/// The XY projection of a tool-path point.
-pub(super) fn xy(p: Vec3) -> Vec2 {
-    Vec2::new(p.x, p.y)
-}
 
 /// XY polylines of a level's feed moves (arcs flattened within `tol`); plunges
 /// add no length and so no vertex.
 pub(super) fn level_polylines(moves: &[(Vec3, Move)], tol: f64) -> Vec<Vec<Vec2>> {
     let mut out: Vec<Vec<Vec2>> = Vec::new();
     for (from, m) in moves {
-        let a = xy(*from);
+        let a = from.xy();
         let continues = out
             .last()
             .and_then(|pl| pl.last())
@@ -25,8 +20,8 @@ pub(super) fn level_polylines(moves: &[(Vec3, Move)], tol: f64) -> Vec<Vec<Vec2>
         let pts = match *m {
             Move::Arc {
                 to, cx, cy, ccw, ..
-            } => flatten_arc(a, xy(to), Vec2::new(cx, cy), ccw, tol),
-            _ => vec![xy(m.to())],
+            } => arc::flatten(a, to.xy(), Vec2::new(cx, cy), ccw, tol),
+            _ => vec![m.to().xy()],
         };
         if let Some(pl) = out.last_mut() {
             for p in pts {
@@ -38,31 +33,6 @@ pub(super) fn level_polylines(moves: &[(Vec3, Move)], tol: f64) -> Vec<Vec<Vec2>
     }
     out.retain(|pl| pl.len() >= 2);
     out
-}
-
-/// Points along an XY arc from `a` (excluded) to `b` (included) about `c`, chords
-/// within `tol`; a zero sweep is a full circle, as in G-code.
-pub(super) fn flatten_arc(a: Vec2, b: Vec2, c: Vec2, ccw: bool, tol: f64) -> Vec<Vec2> {
-    let r = a.dist(c);
-    let a0 = (a.y - c.y).atan2(a.x - c.x);
-    let sweep = crate::geometry::arc::sweep(a, b, c, ccw);
-    let max_step = if r > tol {
-        2.0 * (1.0 - tol / r).acos()
-    } else {
-        sweep
-    };
-    let n = (sweep / max_step.max(1e-3)).ceil().clamp(1.0, 10_000.0) as usize;
-    let dir = if ccw { 1.0 } else { -1.0 };
-    (1..=n)
-        .map(|k| {
-            if k == n {
-                b
-            } else {
-                let t = a0 + dir * sweep * k as f64 / n as f64;
-                c + Vec2::new(t.cos(), t.sin()) * r
-            }
-        })
-        .collect()
 }
 
 /// Length of a polyline, mm.
@@ -149,28 +119,5 @@ mod tests {
         assert!((drawn - exact).abs() < 1e-3 * exact, "{drawn}");
         // Clockwise half circle from (5, 0) passes below the centre.
         assert!(pls[0].iter().any(|p| p.y < -4.9));
-    }
-
-    #[test]
-    fn arc_flattening_ends_on_the_end_point_and_stays_on_the_circle() {
-        let c = Vec2::new(1.0, 2.0);
-        let a = Vec2::new(6.0, 2.0);
-        let b = Vec2::new(1.0, 7.0);
-        let pts = flatten_arc(a, b, c, true, 0.01);
-        assert_eq!(*pts.last().unwrap(), b);
-        assert!(pts.iter().all(|p| (p.dist(c) - 5.0).abs() < 1e-9));
-        // A quarter turn counter-clockwise passes through 45°.
-        assert!(pts
-            .iter()
-            .any(|p| p.x > 1.0 && p.y > 2.0 && (p.x - p.y + 1.0).abs() < 0.5));
-        // Same end point: a full circle.
-        let full = flatten_arc(a, a, c, false, 0.01);
-        let len: f64 = std::iter::once(a)
-            .chain(full.iter().copied())
-            .collect::<Vec<_>>()
-            .windows(2)
-            .map(|w| w[0].dist(w[1]))
-            .sum();
-        assert!((len - std::f64::consts::TAU * 5.0).abs() < 0.05, "{len}");
     }
 }

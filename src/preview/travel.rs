@@ -2,7 +2,6 @@
 //! feed move, with the tool's disk.
 
 use super::frame::Frame;
-use super::polyline::xy;
 use super::svgfmt::{num, path_data};
 use crate::geometry::Vec2;
 use crate::pipeline::RunOutput;
@@ -14,8 +13,8 @@ pub(super) fn rapids(out: &RunOutput, frame: &Frame) -> Path {
     let mut at = out.toolpath.start;
     for m in out.toolpath.moves() {
         if let crate::toolpath::Move::Rapid { to } = m {
-            if xy(at).dist(xy(*to)) > 1e-9 {
-                rapids.push(vec![xy(at), xy(*to)]);
+            if at.xy().dist(to.xy()) > 1e-9 {
+                rapids.push(vec![at.xy(), to.xy()]);
             }
         }
         at = m.to();
@@ -34,7 +33,7 @@ pub(super) fn rapids(out: &RunOutput, frame: &Frame) -> Path {
 
 /// Where the first feed move begins, if there is one.
 fn start_point(out: &RunOutput) -> Option<Vec2> {
-    out.toolpath.feed_moves().next().map(|(at, _)| xy(at))
+    out.toolpath.feed_moves().next().map(|(at, _)| at.xy())
 }
 
 /// The start: the tool's disk (radius `tool_radius`) at the first feed

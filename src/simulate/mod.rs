@@ -96,9 +96,48 @@ pub enum SimError {
     /// Nothing tells where the stock is.
     #[error("no feed move from a known position and no stock given: nothing to simulate (give --stock X0,Y0,X1,Y1,TOP)")]
     NoStock,
-    /// An option out of range.
-    #[error("{0}")]
-    Invalid(String),
+    /// A length that must be a positive number of mm (a flag's value).
+    #[error("{name} must be a positive number of mm, got {value}")]
+    NotPositive {
+        /// The flag, e.g. `--resolution`.
+        name: &'static str,
+        /// What it was given.
+        value: f64,
+    },
+    /// The tool's diameter is not a positive number of mm.
+    #[error("the tool diameter must be a positive number of mm, got {0}")]
+    ToolDiameter(f64),
+    /// A bull nose's corner radius outside (0, r).
+    #[error("a bull nose's corner radius must lie between 0 and the tool radius {radius} mm (exclusive), got {corner} (a corner of the full radius is --tool-shape ball)")]
+    BullCorner {
+        /// The corner radius given, mm.
+        corner: f64,
+        /// The tool's radius, mm.
+        radius: f64,
+    },
+    /// A bull nose without its corner radius.
+    #[error("a bull nose end mill needs its corner radius: give --corner-radius MM")]
+    BullWithoutCorner,
+    /// A corner radius given for a flat or ball end mill that is not its own.
+    #[error("--corner-radius {corner} is for --tool-shape bull, not a {} end mill", shape.name())]
+    CornerNotBull {
+        /// The corner radius given, mm.
+        corner: f64,
+        /// The tool's shape.
+        shape: ToolShape,
+    },
+    /// `--stock` not a finite rectangle with X0 < X1 and Y0 < Y1.
+    #[error("--stock: X0 < X1 and Y0 < Y1 must be finite numbers, got {},{},{},{},{}", stock.lo[0], stock.lo[1], stock.hi[0], stock.hi[1], stock.top)]
+    BadStock {
+        /// The stock as given.
+        stock: StockBox,
+    },
+    /// No program was given.
+    #[error("no program to simulate")]
+    NoProgram,
+    /// The programs have more lines together than a line number can hold.
+    #[error("more than {} lines in all: too many to simulate together", u32::MAX)]
+    TooManyLines,
     /// The part could not be modelled from the job.
     #[error("the part of the job: {0}")]
     Part(String),
@@ -209,13 +248,11 @@ impl Sequence {
     }
 }
 
-fn positive(name: &str, v: f64) -> Result<f64, SimError> {
+fn positive(name: &'static str, v: f64) -> Result<f64, SimError> {
     if v > 0.0 && v.is_finite() {
         Ok(v)
     } else {
-        Err(SimError::Invalid(format!(
-            "{name} must be a positive number of mm, got {v}"
-        )))
+        Err(SimError::NotPositive { name, value: v })
     }
 }
 
@@ -234,7 +271,7 @@ pub fn simulate(text: &str, opts: &SimOptions) -> Result<Simulation, SimError> {
         .into_iter()
         .next()
         .map(|p| p.report)
-        .ok_or_else(|| SimError::Invalid("no program".into()))?;
+        .ok_or(SimError::NoProgram)?;
     report.part = part;
     Ok(Simulation { report, map })
 }
@@ -339,7 +376,7 @@ pub fn simulate_programs(
         .map(|(k, &(name, text))| prepare(name, text, opts, k == 0))
         .collect::<Result<Vec<_>, _>>()?;
     let Some(first) = prepared.first() else {
-        return Err(SimError::Invalid("no program to simulate".into()));
+        return Err(SimError::NoProgram);
     };
     let r = prepared.iter().map(|p| p.tool.radius()).fold(0.0, f64::max);
     let all_moves: Vec<&moves::Move> = prepared.iter().flat_map(|p| &p.read.moves).collect();
@@ -425,10 +462,7 @@ fn line_bases(prepared: &[Prepared], programs: &[(&str, &str)]) -> Result<Vec<u3
         let last = p.read.moves.iter().map(|m| m.line).max().unwrap_or(0);
         base += text.lines().count().max(last) as u64;
         if base > u64::from(u32::MAX) {
-            return Err(SimError::Invalid(format!(
-                "more than {} lines in all: too many to simulate together",
-                u32::MAX
-            )));
+            return Err(SimError::TooManyLines);
         }
     }
     Ok(bases)
@@ -582,10 +616,7 @@ fn choose_stock(
                 && s.lo[0] < s.hi[0]
                 && s.lo[1] < s.hi[1];
         if !ok {
-            return Err(SimError::Invalid(format!(
-                "--stock: X0 < X1 and Y0 < Y1 must be finite numbers, got {},{},{},{},{}",
-                s.lo[0], s.lo[1], s.hi[0], s.hi[1], s.top
-            )));
+            return Err(SimError::BadStock { stock: s });
         }
         return Ok((s, "--stock"));
     }

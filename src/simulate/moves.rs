@@ -7,10 +7,7 @@
 use super::tool::Segment;
 use crate::gcode::motion::{block_arc, block_motion, Arc};
 use crate::gcode::parse::{tokenize, ModalState, Motion, Program};
-
-/// The most chords one arc is cut into: a bound on the work of one line (a
-/// 1 m radius full circle at 1 µm tolerance needs about 2200).
-pub const MAX_CHORDS: usize = 100_000;
+use crate::geometry::{arc, Vec2};
 
 /// One move of the tool tip, mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,7 +26,7 @@ pub struct Move {
 
 impl Move {
     /// The move as straight pieces: itself for a line; for an arc, equal chords
-    /// within `tol` mm of it ([`Arc::chords`]) with the third axis linear in the
+    /// within `tol` mm of it ([`crate::geometry::arc::chords`]) with the third axis linear in the
     /// angle (a helix), the last point exactly the programmed end.
     pub fn pieces(&self, tol: f64) -> Vec<Segment> {
         let Some((arc, [a0, a1])) = self.arc else {
@@ -39,17 +36,22 @@ impl Move {
             }];
         };
         let lin = 3 - a0 - a1;
-        let n = arc.chords(tol, MAX_CHORDS);
+        // At most arc::MAX_CHORDS: a bound on the work of one line (a 1 m radius
+        // full circle at 1 µm tolerance needs about 2200).
+        let n = arc.chords(tol);
+        let plane = |p: [f64; 3]| Vec2::new(p[a0], p[a1]);
+        let c = Vec2::new(arc.centre[0], arc.centre[1]);
+        let ends = arc::divide(plane(self.from), plane(self.to), c, arc.ccw, n);
         let mut pts = Vec::with_capacity(n + 1);
-        for k in 0..=n {
-            let f = k as f64 / n as f64;
-            let p = if k == n {
+        pts.push(self.from);
+        for (k, q) in ends.into_iter().enumerate() {
+            let p = if k + 1 == n {
                 self.to
             } else {
-                let q = arc.point(f);
+                let f = (k + 1) as f64 / n as f64;
                 let mut p = [0.0; 3];
-                p[a0] = q[0];
-                p[a1] = q[1];
+                p[a0] = q.x;
+                p[a1] = q.y;
                 p[lin] = self.from[lin] + f * (self.to[lin] - self.from[lin]);
                 p
             };

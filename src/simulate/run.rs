@@ -479,7 +479,7 @@ fn mv_length(mv: &Move) -> f64 {
     match mv.arc {
         Some((arc, [a0, a1])) => {
             let lin = 3 - a0 - a1;
-            (arc.r * arc.sweep).hypot(mv.to[lin] - mv.from[lin])
+            arc.length(mv.to[lin] - mv.from[lin])
         }
         None => Segment {
             a: mv.from,
@@ -505,7 +505,7 @@ pub fn entry_angle_deg(mv: &Move) -> f64 {
         return 0.0;
     }
     let xy = match mv.arc {
-        Some((arc, [a0, a1])) if 3 - a0 - a1 == 2 => arc.r * arc.sweep,
+        Some((arc, [a0, a1])) if 3 - a0 - a1 == 2 => arc.length(0.0),
         _ => (mv.to[0] - mv.from[0]).hypot(mv.to[1] - mv.from[1]),
     };
     if xy <= 0.0 {

@@ -96,9 +96,7 @@ impl Tool {
         corner_radius: Option<f64>,
     ) -> Result<Tool, SimError> {
         if !(diameter > 0.0 && diameter.is_finite()) {
-            return Err(SimError::Invalid(format!(
-                "the tool diameter must be a positive number of mm, got {diameter}"
-            )));
+            return Err(SimError::ToolDiameter(diameter));
         }
         let r = diameter / 2.0;
         let corner = match (shape, corner_radius) {
@@ -107,20 +105,17 @@ impl Tool {
             (ToolShape::Ball, Some(c)) if c == r => r,
             (ToolShape::Bull, Some(c)) if c > 0.0 && c < r => c,
             (ToolShape::Bull, Some(c)) => {
-                return Err(SimError::Invalid(format!(
-                    "a bull nose's corner radius must lie between 0 and the tool radius {r} mm (exclusive), got {c} (a corner of the full radius is --tool-shape ball)"
-                )))
+                return Err(SimError::BullCorner {
+                    corner: c,
+                    radius: r,
+                })
             }
-            (ToolShape::Bull, None) => {
-                return Err(SimError::Invalid(
-                    "a bull nose end mill needs its corner radius: give --corner-radius MM".into(),
-                ))
-            }
+            (ToolShape::Bull, None) => return Err(SimError::BullWithoutCorner),
             (s, Some(c)) => {
-                return Err(SimError::Invalid(format!(
-                    "--corner-radius {c} is for --tool-shape bull, not a {} end mill",
-                    s.name()
-                )))
+                return Err(SimError::CornerNotBull {
+                    corner: c,
+                    shape: s,
+                })
             }
         };
         Ok(Tool {

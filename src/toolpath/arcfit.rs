@@ -44,8 +44,8 @@
 //! - [`MIN_ARC_SEGMENTS`] = 3: an arc replaces at least three polyline segments,
 //!   so it is a fit of a curve, not the circle any three points lie on.
 
-use super::{arc_length, Move, Section, Toolpath, Vec3};
-use crate::geometry::Vec2;
+use super::{arc_points, Move, Section, Toolpath, Vec3};
+use crate::geometry::{arc, Vec2};
 use std::f64::consts::{PI, TAU};
 
 /// Largest sweep of one fitted arc, radians (see the module docs).
@@ -441,12 +441,6 @@ pub struct ArcLimits {
     pub tol: f64,
 }
 
-/// Sweep of the arc from `a` to `b` about `c` (in (0, 2π]; equal ends: 2π):
-/// [`crate::geometry::arc::sweep`] of the XY parts.
-pub fn sweep(a: Vec3, b: Vec3, c: Vec2, ccw: bool) -> f64 {
-    crate::geometry::arc::sweep(Vec2::new(a.x, a.y), Vec2::new(b.x, b.y), c, ccw)
-}
-
 /// The tool path as the writer may emit it: with `!limits.arcs`, or for an arc
 /// flatter than `max_radius` or shorter than `min_length`, the arc is replaced by
 /// chords within `tol` of it (a line when one chord is close enough); an arc
@@ -467,34 +461,16 @@ pub fn legalize(tp: &Toolpath, limits: &ArcLimits) -> Toolpath {
             } = *m
             {
                 let c = Vec2::new(cx, cy);
-                let r = (at.x - cx).hypot(at.y - cy);
-                let sw = sweep(at, to, c, ccw);
-                let len = arc_length(at, to, cx, cy, ccw);
+                let r = arc::radius(at.xy(), c);
+                let sw = arc::sweep(at.xy(), to.xy(), c, ccw);
+                let len = arc::helix_length(r, sw, to.z - at.z);
                 let line = !limits.arcs || r > limits.max_radius || len < limits.min_length;
                 let n = if line {
-                    // Chords of angle 2·acos(1 − tol/r) are within tol of the arc.
-                    let dth = 2.0
-                        * (1.0 - limits.tol / r.max(limits.tol))
-                            .clamp(-1.0, 1.0)
-                            .acos();
-                    (sw / dth.max(1e-9)).ceil().clamp(1.0, 1e5) as usize
+                    arc::chords(r, sw, limits.tol)
                 } else {
                     (sw / (MAX_SWEEP + ANGLE_EPS)).ceil().max(1.0) as usize
                 };
-                let a0 = (at.y - cy).atan2(at.x - cx);
-                let sign = if ccw { 1.0 } else { -1.0 };
-                for i in 1..=n {
-                    let p = if i == n {
-                        to
-                    } else {
-                        let th = a0 + sign * sw * i as f64 / n as f64;
-                        let f = i as f64 / n as f64;
-                        Vec3::new(
-                            cx + r * th.cos(),
-                            cy + r * th.sin(),
-                            at.z + (to.z - at.z) * f,
-                        )
-                    };
+                for p in arc_points(at, to, cx, cy, ccw, n) {
                     moves.push(if line {
                         Move::Linear { to: p, feed }
                     } else {

@@ -5,7 +5,7 @@
 //! material not yet cut is the stock simulation's question, not this one.)
 
 use super::{Move, Toolpath, Vec3};
-use crate::geometry::{DistanceIndex, Vec2};
+use crate::geometry::{arc, DistanceIndex, Vec2};
 
 /// The result of a gouge check.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,13 +52,15 @@ pub fn check(path: &Toolpath, part: &DistanceIndex, radius: f64, top: f64) -> Go
                 }
             }
             Move::Arc { cx, cy, ccw, .. } if below => {
-                for (a, b) in flatten_arc(at, to, cx, cy, ccw, 1e-4) {
+                let mut a = at.xy();
+                for b in arc::flatten(a, to.xy(), Vec2::new(cx, cy), ccw, 1e-4) {
                     let d = part.segment_distance(a, b, radius * 2.0);
                     let c = d.min(2.0 * radius) - radius;
                     if c < rep.min_clearance {
                         rep.min_clearance = c;
                         rep.at = to;
                     }
+                    a = b;
                 }
                 rep.moves_checked += 1;
             }
@@ -67,30 +69,4 @@ pub fn check(path: &Toolpath, part: &DistanceIndex, radius: f64, top: f64) -> Go
         at = to;
     }
     rep
-}
-
-/// Chords of an XY arc within `tol` of it.
-pub(crate) fn flatten_arc(
-    a: Vec3,
-    b: Vec3,
-    cx: f64,
-    cy: f64,
-    ccw: bool,
-    tol: f64,
-) -> Vec<(Vec2, Vec2)> {
-    let r = (a.x - cx).hypot(a.y - cy);
-    let a0 = (a.y - cy).atan2(a.x - cx);
-    let sweep = super::arcfit::sweep(a, b, Vec2::new(cx, cy), ccw);
-    let dth = 2.0
-        * (1.0 - tol / r.max(tol * 2.0))
-            .clamp(-1.0, 1.0)
-            .acos()
-            .max(1e-3);
-    let n = ((sweep / dth).ceil() as usize).clamp(1, 10_000);
-    let s = if ccw { 1.0 } else { -1.0 };
-    let pt = |k: usize| {
-        let th = a0 + s * sweep * k as f64 / n as f64;
-        Vec2::new(cx + r * th.cos(), cy + r * th.sin())
-    };
-    (0..n).map(|k| (pt(k), pt(k + 1))).collect()
 }

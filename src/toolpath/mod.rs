@@ -47,6 +47,10 @@ impl Vec3 {
     pub fn dist(self, o: Vec3) -> f64 {
         ((self.x - o.x).powi(2) + (self.y - o.y).powi(2) + (self.z - o.z).powi(2)).sqrt()
     }
+    /// The point's X and Y.
+    pub fn xy(self) -> crate::geometry::Vec2 {
+        crate::geometry::Vec2::new(self.x, self.y)
+    }
 }
 
 /// One move of the tool centre. Every move starts where the previous one ended.
@@ -97,13 +101,19 @@ impl Move {
     }
 
     /// Length of the move from `from`, mm: straight for a rapid or a line,
-    /// the helix for an arc ([`arc_length`]).
+    /// the helix for an arc ([`crate::geometry::arc::length`]).
     pub fn length(&self, from: Vec3) -> f64 {
         match *self {
             Move::Rapid { to } | Move::Linear { to, .. } => from.dist(to),
             Move::Arc {
                 to, cx, cy, ccw, ..
-            } => arc_length(from, to, cx, cy, ccw),
+            } => crate::geometry::arc::length(
+                from.xy(),
+                to.xy(),
+                crate::geometry::Vec2::new(cx, cy),
+                ccw,
+                to.z - from.z,
+            ),
         }
     }
 }
@@ -187,9 +197,35 @@ pub fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
     }
 }
 
-/// Length of a helical arc from `a` to `b` about (`cx`, `cy`).
-pub fn arc_length(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool) -> f64 {
-    let r = (a.x - cx).hypot(a.y - cy);
-    let sweep = arcfit::sweep(a, b, crate::geometry::Vec2::new(cx, cy), ccw);
-    (r * sweep).hypot(b.z - a.z)
+/// Points along the (helical) arc from `a` (excluded) to `b` (included,
+/// exactly) about (`cx`, `cy`): equal chords within `tol` of it in XY
+/// ([`crate::geometry::arc::chords`]), z linear in the angle.
+pub fn arc_flatten(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, tol: f64) -> Vec<Vec3> {
+    use crate::geometry::arc;
+    let c = crate::geometry::Vec2::new(cx, cy);
+    let n = arc::chords(
+        arc::radius(a.xy(), c),
+        arc::sweep(a.xy(), b.xy(), c, ccw),
+        tol,
+    );
+    arc_points(a, b, cx, cy, ccw, n)
+}
+
+/// The ends of `n` equal pieces of the (helical) arc from `a` to `b` about
+/// (`cx`, `cy`): [`crate::geometry::arc::divide`] in XY, z linear in the
+/// angle; the last exactly `b`.
+pub fn arc_points(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, n: usize) -> Vec<Vec3> {
+    let c = crate::geometry::Vec2::new(cx, cy);
+    let pts = crate::geometry::arc::divide(a.xy(), b.xy(), c, ccw, n);
+    pts.into_iter()
+        .enumerate()
+        .map(|(k, p)| {
+            if k + 1 == n {
+                b
+            } else {
+                let f = (k + 1) as f64 / n as f64;
+                Vec3::new(p.x, p.y, a.z + (b.z - a.z) * f)
+            }
+        })
+        .collect()
 }

@@ -239,16 +239,10 @@ impl StockMap {
                 Move::Arc {
                     to, cx, cy, ccw, ..
                 } => {
-                    let tol = 0.25 * self.cell;
-                    let chords = super::gouge::flatten_arc(at, to, cx, cy, ccw, tol);
-                    let n = chords.len() as f64;
-                    for (k, (p, q)) in chords.into_iter().enumerate() {
-                        let z = |t: f64| at.z + (to.z - at.z) * t / n;
-                        self.cut_segment(
-                            Vec3::new(p.x, p.y, z(k as f64)),
-                            Vec3::new(q.x, q.y, z(k as f64 + 1.0)),
-                            r,
-                        );
+                    let mut p = at;
+                    for q in super::arc_flatten(at, to, cx, cy, ccw, 0.25 * self.cell) {
+                        self.cut_segment(p, q, r);
+                        p = q;
                     }
                     at = to;
                 }
