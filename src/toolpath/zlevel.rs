@@ -105,34 +105,8 @@ pub struct LevelCut {
 /// closed.
 pub(super) fn clip_ring(ring: &[Vec2], keep: &Keepout) -> Vec<(Vec<Vec2>, bool)> {
     let n = ring.len() - 1; // last = first
-    let inside: Vec<bool> = ring[..n].iter().map(|&p| !keep.clear(p)).collect();
-    if inside.iter().all(|&b| b) {
-        return vec![(ring.to_vec(), true)];
-    }
-    if !inside.iter().any(|&b| b) {
-        return Vec::new();
-    }
-    // Start just after an outside point.
-    let k0 = (0..n).find(|&k| !inside[k]).unwrap_or(0);
-    let mut runs = Vec::new();
-    let mut cur: Vec<Vec2> = Vec::new();
-    for step in 1..=n {
-        let k = (k0 + step) % n;
-        let prev = (k + n - 1) % n;
-        if inside[k] {
-            if cur.is_empty() {
-                cur.push(ring[prev]);
-            }
-            cur.push(ring[k]);
-        } else if !cur.is_empty() {
-            cur.push(ring[k]);
-            runs.push((std::mem::take(&mut cur), false));
-        }
-    }
-    if !cur.is_empty() {
-        runs.push((cur, false));
-    }
-    runs
+    let clear: Vec<bool> = ring[..n].iter().map(|&p| keep.clear(p)).collect();
+    super::clearing::runs_between(ring, &clear)
 }
 
 pub(super) fn lowest(poly: &[Vec2]) -> Vec2 {
