@@ -109,10 +109,12 @@ pub fn clearing_loops(
             kept.push(k);
         }
     }
+    // A ring's repeated last point is an edge of no length: it adds nothing
+    // to a winding number.
     let inside_another = |k: usize| {
         let p = rings[k][0];
         kept.iter()
-            .any(|&i| i != k && polygon_winding_number(&open(&rings[i]), p) != 0)
+            .any(|&i| i != k && polygon_winding_number(&rings[i], p) != 0)
     };
     let (islands, outer): (Vec<usize>, Vec<usize>) = kept.iter().partition(|&&k| inside_another(k));
     let rect = vec![lo, Vec2::new(hi.x, lo.y), hi, Vec2::new(lo.x, hi.y)];
