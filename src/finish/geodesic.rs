@@ -308,20 +308,26 @@ impl Distance {
                     continue;
                 }
                 for i in q * CHUNK..((q + 1) * CHUNK).min(nx - 1) {
-                    let k = j * nx + i;
-                    let v = [self.d[k], self.d[k + 1], self.d[k + nx + 1], self.d[k + nx]];
-                    if v.iter().any(|x| !x.is_finite()) {
-                        continue;
-                    }
-                    // Edges a-b, b-c, c-d, d-a of the cell's corners a, b, c, d
-                    // (counter-clockwise from (i, j)).
-                    let e = [2 * k, 2 * (k + 1) + 1, 2 * (k + nx), 2 * k + 1];
-                    let (pair, n) = cell_segments(v, c, e);
+                    let (pair, n) = self.cell(j * nx + i, c);
                     out.extend_from_slice(&pair[..n]);
                 }
             }
         }
         out
+    }
+
+    /// The level's segments in the cell whose lower-left node is `k` (the
+    /// first `n` of the pair): none unless σ is finite at its four corners.
+    fn cell(&self, k: usize, c: f64) -> ([[usize; 2]; 2], usize) {
+        let nx = self.nx;
+        let v = [self.d[k], self.d[k + 1], self.d[k + nx + 1], self.d[k + nx]];
+        if v.iter().any(|x| !x.is_finite()) {
+            return ([[0, 0]; 2], 0);
+        }
+        // Edges a-b, b-c, c-d, d-a of the cell's corners a, b, c, d
+        // (counter-clockwise from node k).
+        let e = [2 * k, 2 * (k + 1) + 1, 2 * (k + nx), 2 * k + 1];
+        cell_segments(v, c, e)
     }
 }
 
@@ -718,13 +724,7 @@ mod tests {
             let mut out = Vec::new();
             for j in 0..d.ny - 1 {
                 for i in 0..nx - 1 {
-                    let k = j * nx + i;
-                    let v = [d.d[k], d.d[k + 1], d.d[k + nx + 1], d.d[k + nx]];
-                    if v.iter().any(|x| !x.is_finite()) {
-                        continue;
-                    }
-                    let e = [2 * k, 2 * (k + 1) + 1, 2 * (k + nx), 2 * k + 1];
-                    let (pair, n) = cell_segments(v, c, e);
+                    let (pair, n) = d.cell(j * nx + i, c);
                     out.extend_from_slice(&pair[..n]);
                 }
             }
