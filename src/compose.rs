@@ -33,6 +33,7 @@
 //! then each vertex is carried onto u = 1 by Newton's method.
 
 use crate::field::isolines::{isolines_in, Grid};
+use crate::field::level::{self, Limits};
 use crate::field::setup::{Boundary, Layout, Prepared, Sink, OUTER_CHARGES, SINK_CHARGES};
 use crate::field::{self, mfs, Field, FieldError, Problem};
 use crate::geometry::polygon_area;
@@ -899,25 +900,15 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
     // is 1 to τ/2. Where the material has a re-entrant corner (a union's notch)
     // u − 1 ~ r² and Γ(1 − τ) cuts the corner by about √τ of the size: there the
     // vertices slide onto the walls and the chord refinement puts the corner back.
+    let limits = Limits {
+        eps: 1e-12,
+        max_step: h,
+        ..Limits::steps(100, 60.0 * h)
+    };
     let onto_one = |p: Vec2| -> Vec2 {
-        let mut q = p;
-        for _ in 0..100 {
-            let (u, g) = m.field.value_grad(q);
-            let g2 = g.norm2();
-            if g2 == 0.0 || (1.0 - u).abs() < 1e-12 {
-                break;
-            }
-            let mut step = g * ((1.0 - u) / g2);
-            if step.norm() > h {
-                step = step * (h / step.norm());
-            }
-            q += step;
-        }
-        if q.dist(p) <= 60.0 * h && (m.field.value(q) - 1.0).abs() <= 0.5 * tau {
-            q
-        } else {
-            p
-        }
+        level::project(&m.field, p, 1.0, &limits)
+            .filter(|&q| (m.field.value(q) - 1.0).abs() <= 0.5 * tau)
+            .unwrap_or(p)
     };
     let tol = CURVE_TOL * frame.size;
     Ok(loops

@@ -5,6 +5,7 @@ pub mod contour;
 pub mod fast;
 pub mod inverse;
 pub mod isolines;
+pub(crate) mod level;
 mod march;
 pub mod mfs;
 pub mod setup;

@@ -7,6 +7,7 @@ use super::schedule;
 use super::sections::{LevelField, Sections};
 use crate::estimate::{check_bound, level_area, levels_bound, GuardError, LowerBound};
 use crate::field::isolines::{isolines, Grid};
+use crate::field::level::{self, Limits};
 use crate::field::{self, Boundary, Field, FieldError, Layout, Prepared};
 use crate::geometry::polygon_area;
 use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
@@ -113,22 +114,14 @@ pub fn curves(
         .collect()
 }
 
-/// Newton's method along ∇u from `p` to Γ(s) (a few steps; `None` if it wanders).
-fn project(field: &Field, p: Vec2, s: f64, limit: f64) -> Option<Vec2> {
-    let mut q = p;
-    for _ in 0..6 {
-        let (u, g) = field.value_grad(q);
-        let g2 = g.norm2();
-        if g2 == 0.0 {
-            return None;
-        }
-        let step = g * ((u - s) / g2);
-        q -= step;
-        if step.norm() < 1e-10 {
-            break;
-        }
-    }
-    (q.dist(p) <= limit).then_some(q)
+/// A chord's midpoint moves onto Γ(s) by at most six Newton steps, stopping
+/// after one under 1e-10 mm, and only as far as the chord is long.
+fn onto_level(field: &Field, m: Vec2, s: f64, chord: f64) -> Option<Vec2> {
+    let limits = Limits {
+        min_step: 1e-10,
+        ..Limits::steps(6, chord)
+    };
+    level::project(field, m, s, &limits)
 }
 
 /// Chords of a level's contour stay within this fraction of the tolerance of
@@ -163,7 +156,7 @@ fn refine_edge(
         return;
     }
     let m = a.lerp(b, 0.5);
-    if let Some(q) = project(field, m, s, a.dist(b)) {
+    if let Some(q) = onto_level(field, m, s, a.dist(b)) {
         if q.dist(m) > tol {
             refine_edge(a, q, field, s, tol, depth - 1, out);
             out.push(q);
