@@ -1,7 +1,6 @@
 //! Potential fields by the method of fundamental solutions (the paper's Sections 2–4).
 
 pub mod adaptive;
-pub mod contour;
 pub mod fast;
 pub mod inverse;
 pub mod isolines;
