@@ -33,6 +33,7 @@
 //! then each vertex is carried onto u = 1 by Newton's method.
 
 use crate::field::isolines::{isolines_in, Grid};
+use crate::field::level::{self, Limits};
 use crate::field::setup::{Boundary, Layout, Prepared, Sink, OUTER_CHARGES, SINK_CHARGES};
 use crate::field::{self, mfs, Field, FieldError, Problem};
 use crate::geometry::polygon_area;
@@ -442,35 +443,38 @@ pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, 
     let (lo0, hi0) = polygons_bbox(&polys).ok_or_else(|| part_err(&m.name, "empty"))?;
     let inside = |p: Vec2| m.csg.contains(p);
     let mask = |o: Vec2, h: f64, nx: usize, ny: usize| m.csg.grid_mask(o, h, nx, ny);
-    let mut grow = 0.5;
-    for _ in 0..6 {
-        let pad = (hi0 - lo0) * grow + Vec2::new(1.0, 1.0) * (0.01 * frame.size);
+    // The box grows by half the part's size on each side, doubling each try.
+    let sample = |k: usize| {
+        let pad = (hi0 - lo0) * (0.5 * f64::powi(2.0, k as i32))
+            + Vec2::new(1.0, 1.0) * (0.01 * frame.size);
         let (lo, hi) = (lo0 - pad, hi0 + pad);
         let h = (hi.x - lo.x).max(hi.y - lo.y) / EXTRACT_GRID;
-        let grid = Grid::sample_masked(&m.field, lo, hi, h, &mask);
-        if m.bounded() && grid.border_max() >= s {
-            grow *= 2.0;
-            continue;
-        }
-        let loops = isolines_in(&grid, s, &m.field, &inside);
-        let tol = CURVE_TOL * frame.size;
-        let out: Vec<Vec<Vec2>> = loops
-            .into_iter()
-            .filter(|l| polygon_area(l).abs() > 4.0 * h * h)
-            .map(|l| crate::levels::plan::refine(&l, &m.field, s, tol))
-            .collect();
-        if out.is_empty() {
-            return Err(part_err(
-                &m.name,
-                format!("Γ({s:?}) of its field is empty near the part"),
-            ));
-        }
-        return Ok(out);
+        Grid::sample_masked(&m.field, lo, hi, h, &mask)
+    };
+    let open = || {
+        part_err(
+            &m.name,
+            format!("Γ({s:?}) of its field does not close within 32 times the part's size; take a level closer to 1"),
+        )
+    };
+    let grid = if m.bounded() {
+        level::closing_grid(s, 6, sample).ok_or_else(open)?
+    } else {
+        sample(0)
+    };
+    let tol = CURVE_TOL * frame.size;
+    let rings = level::drop_slivers(isolines_in(&grid, s, &m.field, &inside), grid.h);
+    let out: Vec<Vec<Vec2>> = rings
+        .into_iter()
+        .map(|l| level::refine(&l, &m.field, s, tol))
+        .collect();
+    if out.is_empty() {
+        return Err(part_err(
+            &m.name,
+            format!("Γ({s:?}) of its field is empty near the part"),
+        ));
     }
-    Err(part_err(
-        &m.name,
-        format!("Γ({s:?}) of its field does not close within 32 times the part's size; take a level closer to 1"),
-    ))
+    Ok(out)
 }
 
 /// A part's boundary loops (material on their left) as contours, each with
@@ -867,10 +871,7 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
     let inside = |p: Vec2| m.csg.contains(p);
     let mask = |o: Vec2, h: f64, nx: usize, ny: usize| m.csg.grid_mask(o, h, nx, ny);
     let grid = Grid::sample_masked(&m.field, lo, hi, h, &mask);
-    let loops: Vec<Vec<Vec2>> = isolines_in(&grid, s, &m.field, &inside)
-        .into_iter()
-        .filter(|l| polygon_area(l).abs() > 4.0 * h * h)
-        .collect();
+    let loops = level::drop_slivers(isolines_in(&grid, s, &m.field, &inside), h);
     if loops.is_empty() {
         return Err(part_err(
             &m.name,
@@ -899,32 +900,22 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
     // is 1 to τ/2. Where the material has a re-entrant corner (a union's notch)
     // u − 1 ~ r² and Γ(1 − τ) cuts the corner by about √τ of the size: there the
     // vertices slide onto the walls and the chord refinement puts the corner back.
+    let limits = Limits {
+        eps: 1e-12,
+        max_step: h,
+        ..Limits::steps(100, 60.0 * h)
+    };
     let onto_one = |p: Vec2| -> Vec2 {
-        let mut q = p;
-        for _ in 0..100 {
-            let (u, g) = m.field.value_grad(q);
-            let g2 = g.norm2();
-            if g2 == 0.0 || (1.0 - u).abs() < 1e-12 {
-                break;
-            }
-            let mut step = g * ((1.0 - u) / g2);
-            if step.norm() > h {
-                step = step * (h / step.norm());
-            }
-            q += step;
-        }
-        if q.dist(p) <= 60.0 * h && (m.field.value(q) - 1.0).abs() <= 0.5 * tau {
-            q
-        } else {
-            p
-        }
+        level::project(&m.field, p, 1.0, &limits)
+            .filter(|&q| (m.field.value(q) - 1.0).abs() <= 0.5 * tau)
+            .unwrap_or(p)
     };
     let tol = CURVE_TOL * frame.size;
     Ok(loops
         .into_iter()
         .map(|l| {
             let on: Vec<Vec2> = l.iter().map(|&p| onto_one(p)).collect();
-            crate::levels::plan::refine(&on, &m.field, 1.0, tol)
+            level::refine(&on, &m.field, 1.0, tol)
         })
         .collect())
 }

@@ -582,14 +582,14 @@ fn space_out(ts: &mut [f64], ascending: bool) {
 /// The stock rectangle as the level planner computes it: the bounding box of
 /// the largest level Γ(s_bottom) (a boss's foot, a cavity's rim), from the
 /// same grid of u and the same curves (`crate::levels::mfs_sections::job_grid`,
-/// [`crate::levels::plan::curves`]), plus the margin.
+/// `field::level::curves`), plus the margin.
 pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
     if crate::geometry::polygons_bbox(sj.glyphs).is_none() {
         return Err(SurfaceError::EmptyShape);
     }
     let (s_lo, _) = sj.profile.s_range();
     let (grid, h) = crate::levels::mfs_sections::job_grid(sj.field, sj.glyphs, sj.profile)?;
-    let base = crate::levels::plan::curves(&grid, sj.field, sj.glyphs, s_lo, h, sj.tol);
+    let base = crate::field::level::curves(&grid, sj.field, sj.glyphs, s_lo, h, sj.tol);
     let (blo, bhi) =
         crate::geometry::polygons_bbox(&base).ok_or(SurfaceError::NoBaseContour { s: s_lo })?;
     let m = Vec2::new(sj.margin, sj.margin);

@@ -10,10 +10,16 @@
 //! Loops are oriented with the region u ≥ s on their left: around the material
 //! they run counter-clockwise, around a hole (a counter's sink) clockwise, the same
 //! "material on the left" convention as the glyph contours.
+//!
+//! This is the one sampling and the one extractor of Γ(s): the level planner,
+//! compose, the finishing and the surface take its rings ([`isolines`],
+//! [`isolines_in`]); the preview draws every piece, the open ones that leave
+//! the drawing too ([`pieces`]), on a grid sampled through the guard against
+//! a cell size given in the wrong unit ([`Grid::try_sample`]).
 
-use super::march::{self, Edge, Gaps};
+use super::march::{self, Edge, Gaps, Level};
 use super::Field;
-use crate::geometry::Vec2;
+use crate::geometry::{polygon_winding_number, polygons_bbox, Vec2};
 use rayon::prelude::*;
 
 /// Values of u on a regular grid, with the material marked.
@@ -47,7 +53,49 @@ pub(crate) fn fill_rows(
     crate::geometry::winding_rows(&xs, &ys, polys)
 }
 
+/// The most grid points [`Grid::try_sample`] will take (a guard against a
+/// cell size given in the wrong unit: 16 M points is a 4000 × 4000 grid).
+pub const MAX_GRID_POINTS: usize = 16_000_000;
+
+/// Why a grid cannot be sampled.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum ContourError {
+    /// Bad rectangle or cell size.
+    #[error("equipotential grid: {0}")]
+    Grid(String),
+}
+
 impl Grid {
+    /// [`Grid::sample`] after checking the box and the spacing: `h` a
+    /// positive number, `hi` above and right of `lo`, and at most
+    /// [`MAX_GRID_POINTS`] points.
+    pub fn try_sample(
+        field: &Field,
+        lo: Vec2,
+        hi: Vec2,
+        h: f64,
+        material: &[Vec<Vec2>],
+    ) -> Result<Grid, ContourError> {
+        if !(h > 0.0 && h.is_finite() && lo.is_finite() && hi.is_finite()) {
+            return Err(ContourError::Grid(format!(
+                "cell size must be a positive number, got {h}"
+            )));
+        }
+        if !(hi.x > lo.x && hi.y > lo.y) {
+            return Err(ContourError::Grid(
+                "the rectangle is empty (hi must exceed lo in x and y)".into(),
+            ));
+        }
+        let nx = ((hi.x - lo.x) / h).ceil();
+        let ny = ((hi.y - lo.y) / h).ceil();
+        if (nx + 1.0) * (ny + 1.0) > MAX_GRID_POINTS as f64 {
+            return Err(ContourError::Grid(format!(
+                "{nx} × {ny} cells are too many (at most {MAX_GRID_POINTS} points); use a larger cell"
+            )));
+        }
+        Ok(Grid::sample(field, lo, hi, h, material))
+    }
+
     /// Sample u over the box [lo, hi] with spacing `h`; `material` are the closed
     /// polygons of the generating boundary (material on the left).
     pub fn sample(field: &Field, lo: Vec2, hi: Vec2, h: f64, material: &[Vec<Vec2>]) -> Grid {
@@ -142,7 +190,7 @@ pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> V
     let inside = |p: Vec2| {
         material
             .iter()
-            .map(|m| crate::geometry::polygon_winding_number(m, p))
+            .map(|m| polygon_winding_number(m, p))
             .sum::<i32>()
             != 0
     };
@@ -157,28 +205,104 @@ pub fn isolines_in(
     field: &Field,
     inside: &(dyn Fn(Vec2) -> bool + Sync),
 ) -> Vec<Vec<Vec2>> {
-    let nx = grid.nx;
-    let loops_edges = trace_loops(grid, s);
-    // Place every vertex on its edge.
-    loops_edges
+    trace_loops(grid, s)
         .par_iter()
         .map(|lp| {
             lp.iter()
-                .map(|e| {
-                    let [a, b] = e.ends();
-                    let (pa, pb) = (grid.point(a.0, a.1), grid.point(b.0, b.1));
-                    let (ia, ib) = (a.1 * nx + a.0, b.1 * nx + b.0);
-                    let (fa, fb) = (grid.values[ia] - s, grid.values[ib] - s);
-                    if grid.inside[ia] || grid.inside[ib] {
-                        let u = |p: Vec2| if inside(p) { 1.0 } else { field.value(p) };
-                        edge_root(pa, pb, fa, fb, s, &u)
-                    } else {
-                        edge_root(pa, pb, fa, fb, s, &|p| field.value(p))
-                    }
-                })
+                .map(|&e| on_edge(grid, e, s, field, inside))
                 .collect()
         })
         .collect()
+}
+
+/// The vertex of {u = s} on the crossed edge `e`: the root of u − s there by
+/// regula falsi, with u taken as 1 inside the material when the edge touches
+/// it (`inside` agrees with `grid.inside` at the grid points).
+fn on_edge(
+    grid: &Grid,
+    e: Edge,
+    s: f64,
+    field: &Field,
+    inside: &(dyn Fn(Vec2) -> bool + Sync),
+) -> Vec2 {
+    let [a, b] = e.ends();
+    let ((pa, fa), (pb, fb)) = edge_ends(grid, e, s);
+    let (ia, ib) = (a.1 * grid.nx + a.0, b.1 * grid.nx + b.0);
+    if grid.inside[ia] || grid.inside[ib] {
+        let u = |p: Vec2| if inside(p) { 1.0 } else { field.value(p) };
+        edge_root(pa, pb, fa, fb, s, &u)
+    } else {
+        edge_root(pa, pb, fa, fb, s, &|p| field.value(p))
+    }
+}
+
+/// One piece of Γ(s) on a grid: a ring, or an open curve whose two ends lie
+/// on the grid's border.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Equipotential {
+    /// The vertices, in order. For a ring the first vertex is not repeated.
+    pub points: Vec<Vec2>,
+    /// True for a ring, false for a curve that leaves the grid.
+    pub closed: bool,
+}
+
+impl Equipotential {
+    /// Length of the polyline (including the closing edge of a ring), mm.
+    pub fn length(&self) -> f64 {
+        let mut l: f64 = self.points.windows(2).map(|w| w[0].dist(w[1])).sum();
+        if self.closed && self.points.len() > 1 {
+            l += self.points[self.points.len() - 1].dist(self.points[0]);
+        }
+        l
+    }
+}
+
+/// Every piece of {u = s} on the grid, rings and open curves alike, in the
+/// order of `field::march` (open curves first), each vertex placed as by
+/// [`isolines_in`] (`inside` as there); rings are not turned, and pieces of
+/// fewer than two vertices are dropped. For drawing the levels.
+pub fn pieces(
+    grid: &Grid,
+    s: f64,
+    field: &Field,
+    inside: &(dyn Fn(Vec2) -> bool + Sync),
+) -> Vec<Equipotential> {
+    let value = |i: usize, j: usize| grid.values[j * grid.nx + i];
+    let Level { edges, curves } = march::level(grid.nx - 1, grid.ny - 1, value, s, Gaps::Compare);
+    let points: Vec<Vec2> = edges
+        .par_iter()
+        .map(|&e| on_edge(grid, e, s, field, inside))
+        .collect();
+    curves
+        .into_iter()
+        .filter(|c| c.crossings.len() >= 2)
+        .map(|c| Equipotential {
+            points: c.crossings.iter().map(|&k| points[k]).collect(),
+            closed: c.closed,
+        })
+        .collect()
+}
+
+/// The material test for closed polygons (outlines counter-clockwise,
+/// counters clockwise): the sum of winding numbers is positive inside an
+/// outline and outside its counters (Appendix I). Polygons are first tested
+/// against their bounding boxes, which keeps sampling fast.
+pub fn material_mask(polys: &[Vec<Vec2>]) -> impl Fn(Vec2) -> bool + Sync + '_ {
+    let boxes: Vec<Option<(Vec2, Vec2)>> = polys
+        .iter()
+        .map(|poly| polygons_bbox(std::slice::from_ref(poly)))
+        .collect();
+    move |p: Vec2| {
+        polys
+            .iter()
+            .zip(&boxes)
+            .filter(|(_, b)| {
+                b.is_some_and(|(lo, hi)| p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y)
+            })
+            .map(|(poly, _)| polygon_winding_number(poly, p))
+            .sum::<i32>()
+            > 0
+    }
 }
 
 /// Root of u − s on the segment pa–pb (u − s = fa at pa, fb at pb, opposite signs).
@@ -314,5 +438,67 @@ mod tests {
             .map(|p| (p.norm() - 1.5).abs())
             .fold(0.0, f64::max);
         assert!(worst < 1e-9, "radius error {worst:e}");
+    }
+
+    #[test]
+    fn pieces_leaving_the_grid_are_open_and_on_their_level() {
+        // The circle r = eˢ about a charge near the grid's right edge: the part
+        // of it inside the grid is one open piece, both ends on the border.
+        let f = Field::new(vec![Vec2::new(2.5, 0.0)], vec![-std::f64::consts::TAU]);
+        let grid = Grid::try_sample(&f, Vec2::new(-3.0, -3.0), Vec2::new(3.0, 3.0), 0.1, &[])
+            .expect("grid");
+        let s = 1.0f64.ln();
+        let ps = pieces(&grid, s, &f, &|_| false);
+        assert_eq!(ps.len(), 1);
+        assert!(!ps[0].closed);
+        for p in &ps[0].points {
+            assert!((f.value(*p) - s).abs() < 1e-12, "{p:?}");
+        }
+        let hi_x = grid.origin.x + grid.h * (grid.nx - 1) as f64;
+        for end in [ps[0].points[0], ps[0].points[ps[0].points.len() - 1]] {
+            assert!((end.x - hi_x).abs() < 1e-9, "{end:?}");
+        }
+        // The closed circle of a charge in the middle is one ring, as from isolines.
+        let g0 = Grid::sample(&f, Vec2::new(-1.0, -3.0), Vec2::new(6.0, 3.0), 0.1, &[]);
+        let ring = pieces(&g0, s, &f, &|_| false);
+        assert_eq!(ring.len(), 1);
+        assert!(ring[0].closed);
+        let l = ring[0].length();
+        assert!(
+            l < std::f64::consts::TAU && l > 0.999 * std::f64::consts::TAU,
+            "{l}"
+        );
+    }
+
+    #[test]
+    fn bad_grids_are_errors() {
+        let f = Field::new(vec![Vec2::ZERO], vec![1.0]);
+        for (lo, hi, h) in [
+            (Vec2::ZERO, Vec2::new(1.0, 1.0), 0.0),
+            (Vec2::ZERO, Vec2::new(1.0, 1.0), f64::NAN),
+            (Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0), 0.1),
+            (Vec2::ZERO, Vec2::new(1e6, 1e6), 1e-3),
+        ] {
+            assert!(
+                Grid::try_sample(&f, lo, hi, h, &[]).is_err(),
+                "{lo:?} {hi:?} {h}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_material_mask_is_inside_outlines_and_outside_counters() {
+        let square = |r: f64| {
+            vec![
+                Vec2::new(-r, -r),
+                Vec2::new(r, -r),
+                Vec2::new(r, r),
+                Vec2::new(-r, r),
+            ]
+        };
+        let counter: Vec<Vec2> = square(1.0).into_iter().rev().collect();
+        let polys = vec![square(2.0), counter];
+        let m = material_mask(&polys);
+        assert!(m(Vec2::new(1.5, 0.0)) && !m(Vec2::ZERO) && !m(Vec2::new(3.0, 0.0)));
     }
 }

@@ -1,10 +1,10 @@
 //! Potential fields by the method of fundamental solutions (the paper's Sections 2–4).
 
 pub mod adaptive;
-pub mod contour;
 pub mod fast;
 pub mod inverse;
 pub mod isolines;
+pub(crate) mod level;
 mod march;
 pub mod mfs;
 pub mod setup;

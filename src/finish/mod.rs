@@ -12,6 +12,7 @@ pub mod passes;
 pub mod path;
 
 use crate::field::isolines::Grid;
+use crate::field::level;
 use crate::field::Field;
 use crate::geometry::Vec2;
 use crate::job::{Finish, Job};
@@ -214,8 +215,8 @@ pub fn crease_edges(
     let s = if cavity { lo } else { hi };
     let h = crate::levels::plan::GRID_SPACING;
     let mut out = Vec::new();
-    for poly in crate::levels::plan::curves(grid, field, glyphs, s, h, tol) {
-        let fine = crate::levels::plan::refine(&poly, field, s, CREASE_TOL);
+    for poly in level::curves(grid, field, glyphs, s, h, tol) {
+        let fine = level::refine(&poly, field, s, CREASE_TOL);
         let n = fine.len();
         for i in 0..n {
             let (a, b) = (fine[i], fine[(i + 1) % n]);

@@ -13,9 +13,9 @@
 use super::geodesic::{self, Curve, Distance};
 use super::FinishError;
 use crate::field::isolines::Grid;
+use crate::field::level::curves;
 use crate::field::Field;
 use crate::geometry::{DistanceIndex, Vec2};
-use crate::levels::plan::curves;
 use crate::levels::DepthProfile;
 use rayon::prelude::*;
 
@@ -48,7 +48,7 @@ pub fn dphi_ds(profile: &DepthProfile, s: f64) -> f64 {
     (profile.z(b) - profile.z(a)) / (b - a)
 }
 
-/// The curves Γ(s) of a field, from one grid (`levels::plan::curves`, as the
+/// The curves Γ(s) of a field, from one grid (`field::level::curves`, as the
 /// level planner extracts them).
 pub struct Curves<'a> {
     /// The field.

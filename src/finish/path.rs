@@ -23,6 +23,7 @@
 use super::geodesic::Curve;
 use super::passes::At;
 use super::{FinishError, FinishParams};
+use crate::field::level::{project, Limits};
 use crate::field::Field;
 use crate::geometry::{densify, densify_values, DistanceIndex, Vec2};
 use crate::toolpath::dropcutter::{Cutter, MeshIndex};
@@ -151,18 +152,13 @@ pub fn tip_loop(
 /// left on the wall under it).
 fn onto_levels(pts: &mut [Vec2], s: &[f64], field: &Field) {
     use rayon::prelude::*;
+    let limits = Limits {
+        leash: true,
+        ..Limits::steps(3, ONTO_LEVEL)
+    };
     pts.par_iter_mut().zip(s).for_each(|(q, &s)| {
-        let start = *q;
-        for _ in 0..3 {
-            let (u, g) = field.value_grad(*q);
-            let step = g * ((s - u) / g.norm2());
-            let next = *q + step;
-            let far = step.norm().is_nan() || step.norm() > ONTO_LEVEL;
-            if far || next.dist(start) > ONTO_LEVEL {
-                *q = start;
-                return;
-            }
-            *q = next;
+        if let Some(on) = project(field, *q, s, &limits) {
+            *q = on;
         }
     });
 }

@@ -18,7 +18,7 @@
 //! the border exactly. Chords off the border are then refined: a chord's
 //! midpoint is projected onto {h = level} by Newton along ∇h and inserted
 //! while it lies more than `CHORD_FRACTION` × tolerance from the chord (as
-//! `levels::plan::refine` does for Γ(s)).
+//! `field::level::refine` does for Γ(s)).
 
 use super::plan::CHORD_FRACTION;
 use super::sections::{LevelField, Sections};

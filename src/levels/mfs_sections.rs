@@ -2,12 +2,13 @@
 //! S2 = {(x, y) ∈ Γ(s), z = φ(s)} (Section 7). The section at z is the
 //! equipotential Γ(s(z)), s(z) the inverse of the depth profile φ (mirrored
 //! for a cavity, whose rim is the widest curve), extracted from one grid of u
-//! over the whole job ([`plan::curves`]) and cached per s.
+//! over the whole job (`field::level::curves`) and cached per s.
 
-use super::plan::{self, level_error_bound, FieldFigures, PlanError, EMPTY_BOX, GRID_SPACING};
+use super::plan::{level_error_bound, FieldFigures, PlanError, EMPTY_BOX, GRID_SPACING};
 use super::sections::{LevelField, Sections};
 use super::DepthProfile;
 use crate::field::isolines::Grid;
+use crate::field::level;
 use crate::field::Field;
 use crate::geometry::{polygons_bbox, Vec2};
 use std::collections::HashMap;
@@ -37,7 +38,7 @@ pub struct MfsInput {
     /// True for a cavity (the mould: material outside Γ(s)).
     pub cavity: bool,
     /// The job's tolerance, mm: the curves' chords are refined to
-    /// [`plan::CHORD_FRACTION`] of it.
+    /// `field::level::CHORD_FRACTION` of it.
     pub tol: f64,
     /// The shape field's figures, reported for the boss levels that use it.
     pub figures: FieldFigures,
@@ -83,7 +84,7 @@ impl MfsSections {
         }
     }
 
-    /// Γ(s) ([`plan::curves`]), each s extracted once (the schedule, the
+    /// Γ(s) (`field::level::curves`), each s extracted once (the schedule, the
     /// stock, the bound and the levels ask for the same curves); loops
     /// around the material counter-clockwise.
     pub fn curves(&self, s: f64) -> Vec<Vec<Vec2>> {
@@ -95,7 +96,7 @@ impl MfsSections {
         {
             return c;
         }
-        let polys = plan::curves(&self.grid, &self.field, &self.glyphs, s, self.h, self.tol);
+        let polys = level::curves(&self.grid, &self.field, &self.glyphs, s, self.h, self.tol);
         if let Ok(mut m) = self.cache.lock() {
             m.insert(s.to_bits(), polys.clone());
         }
@@ -165,21 +166,16 @@ pub(crate) fn job_grid(
     let (s_lo, _) = profile.s_range();
     let (lo, hi) = polygons_bbox(glyphs).unwrap_or(EMPTY_BOX);
     let diag = (hi - lo).norm();
-    let mut pad = 0.1 * diag;
+    // The padding, 0.1 of the diagonal, grows by 1.8 for each try.
+    let pad = |k: usize| (0..k).fold(0.1 * diag, |p, _| p * 1.8);
     let h = GRID_SPACING.max(diag / 2000.0);
-    let mut grid;
-    let mut tries = 0;
-    loop {
-        let (glo, ghi) = (lo - Vec2::new(pad, pad), hi + Vec2::new(pad, pad));
-        grid = Grid::sample(field, glo, ghi, h, glyphs);
-        if grid.border_max() < s_lo || tries >= 5 {
-            break;
-        }
-        pad *= 1.8;
-        tries += 1;
-    }
-    if grid.border_max() >= s_lo {
-        return Err(PlanError::LevelOpen { s: s_lo, pad });
-    }
+    let sample = |k: usize| {
+        let d = Vec2::new(pad(k), pad(k));
+        Grid::sample(field, lo - d, hi + d, h, glyphs)
+    };
+    let grid = level::closing_grid(s_lo, 6, sample).ok_or(PlanError::LevelOpen {
+        s: s_lo,
+        pad: pad(5),
+    })?;
     Ok((grid, h))
 }

@@ -6,8 +6,7 @@
 use super::schedule;
 use super::sections::{LevelField, Sections};
 use crate::estimate::{check_bound, level_area, levels_bound, GuardError, LowerBound};
-use crate::field::isolines::{isolines, Grid};
-use crate::field::{self, Boundary, Field, FieldError, Layout, Prepared};
+use crate::field::{self, Boundary, FieldError, Layout, Prepared};
 use crate::geometry::polygon_area;
 use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
 use crate::toolpath::profile::ProfileError;
@@ -17,7 +16,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Grid spacing for sampling u, mm: fine enough that marching squares finds every
 /// component of Γ(s) of the letters; vertices are exact and chords are then refined
-/// to the tolerance by `refine`.
+/// to the tolerance by `field::level::refine`.
 pub const GRID_SPACING: f64 = 0.4;
 
 /// Singularities per outer loop of a level's Γ(s) (smooth curves need fewer than
@@ -91,86 +90,7 @@ pub fn level_error_bound(s: f64) -> f64 {
     (1.0 - s) / 100.0
 }
 
-/// Γ(s) as closed polygons (first point not repeated) from u sampled on
-/// `grid` (spacing `h`): the glyphs themselves at s = 1, else marching
-/// squares with slivers under 4h² dropped and chords refined onto the level
-/// within [`CHORD_FRACTION`] of `tol`.
-pub fn curves(
-    grid: &Grid,
-    f: &Field,
-    glyphs: &[Vec<Vec2>],
-    s: f64,
-    h: f64,
-    tol: f64,
-) -> Vec<Vec<Vec2>> {
-    if s >= 1.0 - 1e-12 {
-        return glyphs.to_vec();
-    }
-    isolines(grid, s, f, glyphs)
-        .into_par_iter()
-        .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
-        .map(|p| refine(&p, f, s, CHORD_FRACTION * tol))
-        .collect()
-}
-
-/// Newton's method along ∇u from `p` to Γ(s) (a few steps; `None` if it wanders).
-fn project(field: &Field, p: Vec2, s: f64, limit: f64) -> Option<Vec2> {
-    let mut q = p;
-    for _ in 0..6 {
-        let (u, g) = field.value_grad(q);
-        let g2 = g.norm2();
-        if g2 == 0.0 {
-            return None;
-        }
-        let step = g * ((u - s) / g2);
-        q -= step;
-        if step.norm() < 1e-10 {
-            break;
-        }
-    }
-    (q.dist(p) <= limit).then_some(q)
-}
-
-/// Chords of a level's contour stay within this fraction of the tolerance of
-/// Γ(s): the rings are traced against the polygon, so a chord's sagitta inside
-/// a convex stretch of Γ(s) is a gouge the level's own check cannot see (at a
-/// quarter, one cell of the power-wall mfs-sign was 0.0104 mm deep against S2).
-pub const CHORD_FRACTION: f64 = 0.1;
-
-/// Insert vertices on Γ(s) where a chord strays more than `tol` from it (the
-/// chord's midpoint projected onto Γ(s) by Newton), up to four halvings.
-pub fn refine(poly: &[Vec2], field: &Field, s: f64, tol: f64) -> Vec<Vec2> {
-    let n = poly.len();
-    let mut out = Vec::with_capacity(n * 2);
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        out.push(a);
-        refine_edge(a, b, field, s, tol, 4, &mut out);
-    }
-    out
-}
-
-fn refine_edge(
-    a: Vec2,
-    b: Vec2,
-    field: &Field,
-    s: f64,
-    tol: f64,
-    depth: usize,
-    out: &mut Vec<Vec2>,
-) {
-    if depth == 0 {
-        return;
-    }
-    let m = a.lerp(b, 0.5);
-    if let Some(q) = project(field, m, s, a.dist(b)) {
-        if q.dist(m) > tol {
-            refine_edge(a, q, field, s, tol, depth - 1, out);
-            out.push(q);
-            refine_edge(q, b, field, s, tol, depth - 1, out);
-        }
-    }
-}
+pub use crate::field::level::CHORD_FRACTION;
 
 /// The box of nothing: every point extends it.
 pub(super) const EMPTY_BOX: (Vec2, Vec2) = (

@@ -16,7 +16,7 @@
 //! [`auto_exponent`]). Grid vertices inside the material are not evaluated (the
 //! MFS singularities are there) and take the material colour.
 
-use crate::field::contour::material_mask;
+use crate::field::isolines::material_mask;
 use crate::field::Field;
 use crate::geometry::Vec2;
 use rayon::prelude::*;

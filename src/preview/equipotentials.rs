@@ -5,7 +5,7 @@ use super::colours::curve_colour;
 use super::frame::Frame;
 use super::svgfmt::{level_label, num, path_data, text, FONT};
 use super::PreviewError;
-use crate::field::contour::{material_mask, Equipotential, FieldGrid, GridSpec};
+use crate::field::isolines::{material_mask, pieces, Equipotential, Grid};
 use crate::geometry::{DistanceIndex, Vec2};
 use crate::job::Job;
 use crate::pipeline::RunOutput;
@@ -24,7 +24,8 @@ pub(super) struct Equipotentials {
 
 /// The curves Γ(s) for each of `levels` (sorted, farthest first), traced on a
 /// grid of `cells` cells along the drawing's longer side over the part
-/// `polys`. Drawn black over the field image (`on_image`), else in
+/// `polys` (`field::isolines`, the planner's sampling and extractor, with the
+/// pieces that leave the drawing). Drawn black over the field image (`on_image`), else in
 /// [`curve_colour`].
 pub(super) fn equipotentials(
     job: &Job,
@@ -38,12 +39,8 @@ pub(super) fn equipotentials(
     let fs = frame.fs;
     let mask = material_mask(polys);
     let part = DistanceIndex::new(polys);
-    let spec = GridSpec {
-        lo: frame.lo,
-        hi: frame.hi,
-        cell: frame.size / cells as f64,
-    };
-    let grid = FieldGrid::sample(&out.field, &spec, &mask, 1.0)?;
+    let h = frame.size / cells as f64;
+    let grid = Grid::try_sample(&out.field, frame.lo, frame.hi, h, polys)?;
     let mut curves_group = Group::new()
         .set("fill", "none")
         .set("stroke-width", num(0.8 * frame.lw))
@@ -59,7 +56,7 @@ pub(super) fn equipotentials(
     let mut placed: Vec<Vec2> = Vec::new();
     let mut shown: Vec<f64> = Vec::new();
     for (k, &s) in levels.iter().enumerate() {
-        let curves = grid.level(&out.field, s, &mask);
+        let curves = pieces(&grid, s, &out.field, &mask);
         let colour = if on_image {
             "#000000".to_string()
         } else {

@@ -42,7 +42,7 @@ pub use frame::drawing_area;
 pub use marker::{is_pfcam_svg, svg_marker, SVG_MARKER_PREFIX};
 pub use section::section_svg;
 
-use crate::field::contour::ContourError;
+use crate::field::isolines::ContourError;
 use crate::geometry::Vec2;
 use crate::job::Job;
 use crate::pipeline::RunOutput;
