@@ -45,8 +45,11 @@ use crate::geometry::{
 use std::collections::HashMap;
 use std::time::Instant;
 
+mod fault;
 mod mask;
 mod order;
+
+pub use fault::PartFault;
 
 /// The models a part may refer to, by name.
 type Models<'a> = HashMap<&'a str, &'a Model>;
@@ -89,12 +92,12 @@ pub enum ComposeError {
         source: FieldError,
     },
     /// A part's field could not be solved or used.
-    #[error("shape.part \"{part}\": {msg}")]
+    #[error("shape.part \"{part}\": {source}")]
     Part {
         /// the part
         part: String,
         /// why
-        msg: String,
+        source: PartFault,
     },
 }
 
@@ -114,15 +117,15 @@ impl ComposeError {
         match self {
             ComposeError::Geometry { source, .. } => source.to_string(),
             ComposeError::Field { source, .. } => format!("field: {source}"),
-            ComposeError::Part { msg, .. } => msg.clone(),
+            ComposeError::Part { source, .. } => source.to_string(),
         }
     }
 }
 
-fn part_err(part: &str, msg: impl Into<String>) -> ComposeError {
+fn part_err(part: &str, fault: PartFault) -> ComposeError {
     ComposeError::Part {
         part: part.to_string(),
-        msg: msg.into(),
+        source: fault,
     }
 }
 
@@ -304,10 +307,7 @@ fn solve_boundary(
         let inside = |p: Vec2| polygon_winding_number(poly, p) != 0 && !csg.contains(p);
         let (centre, room) = deepest_point_in(lo, hi, &inside, &index);
         if room <= 0.0 {
-            return Err(part_err(
-                name,
-                "a hole of the material has no interior for its sink",
-            ));
+            return Err(part_err(name, PartFault::HoleWithoutRoom));
         }
         sinks.push(Sink {
             centre,
@@ -376,7 +376,7 @@ pub fn primitive(
 ) -> Result<(Model, PartReport), ComposeError> {
     let regions = regions_from_contours(name, contours);
     if regions.is_empty() {
-        return Err(part_err(name, "the primitive encloses no area"));
+        return Err(part_err(name, PartFault::PrimitiveNoArea));
     }
     let mut cs = Vec::new();
     let mut flags = Vec::new();
@@ -434,13 +434,10 @@ pub fn invert(
 /// Γ(s) of a model's field as closed polygons, material (u ≥ s) on the left.
 pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeError> {
     if !(s > 0.0 && s < 1.0) {
-        return Err(part_err(
-            &m.name,
-            format!("level must be strictly between 0 and 1, got {s}"),
-        ));
+        return Err(part_err(&m.name, PartFault::LevelOutOfRange { s }));
     }
     let polys = m.polygons(frame.flat_tol());
-    let (lo0, hi0) = polygons_bbox(&polys).ok_or_else(|| part_err(&m.name, "empty"))?;
+    let (lo0, hi0) = polygons_bbox(&polys).ok_or_else(|| part_err(&m.name, PartFault::Empty))?;
     let inside = |p: Vec2| m.csg.contains(p);
     let mask = |o: Vec2, h: f64, nx: usize, ny: usize| m.csg.grid_mask(o, h, nx, ny);
     // The box grows by half the part's size on each side, doubling each try.
@@ -451,12 +448,7 @@ pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, 
         let h = (hi.x - lo.x).max(hi.y - lo.y) / EXTRACT_GRID;
         Grid::sample_masked(&m.field, lo, hi, h, &mask)
     };
-    let open = || {
-        part_err(
-            &m.name,
-            format!("Γ({s:?}) of its field does not close within 32 times the part's size; take a level closer to 1"),
-        )
-    };
+    let open = || part_err(&m.name, PartFault::LevelOpen { s });
     let grid = if m.bounded() {
         level::closing_grid(s, 6, sample).ok_or_else(open)?
     } else {
@@ -469,10 +461,7 @@ pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, 
         .map(|l| level::refine(&l, &m.field, s, tol))
         .collect();
     if out.is_empty() {
-        return Err(part_err(
-            &m.name,
-            format!("Γ({s:?}) of its field is empty near the part"),
-        ));
+        return Err(part_err(&m.name, PartFault::LevelEmpty { s }));
     }
     Ok(out)
 }
@@ -486,7 +475,7 @@ fn loop_contours(
     let mut cs = Vec::new();
     let mut flags = Vec::new();
     for l in loops {
-        let c = Contour::polygon(l).map_err(|_| part_err(name, "a curve could not be closed"))?;
+        let c = Contour::polygon(l).map_err(|_| part_err(name, PartFault::CurveOpen))?;
         flags.push(polygon_area(l) < 0.0);
         cs.push(c);
     }
@@ -527,13 +516,8 @@ pub fn combine(
         carry_operand(me, other, &edges[1 - k], op, &mut material, &mut interior);
     }
     if material.colloc.is_empty() || material.charges.is_empty() {
-        return Err(part_err(
-            name,
-            format!(
-                "{} and {} do not overlap: the result has no boundary",
-                a.name, b.name
-            ),
-        ));
+        let (a, b) = (a.name.clone(), b.name.clone());
+        return Err(part_err(name, PartFault::Disjoint { a, b }));
     }
     add_crossing_clusters(&mut material, a, b, &csg, frame);
     let sinks = enclosed_sinks(a, b, &material, &csg, frame);
@@ -604,7 +588,7 @@ fn combined_csg(
             Csg::And(Box::new(a.csg.clone()), Box::new(b.csg.clone())),
             a.set.outer.clone().or_else(|| b.set.outer.clone()),
         ),
-        _ => return Err(part_err(name, "combine takes union or intersect")),
+        _ => return Err(part_err(name, PartFault::CombineOp)),
     })
 }
 
@@ -855,16 +839,13 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
         .map(|c| c.value - m.field.value(c.p))
         .fold(0.0, crate::num::max_or_nan);
     if deficit.is_nan() {
-        return Err(part_err(
-            &m.name,
-            "its field is not a number (NaN) on its boundary: this is a pfcam bug, please report it with the job file",
-        ));
+        return Err(part_err(&m.name, PartFault::NanOnBoundary));
     }
     let tau = (1.5 * deficit).max(MIN_TAU);
     let s = 1.0 - tau;
     let pts: Vec<Vec2> = m.set.material.colloc.iter().map(|c| c.p).collect();
     let (lo0, hi0) =
-        polygons_bbox(&[pts]).ok_or_else(|| part_err(&m.name, "no boundary points"))?;
+        polygons_bbox(&[pts]).ok_or_else(|| part_err(&m.name, PartFault::NoBoundaryPoints))?;
     let pad = (hi0 - lo0) * 0.05 + Vec2::new(1.0, 1.0) * (0.01 * frame.size);
     let (lo, hi) = (lo0 - pad, hi0 + pad);
     let h = (hi.x - lo.x).max(hi.y - lo.y) / EXTRACT_GRID;
@@ -873,25 +854,18 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
     let grid = Grid::sample_masked(&m.field, lo, hi, h, &mask);
     let loops = level::drop_slivers(isolines_in(&grid, s, &m.field, &inside), h);
     if loops.is_empty() {
+        let max_error = m.max_error;
         return Err(part_err(
             &m.name,
-            format!(
-                "its field has no curve u = {s:.6} near its boundary (max boundary error {:.2e})",
-                m.max_error
-            ),
+            PartFault::NoBoundaryCurve { s, max_error },
         ));
     }
     for l in &loops {
         for &p in l {
             let u = m.field.value(p);
             if (u - s).abs() > 1e-6 {
-                return Err(part_err(
-                    &m.name,
-                    format!(
-                        "its field does not reach u = 1 on the boundary near ({:.3}, {:.3}): u = {u:.4} there (max boundary error {:.2e})",
-                        p.x, p.y, m.max_error
-                    ),
-                ));
+                let (at, max_error) = (p, m.max_error);
+                return Err(part_err(&m.name, PartFault::Unreached { at, u, max_error }));
             }
         }
     }
@@ -969,7 +943,7 @@ fn primitive_contours(part: &Part) -> Result<Option<Vec<Contour>>, ComposeError>
                 if polygon_area(&l).abs() > 0.0 {
                     cs.push(
                         Contour::polygon(&l)
-                            .map_err(|_| part_err(&part.name, "the polygon is not closed"))?,
+                            .map_err(|_| part_err(&part.name, PartFault::PolygonOpen))?,
                     );
                 }
             }
@@ -1021,10 +995,7 @@ pub fn build(
     let built = order::build_parts(comp, prims, &frame, on_part)?;
     let (model, reports) = built.result(&comp.result)?;
     if !model.bounded() {
-        return Err(part_err(
-            &comp.result,
-            "the result is unbounded (the void of a part); use it inside subtract or intersect",
-        ));
+        return Err(part_err(&comp.result, PartFault::Unbounded));
     }
     let (shape, scale) = place(comp, &model, &frame)?;
     Ok(Built {
@@ -1060,18 +1031,14 @@ fn primitives_and_frame(
     for p in &comp.parts {
         if let Some(cs) = primitive_contours(p)? {
             if cs.is_empty() {
-                return Err(part_err(&p.name, "the primitive draws nothing"));
+                return Err(part_err(&p.name, PartFault::DrawsNothing));
             }
             all.extend(cs.iter().map(|c| c.flatten(1e-3)));
             prims.insert(&p.name, cs);
         }
     }
-    let (lo, hi) = polygons_bbox(&all).ok_or_else(|| {
-        part_err(
-            &comp.result,
-            "the composition has no primitive (polygon, svg or text)",
-        )
-    })?;
+    let (lo, hi) =
+        polygons_bbox(&all).ok_or_else(|| part_err(&comp.result, PartFault::NoPrimitive))?;
     Ok((prims, Frame::around(lo, hi)))
 }
 
@@ -1079,10 +1046,8 @@ fn primitives_and_frame(
 /// if it is not defined yet.
 fn model_of(models: &Models, of: &str, who: &str) -> Result<Model, ComposeError> {
     models.get(of).map(|m| (*m).clone()).ok_or_else(|| {
-        part_err(
-            who,
-            format!("refers to \"{of}\", which is not defined before it"),
-        )
+        let of = of.to_string();
+        part_err(who, PartFault::Undefined { of })
     })
 }
 
@@ -1113,10 +1078,7 @@ fn part_base(
             acc.name = name.to_string();
             Ok(acc)
         }
-        _ => Err(part_err(
-            name,
-            "is neither a primitive nor made of other parts",
-        )),
+        _ => Err(part_err(name, PartFault::NoSource)),
     }
 }
 
@@ -1134,18 +1096,18 @@ fn operate(
     let name = part.name.as_str();
     let first = of
         .first()
-        .ok_or_else(|| part_err(name, "an operation needs operands"))?;
+        .ok_or_else(|| part_err(name, PartFault::NoOperands))?;
     let mut acc = model_of(models, first, name)?;
     if op == BoolOp::Invert {
         if of.len() != 1 {
-            return Err(part_err(name, "invert takes exactly one part"));
+            return Err(part_err(name, PartFault::InvertArity));
         }
         let (m, r) = invert(name, &acc, frame, part.singularities)?;
         reports.push(r);
         return Ok(m);
     }
     if of.len() < 2 {
-        return Err(part_err(name, "this operation needs at least two parts"));
+        return Err(part_err(name, PartFault::TooFewOperands));
     }
     for other in &of[1..] {
         let b = model_of(models, other, name)?;
@@ -1199,7 +1161,7 @@ fn at_level(
 /// `comp.height` (else 1:1); and the scale.
 fn place(comp: &Composition, model: &Model, frame: &Frame) -> Result<(Shape, f64), ComposeError> {
     let polys = model.polygons(frame.flat_tol());
-    let (lo, hi) = polygons_bbox(&polys).ok_or_else(|| part_err(&comp.result, "empty"))?;
+    let (lo, hi) = polygons_bbox(&polys).ok_or_else(|| part_err(&comp.result, PartFault::Empty))?;
     let scale = match comp.height {
         Some(h) => h / (hi.y - lo.y),
         None => 1.0,
@@ -1212,7 +1174,7 @@ fn place(comp: &Composition, model: &Model, frame: &Frame) -> Result<(Shape, f64
         .collect();
     let regions = regions_from_contours(&comp.result, placed);
     if regions.is_empty() {
-        return Err(part_err(&comp.result, "the result encloses no area"));
+        return Err(part_err(&comp.result, PartFault::ResultNoArea));
     }
     Ok((Shape { regions }, scale))
 }

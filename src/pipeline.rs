@@ -15,6 +15,9 @@ use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
 use crate::toolpath::zlevel::{link_levels, LevelCut, LevelParams};
 use crate::toolpath::Toolpath;
 
+mod internal;
+pub use internal::Internal;
+
 /// Singularities per region when `field.singularities = "auto"`: enough for a
 /// navigation field with boundary error around 1e-3 on the paper's letters.
 pub const AUTO_N_PER_REGION: usize = 110;
@@ -174,7 +177,7 @@ pub enum PipelineError {
     Surface(Box<crate::surface::SurfaceError>),
     /// A broken invariant of pfcam itself, never the input's fault.
     #[error("internal error: {0} (this is a pfcam bug, please report it)")]
-    Internal(String),
+    Internal(#[from] Internal),
 }
 
 /// A planning error: the time guard's as [`PipelineError::Guard`] (so that
@@ -639,7 +642,7 @@ pub(crate) fn check_levels(
 /// A boss or cavity without its depth profile: job resolution gives every
 /// boss and cavity one (a default when the job has no `[profile]`).
 fn no_profile() -> PipelineError {
-    PipelineError::Internal("a boss or cavity job has no depth profile [profile]".into())
+    Internal::NoProfile.into()
 }
 
 /// A boss or cavity: the shape's field, the levels (each with its own MFS solve on
@@ -1001,7 +1004,7 @@ pub(crate) fn plan_with_progress(
                 plan_levels_reporting(lj, &counter)
             })) {
                 Ok(planned) => planned.map_err(PipelineError::from),
-                Err(_) => Err(PipelineError::Internal("the level planner panicked".into())),
+                Err(_) => Err(Internal::PlannerPanicked.into()),
             };
             *result.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
         });
@@ -1033,7 +1036,7 @@ pub(crate) fn plan_with_progress(
     result
         .into_inner()
         .unwrap_or_else(|e| e.into_inner())
-        .ok_or_else(|| PipelineError::Internal("the level planner did not finish".into()))?
+        .ok_or(Internal::PlannerUnfinished)?
 }
 
 fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {

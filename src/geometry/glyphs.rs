@@ -121,10 +121,8 @@ fn build_contour(name: &str, raw: &RawContour) -> Result<Contour, GeometryError>
 }
 
 fn load() -> Result<PaperFont, GeometryError> {
-    let raw: RawFile =
-        toml::from_str(PAPER_GLYPHS_TOML).map_err(|e| GeometryError::BuiltInGlyphs {
-            reason: e.to_string(),
-        })?;
+    let raw: RawFile = toml::from_str(PAPER_GLYPHS_TOML)
+        .map_err(|source| GeometryError::BuiltInGlyphs { source })?;
     let mut glyphs = Vec::new();
     for g in &raw.glyph {
         let ch = g.name.chars().next().unwrap_or('?');

@@ -118,10 +118,10 @@ pub enum GeometryError {
     #[error("a composition of parts is built with its fields (pipeline::job_shape)")]
     CompositeNotHere,
     /// The built-in paper glyphs could not be read (a broken build).
-    #[error("built-in paper glyphs: {reason}")]
+    #[error("built-in paper glyphs: {source}")]
     BuiltInGlyphs {
-        /// The TOML parser's words.
-        reason: String,
+        /// The TOML parser's error.
+        source: toml::de::Error,
     },
     /// A built-in glyph's segment of an unknown kind or point count.
     #[error("glyph {glyph}: bad segment kind {kind} with {points} points")]

@@ -25,7 +25,7 @@ use super::sections::{LevelField, Sections};
 use crate::field::isolines::{edge_loops, root_in_unit, Grid};
 use crate::geometry::polygon_area;
 use crate::geometry::Vec2;
-use crate::sources::harmonic_bezier::{HarmonicPatch, HeightRange, PatchSpec};
+use crate::sources::harmonic_bezier::{HarmonicError, HarmonicPatch, HeightRange, PatchSpec};
 
 /// A height field over a rectangle, (x, y) from its lower-left corner, mm.
 pub trait Height: Send + Sync {
@@ -97,10 +97,10 @@ pub struct HeightFieldSections {
 
 impl HeightFieldSections {
     /// The sections of `spec`'s patch, chords within `CHORD_FRACTION` ×
-    /// `tol` (mm) of the level curves. Errors (in words) only for a spec
-    /// that does not build a patch.
-    pub fn new(spec: &PatchSpec, tol: f64) -> Result<HeightFieldSections, String> {
-        let patch = spec.patch().map_err(|e| e.to_string())?;
+    /// `tol` (mm) of the level curves. Errors only for a spec that does not
+    /// build a patch.
+    pub fn new(spec: &PatchSpec, tol: f64) -> Result<HeightFieldSections, HarmonicError> {
+        let patch = spec.patch()?;
         let range = patch.height_range();
         Ok(Self::of_height(
             Box::new(patch),

@@ -18,7 +18,7 @@ use crate::levels::height_field::HeightFieldSections;
 use crate::pipeline::{
     job_shape, run_sections, PipelineError, Progress, RunOutput, SectionsPart, OUTER_RADIUS_FACTOR,
 };
-use crate::sources::harmonic_bezier::PatchSpec;
+use crate::sources::harmonic_bezier::{HarmonicError, PatchSpec};
 use crate::sources::polyharmonic::{PolySpec, Solid};
 
 /// A shape source that is a height field over a rectangle.
@@ -70,7 +70,7 @@ impl HeightSource<'_> {
     }
 
     /// Its sections, chords within `CHORD_FRACTION` × `tol` (mm).
-    pub fn sections(&self, tol: f64) -> Result<HeightFieldSections, String> {
+    pub fn sections(&self, tol: f64) -> Result<HeightFieldSections, HarmonicError> {
         match self {
             HeightSource::Bezier(s) => HeightFieldSections::new(s, tol),
             HeightSource::Poly(s) => Ok(HeightFieldSections::of_height(
@@ -90,8 +90,8 @@ pub fn patch_sections(
     spec: HeightSource<'_>,
 ) -> Result<HeightFieldSections, PipelineError> {
     // The job's resolve has built the patch once: an error here is a bug.
-    spec.sections(job.operation.tolerance)
-        .map_err(|e| PipelineError::Internal(format!("the height field of a resolved job: {e}")))
+    let sections = spec.sections(job.operation.tolerance);
+    Ok(sections.map_err(crate::pipeline::Internal::HeightField)?)
 }
 
 /// Rough a patch by levels (and finish it, with `[finish]`).

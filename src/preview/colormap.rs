@@ -139,6 +139,35 @@ pub struct FieldImageSpec {
 /// The largest image [`field_image`] makes, in pixels (a 8000 × 8000 picture).
 pub const MAX_PIXELS: u64 = 64_000_000;
 
+/// A field image [`field_image`] refuses to draw.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ImageError {
+    /// Pixels per mm not a positive finite number, or vertices every 0 px.
+    #[error("resolution must be positive, got {px_per_mm} px/mm, vertices every {step_px} px")]
+    Resolution {
+        /// The resolution asked for, pixels per mm.
+        px_per_mm: f64,
+        /// The vertex step asked for, pixels.
+        step_px: usize,
+    },
+    /// The rectangle has no width or no height.
+    #[error("the pictured rectangle is empty")]
+    EmptyRectangle,
+    /// More than [`MAX_PIXELS`] pixels.
+    #[error("{width} × {height} pixels is too large (at most {MAX_PIXELS}); lower the resolution")]
+    TooLarge {
+        /// The picture's width, pixels (a whole number).
+        width: f64,
+        /// Its height, pixels (a whole number).
+        height: f64,
+    },
+}
+
+/// An image [`encode_png`] could not encode.
+#[derive(Debug, thiserror::Error)]
+#[error("PNG encoding: {0}")]
+pub struct PngError(#[from] png::EncodingError);
+
 /// An RGB image, 8 bits per channel, rows from the top.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rgb8 {
@@ -156,7 +185,7 @@ pub fn field_image(
     field: &Field,
     polys: &[Vec<Vec2>],
     spec: &FieldImageSpec,
-) -> Result<Rgb8, String> {
+) -> Result<Rgb8, ImageError> {
     let FieldImageSpec {
         lo,
         hi,
@@ -165,19 +194,18 @@ pub fn field_image(
         map,
     } = *spec;
     if !(px_per_mm > 0.0 && px_per_mm.is_finite()) || step_px == 0 {
-        return Err(format!(
-            "resolution must be positive, got {px_per_mm} px/mm, vertices every {step_px} px"
-        ));
+        return Err(ImageError::Resolution { px_per_mm, step_px });
     }
     if !(hi.x > lo.x && hi.y > lo.y) {
-        return Err("the pictured rectangle is empty".into());
+        return Err(ImageError::EmptyRectangle);
     }
     let w = ((hi.x - lo.x) * px_per_mm).round().max(1.0);
     let h = ((hi.y - lo.y) * px_per_mm).round().max(1.0);
     if w * h > MAX_PIXELS as f64 {
-        return Err(format!(
-            "{w} × {h} pixels is too large (at most {MAX_PIXELS}); lower the resolution"
-        ));
+        return Err(ImageError::TooLarge {
+            width: w,
+            height: h,
+        });
     }
     let (w, h) = (w as usize, h as usize);
     // Vertices cover the pixel centres: vertex (a, b) sits at pixel (a·step, b·step)
@@ -241,15 +269,13 @@ pub fn png_software() -> String {
 }
 
 /// Encode as PNG with a `Software` text chunk (`pfcam <version>`) and a `Title`.
-pub fn encode_png(img: &Rgb8, title: &str) -> Result<Vec<u8>, String> {
+pub fn encode_png(img: &Rgb8, title: &str) -> Result<Vec<u8>, PngError> {
     let mut buf = Vec::new();
     {
         let mut enc = png::Encoder::new(&mut buf, img.width, img.height);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
-        let err = |e: png::EncodingError| format!("PNG encoding: {e}");
-        enc.add_text_chunk("Software".into(), png_software())
-            .map_err(err)?;
+        enc.add_text_chunk("Software".into(), png_software())?;
         // tEXt is Latin-1: keep the title to printable ASCII.
         let title: String = title
             .chars()
@@ -261,10 +287,10 @@ pub fn encode_png(img: &Rgb8, title: &str) -> Result<Vec<u8>, String> {
                 }
             })
             .collect();
-        enc.add_text_chunk("Title".into(), title).map_err(err)?;
-        let mut writer = enc.write_header().map_err(err)?;
-        writer.write_image_data(&img.data).map_err(err)?;
-        writer.finish().map_err(err)?;
+        enc.add_text_chunk("Title".into(), title)?;
+        let mut writer = enc.write_header()?;
+        writer.write_image_data(&img.data)?;
+        writer.finish()?;
     }
     Ok(buf)
 }
@@ -290,6 +316,20 @@ pub fn base64(bytes: &[u8]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The refusals' texts are the strings they were, number formats too.
+    #[test]
+    fn image_errors_say_what_the_strings_said() {
+        let (px_per_mm, step_px, w, h) = (-0.5, 0usize, 9000.0, 8000.0);
+        let cases = [
+            (ImageError::Resolution { px_per_mm, step_px }, format!("resolution must be positive, got {px_per_mm} px/mm, vertices every {step_px} px")),
+            (ImageError::EmptyRectangle, "the pictured rectangle is empty".to_string()),
+            (ImageError::TooLarge { width: w, height: h }, format!("{w} × {h} pixels is too large (at most {MAX_PIXELS}); lower the resolution")),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), text);
+        }
+    }
 
     #[test]
     fn base64_matches_rfc4648_vectors() {

@@ -130,9 +130,12 @@ pub enum PreviewError {
     /// The equipotential grid.
     #[error(transparent)]
     Contour(#[from] ContourError),
-    /// The colour map or its PNG encoding.
+    /// The colour map refused the picture.
     #[error("field image: {0}")]
-    Image(String),
+    Image(#[from] colormap::ImageError),
+    /// The colour map's PNG encoding failed.
+    #[error("field image: {0}")]
+    Png(#[from] colormap::PngError),
     /// An equipotential value not strictly between 0 and 1.
     #[error("equipotential values must lie strictly between 0 and 1, got {0}")]
     Level(f64),
@@ -289,9 +292,8 @@ fn area_png(
             step_px: 2,
             map,
         },
-    )
-    .map_err(PreviewError::Image)?;
-    encode_png(&img, &job.name).map_err(PreviewError::Image)
+    )?;
+    Ok(encode_png(&img, &job.name)?)
 }
 
 /// The field's colour map over the preview's drawing area as PNG bytes

@@ -138,12 +138,15 @@ pub enum SimError {
     /// The programs have more lines together than a line number can hold.
     #[error("more than {} lines in all: too many to simulate together", u32::MAX)]
     TooManyLines,
-    /// The part could not be modelled from the job.
+    /// The part could not be modelled from the job. Held, not a source:
+    /// a composition's error has its own source, which names the part
+    /// otherwise than this message, and a front end that adds the chain's
+    /// causes would add it too.
     #[error("the part of the job: {0}")]
-    Part(String),
+    Part(Box<crate::pipeline::PipelineError>),
     /// The PNG could not be encoded.
     #[error("drawing the stock: {0}")]
-    Png(String),
+    Png(#[from] crate::preview::colormap::PngError),
     /// What stopped one program of several, and its name.
     #[error("{name}: {error}")]
     Program {

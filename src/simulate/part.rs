@@ -55,6 +55,11 @@ pub struct JobFacts {
     pub stepover: f64,
 }
 
+/// The job's part could not be modelled.
+fn part(e: crate::pipeline::PipelineError) -> SimError {
+    SimError::Part(Box::new(e))
+}
+
 /// The job's facts; for a boss or cavity this builds S2 (an MFS solve and the
 /// isobands at `surface_resolution` mm), which takes seconds.
 pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimError> {
@@ -74,8 +79,7 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
     if job.operation.kind == OperationKind::Profile {
         // The part of a profile is the shape itself, standing at the stock top
         // inside its outlines (the walls are vertical).
-        let (shape, _) = crate::pipeline::job_shape(job, &mut |_| {})
-            .map_err(|e| SimError::Part(e.to_string()))?;
+        let (shape, _) = crate::pipeline::job_shape(job, &mut |_| {}).map_err(part)?;
         let tol = job.operation.tolerance * crate::pipeline::FLATTEN_FRACTION;
         facts.part = Some(PartModel {
             name: "glyph outlines".into(),
@@ -90,7 +94,6 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         return Ok(facts);
     }
     if let Some(spec) = job.shape.height_source() {
-        let part = |e: crate::pipeline::PipelineError| SimError::Part(e.to_string());
         let (lo, hi) = crate::patch::patch_stock(job, spec);
         facts.stock = Some(StockBox {
             lo: [lo.x, lo.y],
@@ -111,7 +114,6 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
         return Ok(facts);
     }
     if let crate::geometry::ShapeSource::PdeTube(spec) = &job.shape {
-        let part = |e: crate::pipeline::PipelineError| SimError::Part(e.to_string());
         let tube = crate::tube::tube_sections(spec).map_err(part)?;
         let (lo, hi) = crate::tube::tube_stock(job, &tube);
         facts.stock = Some(StockBox {
@@ -132,7 +134,7 @@ pub fn job_facts(job: &Job, surface_resolution: f64) -> Result<JobFacts, SimErro
     let opts = SurfaceOptions {
         resolution: surface_resolution,
     };
-    let built = job_surface(job, &opts, &mut |_| {}).map_err(|e| SimError::Part(e.to_string()))?;
+    let built = job_surface(job, &opts, &mut |_| {}).map_err(|e| part(e.into()))?;
     let s = &built.surface;
     facts.stock = Some(StockBox {
         lo: [s.stock_lo.x, s.stock_lo.y],

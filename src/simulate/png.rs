@@ -101,5 +101,5 @@ fn draw<'a>(
         height: h as u32,
         data,
     };
-    encode_png(&img, title).map_err(SimError::Png)
+    Ok(encode_png(&img, title)?)
 }

@@ -32,6 +32,28 @@ use crate::sources::pde_tube::{PdeTube, TubeKind, MAX_POINTS};
 use crate::surface::{Mesh, Surface, BASE_THICKNESS};
 use std::f64::consts::{PI, TAU};
 
+/// Why [`tube_mesh`] could not mesh a tube's part.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TubeMeshError {
+    /// More than one trim, or a trim not on a rising boss.
+    #[error("the part's mesh cannot carry this trim: only one trim, on a boss, is implemented")]
+    TrimNotOnBoss,
+    /// A trim that is not a slot from a u in (0, 1) to the top.
+    #[error("the part's mesh cannot carry this trim: it must be a rectangle in (u, v) from a u in (0, 1) to the top, less than π wide")]
+    TrimNotSlot,
+    /// A polar angle of the wide end's ring does not increase.
+    #[error(
+        "the tube's wide end does not turn monotonically about its axis (a step of {step:.3e} rad)"
+    )]
+    NotMonotonic {
+        /// The step from the previous angle, radians (in [0, 2π)).
+        step: f64,
+    },
+    /// The wide end's ring turns more than once.
+    #[error("the tube's wide end winds more than once about its axis")]
+    WindsTwice,
+}
+
 /// Points of the vertex rings of a tube at `resolution` mm: about the
 /// widest ring's perimeter over the resolution, a multiple of 4, 64 to
 /// [`MAX_POINTS`].
@@ -58,7 +80,7 @@ pub fn tube_mesh(
     top: f64,
     resolution: f64,
     stock: (Vec2, Vec2),
-) -> Result<Surface, String> {
+) -> Result<Surface, TubeMeshError> {
     let p = ring_points(tube, resolution);
     let (bottom, _) = tube.z_range();
     let n = ((-bottom / resolution).ceil() as usize).max(2);
@@ -171,7 +193,7 @@ fn ray_exit(c: Vec2, t: f64, r: (Vec2, Vec2)) -> Vec2 {
 
 /// The ring's polar angles about `c`, unwrapped from the first: strictly
 /// increasing, the whole turn under 2π; else an error.
-fn unwrapped_angles(m: &Mesh, ring: &[u32], c: Vec2) -> Result<Vec<f64>, String> {
+fn unwrapped_angles(m: &Mesh, ring: &[u32], c: Vec2) -> Result<Vec<f64>, TubeMeshError> {
     let angle = |k: u32| {
         let v = m.vertices[k as usize];
         (v[1] - c.y).atan2(v[0] - c.x)
@@ -182,15 +204,13 @@ fn unwrapped_angles(m: &Mesh, ring: &[u32], c: Vec2) -> Result<Vec<f64>, String>
         let prev = *out.last().unwrap_or(&first);
         let step = (angle(k) - prev).rem_euclid(TAU);
         if step <= 0.0 || step >= PI {
-            return Err(format!(
-                "the tube's wide end does not turn monotonically about its axis (a step of {step:.3e} rad)"
-            ));
+            return Err(TubeMeshError::NotMonotonic { step });
         }
         out.push(prev + step);
     }
     let last = *out.last().unwrap_or(&first);
     if last - first >= TAU {
-        return Err("the tube's wide end winds more than once about its axis".into());
+        return Err(TubeMeshError::WindsTwice);
     }
     Ok(out)
 }
@@ -202,7 +222,7 @@ fn add_annulus(
     ring: &[u32],
     c: Vec2,
     stock: (Vec2, Vec2),
-) -> Result<Vec<u32>, String> {
+) -> Result<Vec<u32>, TubeMeshError> {
     let theta = unwrapped_angles(m, ring, c)?;
     let z = m.vertices[ring[0] as usize][2];
     let (lo, hi) = stock;
@@ -282,6 +302,21 @@ fn add_sides_and_bottom(m: &mut Mesh, border: &[u32], z: (f64, f64), stock: (Vec
 mod tests {
     use super::*;
     use crate::sources::pde_tube::spec::test_vase;
+
+    /// The mesh's refusals read as the strings they were.
+    #[test]
+    fn mesh_errors_say_what_the_strings_said() {
+        let step = 3.25e-7;
+        let trim = "the part's mesh cannot carry this trim: ";
+        let cases = [
+            (TubeMeshError::TrimNotOnBoss, format!("{trim}only one trim, on a boss, is implemented")),
+            (TubeMeshError::TrimNotSlot, format!("{trim}it must be a rectangle in (u, v) from a u in (0, 1) to the top, less than π wide")),
+            (TubeMeshError::NotMonotonic { step }, format!("the tube's wide end does not turn monotonically about its axis (a step of {step:.3e} rad)")),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), text);
+        }
+    }
 
     fn vase(kind: TubeKind) -> PdeTube {
         test_vase(kind, Vec2::new(1.0, 2.0))

@@ -18,6 +18,7 @@
 //! faces increasing v, the one at b decreasing v; every directed edge then
 //! has exactly one opposite (`Mesh::check`).
 
+use super::mesh::TubeMeshError;
 use crate::geometry::Vec2;
 use crate::sources::pde_tube::{PdeTube, TubeKind};
 use crate::surface::Mesh;
@@ -41,14 +42,13 @@ const REACHES_TOP: f64 = 1.0 - 1e-9;
 impl Slot {
     /// The tube's slot, if it has trims: one rectangle in (u, v) reaching
     /// u = 1, on a rising boss; else an error (the job refuses the rest).
-    pub(super) fn of(tube: &PdeTube) -> Result<Option<Slot>, String> {
+    pub(super) fn of(tube: &PdeTube) -> Result<Option<Slot>, TubeMeshError> {
         let trims = tube.trims();
         let Some(t) = trims.first() else {
             return Ok(None);
         };
-        let refuse = |why: &str| Err(format!("the part's mesh cannot carry this trim: {why}"));
         if trims.len() > 1 || tube.kind() != TubeKind::Boss || !tube.rising() {
-            return refuse("only one trim, on a boss, is implemented");
+            return Err(TubeMeshError::TrimNotOnBoss);
         }
         let us: Vec<f64> = t.iter().map(|p| p[0]).collect();
         let vs: Vec<f64> = t.iter().map(|p| p[1]).collect();
@@ -60,9 +60,7 @@ impl Slot {
             });
         let (u0, a, b) = (lo(&us), lo(&vs), hi(&vs));
         if !rect || hi(&us) < REACHES_TOP || u0 <= 0.0 || !(b > a && b - a < 0.5 * TAU) {
-            return refuse(
-                "it must be a rectangle in (u, v) from a u in (0, 1) to the top, less than π wide",
-            );
+            return Err(TubeMeshError::TrimNotSlot);
         }
         Ok(Some(Slot {
             u0,

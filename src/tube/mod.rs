@@ -16,7 +16,8 @@ use crate::geometry::{polygons_bbox, Vec2};
 use crate::job::Job;
 use crate::levels::sections::Sections;
 use crate::pipeline::{
-    job_shape, run_sections, PipelineError, Progress, RunOutput, SectionsPart, OUTER_RADIUS_FACTOR,
+    job_shape, run_sections, Internal, PipelineError, Progress, RunOutput, SectionsPart,
+    OUTER_RADIUS_FACTOR,
 };
 use crate::sources::pde_tube::spec::TubeSpec;
 use crate::sources::pde_tube::{PdeTube, TubeKind};
@@ -24,8 +25,7 @@ use crate::sources::pde_tube::{PdeTube, TubeKind};
 /// The tube's sections for a job (its spec's kind and tolerance are the
 /// job's; the job's resolve has built it once, so an error here is a bug).
 pub fn tube_sections(spec: &TubeSpec) -> Result<PdeTube, PipelineError> {
-    spec.tube()
-        .map_err(|e| PipelineError::Internal(format!("the PDE tube of a resolved job: {e}")))
+    Ok(spec.tube().map_err(Internal::Tube)?)
 }
 
 /// The height of the widest section, relative to the top: a boss's foot,
@@ -77,7 +77,7 @@ fn finish_tube(
 ) -> Result<crate::finish::Finished, PipelineError> {
     let fine = crate::pipeline::FINISH_MESH;
     let stock = tube_stock(job, tube);
-    let s = mesh::tube_mesh(tube, job.stock.top, fine, stock).map_err(PipelineError::Internal)?;
+    let s = mesh::tube_mesh(tube, job.stock.top, fine, stock).map_err(Internal::from)?;
     let tris = s.mesh.up_triangles();
     let area = crate::finish::wall_area(&tris);
     let index = crate::pipeline::finish_index(tris);
@@ -100,7 +100,7 @@ pub fn tube_surface(
 ) -> Result<crate::surface::Surface, PipelineError> {
     let tube = tube_sections(spec)?;
     let stock = tube_stock(job, &tube);
-    mesh::tube_mesh(&tube, job.stock.top, resolution, stock).map_err(PipelineError::Internal)
+    Ok(mesh::tube_mesh(&tube, job.stock.top, resolution, stock).map_err(Internal::from)?)
 }
 
 /// The part for `simulate`: the mesh's up-facing triangles (the tube's

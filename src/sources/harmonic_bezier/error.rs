@@ -97,6 +97,25 @@ pub enum HarmonicError {
         /// The degree.
         degree: usize,
         /// What went wrong.
-        what: String,
+        what: MouldFault,
+    },
+}
+
+/// How the mould's linear system misbehaved ([`HarmonicError::Internal`]).
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum MouldFault {
+    /// The mould's rows do not sum to 1 within the limit.
+    #[error("its rows sum to 1 only within {error:.1e}")]
+    RowSum {
+        /// The largest |row sum − 1| (or NaN).
+        error: f64,
+    },
+    /// The inner system's R has a (near) zero on its diagonal.
+    #[error("the inner system is rank deficient (|R_kk| from {small:.1e} to {big:.1e})")]
+    RankDeficient {
+        /// The smallest |R_kk|.
+        small: f64,
+        /// The largest |R_kk|.
+        big: f64,
     },
 }

@@ -14,7 +14,7 @@ pub mod polynomials;
 mod range;
 mod spec;
 
-pub use error::HarmonicError;
+pub use error::{HarmonicError, MouldFault};
 pub use mould::{mould, solve_mould, Form, Mould, MAX_DEGREE, ROW_SUM_LIMIT};
 pub use patch::{HarmonicPatch, ParamDerivatives, EVEN_DIFFERENCE_TOL};
 pub use range::HeightRange;

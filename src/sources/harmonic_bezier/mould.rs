@@ -26,7 +26,7 @@
 //! consistent only when Δⁿ row0 = Δⁿ row1; there M is the least-squares
 //! mould, exact on every pair of rows that satisfies the condition.
 
-use super::error::HarmonicError;
+use super::error::{HarmonicError, MouldFault};
 use faer::linalg::solvers::SolveLstsq;
 use faer::Mat;
 
@@ -155,7 +155,9 @@ pub fn mould(degree: usize, form: Form) -> Result<Mould, HarmonicError> {
     if m.row_sum_error.is_nan() || m.row_sum_error > ROW_SUM_LIMIT {
         return Err(HarmonicError::Internal {
             degree,
-            what: format!("its rows sum to 1 only within {:.1e}", m.row_sum_error),
+            what: MouldFault::RowSum {
+                error: m.row_sum_error,
+            },
         });
     }
     Ok(m)
@@ -210,9 +212,7 @@ fn solve_full_rank(a: &Mat<f64>, b: &Mat<f64>, degree: usize) -> Result<Mat<f64>
     if small.is_nan() || big.is_nan() || small <= 1e-12 * big {
         return Err(HarmonicError::Internal {
             degree,
-            what: format!(
-                "the inner system is rank deficient (|R_kk| from {small:.1e} to {big:.1e})"
-            ),
+            what: MouldFault::RankDeficient { small, big },
         });
     }
     Ok(qr.solve_lstsq(b))
@@ -284,6 +284,20 @@ fn elevation_weights(p: usize, k: usize) -> Vec<(usize, f64)> {
 mod tests {
     use super::super::polynomials::{bernstein_net, re_im_power};
     use super::*;
+
+    /// A bug report's cause reads as the string it was.
+    #[test]
+    fn mould_faults_say_what_the_strings_said() {
+        let (small, big) = (1.5e-14, 2.0);
+        let e = HarmonicError::Internal {
+            degree: 7,
+            what: MouldFault::RankDeficient { small, big },
+        };
+        assert_eq!(
+            e.to_string(),
+            format!("harmonic mould of degree 7: the inner system is rank deficient (|R_kk| from {small:.1e} to {big:.1e}) (this is a bug in pfcam; please report it)")
+        );
+    }
 
     /// A p for the net p of a polynomial.
     fn laplacian_coefficients(m: usize, n: usize, poly: &[(usize, usize, f64)]) -> Vec<f64> {
