@@ -161,7 +161,22 @@ impl Distance {
             }
         };
         let parts: Vec<Part> = grid.values.iter().map(|&u| part(u)).collect();
-        let z: Vec<f64> = grid.values.iter().map(|&u| z_of(u.clamp(lo, hi))).collect();
+        // z of the top and the floor once: there u is held to the range's end.
+        let (z_lo, z_hi) = (z_of(lo), z_of(hi));
+        let z: Vec<f64> = grid
+            .values
+            .iter()
+            .map(|&u| {
+                let u = u.clamp(lo, hi);
+                if u == lo {
+                    z_lo
+                } else if u == hi {
+                    z_hi
+                } else {
+                    z_of(u)
+                }
+            })
+            .collect();
         let s_top = if cavity { lo } else { hi };
         let d = dijkstra(
             (grid.nx, grid.ny, grid.h),
@@ -486,15 +501,21 @@ fn dijkstra(
                 run
             };
             let (bx, by) = (i - a, j - b);
-            let bend = if bx >= 0 && by >= 0 && bx < nx as i64 && by < ny as i64 {
+            let zee = if bx >= 0 && by >= 0 && bx < nx as i64 && by < ny as i64 {
                 let back = z[by as usize * nx + bx as usize];
-                let slope = rise / run;
-                let zee = (z[m] - 2.0 * z[k] + back) / (run * run);
-                (-zee / (1.0 + slope * slope).powf(1.5)).max(0.0)
+                (z[m] - 2.0 * z[k] + back) / (run * run)
             } else {
                 0.0
             };
-            let nd = dk + from.hypot(rise) * (1.0 + corner * bend).sqrt();
+            // Only a convex bend (z″ < 0) lengthens the edge: elsewhere the
+            // factor is exactly 1, and its power and root are skipped.
+            let nd = if zee < 0.0 {
+                let slope = rise / run;
+                let bend = -zee / (1.0 + slope * slope).powf(1.5);
+                dk + from.hypot(rise) * (1.0 + corner * bend).sqrt()
+            } else {
+                dk + from.hypot(rise)
+            };
             if nd < d[m] {
                 d[m] = nd;
                 heap.push(Reverse((nd.to_bits(), m)));
