@@ -840,8 +840,12 @@ fn finish_program(
         job.stock.top,
         job.operation.tolerance,
     ));
-    let index = finish_index(up);
-    let done = crate::finish::finish(job, f, field, glyphs, grid, h, &index, walls)?;
+    // The passes need no mesh: they are planned while the index is built.
+    let (index, plan) = rayon::join(
+        || finish_index(up),
+        || crate::finish::plan_passes(job, f, field, glyphs, grid, h),
+    );
+    let done = crate::finish::finish(job, f, field, plan?, &index, walls)?;
     progress(Progress::Step);
     Ok(done)
 }

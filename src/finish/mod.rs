@@ -238,17 +238,60 @@ pub fn cutter_of(f: &Finish) -> Cutter {
     }
 }
 
-/// The finishing program of a boss or cavity with `[finish]`: `field` and
-/// `glyphs` as the roughing solved them, `mesh` S2's triangles, `grid` u over
-/// the part (as the level planner samples it, spacing `h`).
-#[allow(clippy::too_many_arguments)]
-pub fn finish(
+/// The finishing passes of a boss or cavity with `[finish]`, planned before
+/// the mesh is needed: the levels (equipotential or geodesic) and their
+/// curves, and the pass width.
+pub struct PassPlan {
+    /// The passes from the floor up, and which is the foot's.
+    planned: passes::Planned,
+    /// The pass width on the surface, mm.
+    width: f64,
+}
+
+/// The passes of a boss or cavity with `[finish]` ([`PassPlan`]): `field`
+/// and `glyphs` as the roughing solved them, `grid` u over the part (as the
+/// level planner samples it, spacing `h`). Needs no mesh, so a caller may
+/// build the drop-cutter's index beside it.
+pub fn plan_passes(
     job: &Job,
     f: &Finish,
     field: &Field,
     glyphs: &[Vec<Vec2>],
     grid: Grid,
     h: f64,
+) -> Result<PassPlan, FinishError> {
+    let profile = job.profile.as_ref().ok_or(FinishError::NoProfile)?;
+    let cavity = job.operation.kind == crate::job::OperationKind::Cavity;
+    let curves = passes::Curves {
+        field,
+        grid,
+        glyphs,
+        h,
+        tol: job.operation.tolerance,
+    };
+    let width = passes::pass_width(f.corner, f.scallop);
+    let z_of = |s: f64| crate::surface::surface_z(profile, cavity, job.stock.top, s);
+    let dist = (f.pattern == crate::job::Pattern::Geodesic)
+        .then(|| curves.distance(profile, (cavity, f.corner), &z_of));
+    let planned = passes::pass_levels(
+        &curves,
+        dist.as_ref(),
+        profile,
+        cavity,
+        width,
+        job.operation.stock_to_leave,
+    )?;
+    Ok(PassPlan { planned, width })
+}
+
+/// The finishing program of a boss or cavity with `[finish]` from its
+/// passes (`plan`, [`plan_passes`]): `mesh` S2's triangles, `wall_area`
+/// their sloped area (the lower bound's).
+pub fn finish(
+    job: &Job,
+    f: &Finish,
+    field: &Field,
+    plan: PassPlan,
     mesh: &MeshIndex,
     wall_area: f64,
 ) -> Result<Finished, FinishError> {
@@ -269,25 +312,8 @@ pub fn finish(
         tol: job.operation.tolerance,
         leave: job.operation.stock_to_leave,
     };
-    let curves = passes::Curves {
-        field,
-        grid,
-        glyphs,
-        h,
-        tol: job.operation.tolerance,
-    };
-    let width = passes::pass_width(f.corner, f.scallop);
-    let dist = (f.pattern == crate::job::Pattern::Geodesic)
-        .then(|| curves.distance(profile, (cavity, f.corner), &|s| p.z_of(s)));
-    let cands = passes::pass_levels(
-        &curves,
-        dist.as_ref(),
-        profile,
-        cavity,
-        width,
-        job.operation.stock_to_leave,
-    )?;
-    let cands = with_corner(cands, width, field, &p, mesh);
+    let PassPlan { planned, width } = plan;
+    let cands = with_corner(planned, width, field, &p, mesh);
     let loops = tip_loops(&cands.passes, field, &p, mesh)?;
     let floor_z = match cands.passes.get(cands.floor) {
         Some((passes::At::S(s), _)) => p.z_of(*s),
