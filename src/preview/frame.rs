@@ -4,7 +4,6 @@
 use crate::geometry::Vec2;
 use crate::job::Job;
 use crate::pipeline::RunOutput;
-use crate::report::RunReport;
 
 /// The rectangle the preview (and `pfcam field`) pictures: the part, the tool
 /// path (rapids included) and the program's start point, with a margin of
@@ -64,15 +63,21 @@ pub(super) struct Frame {
 }
 
 impl Frame {
-    /// The page of a run's preview; the header is a line taller with a warning.
-    pub fn new(job: &Job, out: &RunOutput, report: &RunReport) -> Frame {
+    /// The page of a run's preview under a header of `lines` lines of text
+    /// below the job's name, the longest `widest` characters: the header is
+    /// 1.2 type sizes taller for each line past three, and the page wide
+    /// enough for the longest line at type size 0.9 (DejaVu Sans averages
+    /// about 0.55 em a character; a finishing program's line ran off a
+    /// narrow part's page).
+    pub fn new(job: &Job, out: &RunOutput, (lines, widest): (usize, usize)) -> Frame {
         let (lo, hi) = drawing_area(job, out);
         let (w, h) = (hi.x - lo.x, hi.y - lo.y);
         let size = w.max(h);
         let fs = (size / 60.0).clamp(1.5, 6.0);
         let lw = (size / 900.0).clamp(0.06, 0.3);
-        let header = if report.warnings.is_empty() { 5.6 } else { 6.8 } * fs;
-        let doc_w = w.max(36.0 * fs);
+        let header = (5.6 + 1.2 * lines.saturating_sub(3) as f64) * fs;
+        let text_w = (widest as f64 * 0.55 * 0.9 + 2.0) * fs;
+        let doc_w = w.max(36.0 * fs).max(text_w);
         Frame {
             lo,
             hi,

@@ -13,16 +13,7 @@ use svg::node::element::Group;
 /// for a finishing program; and the first warning, if any, in orange.
 pub(super) fn header(job: &Job, report: &RunReport, depths: &Depths, frame: &Frame) -> Group {
     let (fs, x0, top_y) = (frame.fs, frame.x0, frame.top_y);
-    // Each line with its colour where it is not the header's black: the
-    // finishing program's in the colour its passes are drawn in, a warning
-    // in dark orange.
-    let mut lines: Vec<(String, Option<&str>)> = figure_lines(job, report, depths)
-        .into_iter()
-        .map(|l| (l, None))
-        .collect();
-    if let Some(f) = finish_line(job, report) {
-        lines.push((f, Some(super::FINISH_COLOUR)));
-    }
+    let mut lines = lines(job, report, depths);
     if let Some(w) = warning_line(report, frame.doc_w - 2.0 * fs, fs) {
         lines.push((w, Some("#b34700")));
     }
@@ -40,6 +31,37 @@ pub(super) fn header(job: &Job, report: &RunReport, depths: &Depths, frame: &Fra
         });
     }
     head
+}
+
+/// The header's lines under the job's name, but for the warning (which is
+/// cut to the page's width), each with its colour where it is not the
+/// header's black: the finishing program's in the colour its passes are
+/// drawn in.
+fn lines(job: &Job, report: &RunReport, depths: &Depths) -> Vec<(String, Option<&'static str>)> {
+    let mut lines: Vec<(String, Option<&str>)> = figure_lines(job, report, depths)
+        .into_iter()
+        .map(|l| (l, None))
+        .collect();
+    if let Some(f) = finish_line(job, report) {
+        lines.push((f, Some(super::FINISH_COLOUR)));
+    }
+    lines
+}
+
+/// What the page must leave room for above the drawing: the header's lines
+/// (a warning adds one) and the longest one's characters, which the page is
+/// at least as wide as ([`Frame::new`]).
+pub(super) fn text_size(job: &Job, report: &RunReport, depths: &Depths) -> (usize, usize) {
+    let lines = lines(job, report, depths);
+    let widest = lines
+        .iter()
+        .map(|(l, _)| l.chars().count())
+        .max()
+        .unwrap_or(0);
+    (
+        lines.len() + usize::from(!report.warnings.is_empty()),
+        widest,
+    )
 }
 
 /// The header's lines of figures (the roughing program's, or the only one).

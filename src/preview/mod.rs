@@ -157,7 +157,8 @@ pub fn preview_svg(
     opts: &PreviewOptions,
 ) -> Result<String, PreviewError> {
     opts.check()?;
-    let frame = Frame::new(job, out, report);
+    let depths = cut::Depths::new(run_levels(out));
+    let frame = Frame::new(job, out, header::text_size(job, report, &depths));
     let d = job.tool.diameter;
     let polys: Vec<Vec<Vec2>> = out
         .shape
@@ -192,7 +193,6 @@ pub fn preview_svg(
     body = body
         .add(part_path(&polys, frame.lw))
         .add(travel::rapids(out, &frame));
-    let depths = cut::Depths::new(run_levels(out));
     let (cut, deepest) = cut::cut_group(&depths, frame.lw, d, frame.tol_draw);
     body = body.add(cut);
     let finish = out.finish.as_ref();

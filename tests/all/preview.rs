@@ -676,6 +676,9 @@ fn the_preview_names_and_draws_the_finishing_program() {
         pfcam::gcode::format_duration(p.time_s)
     );
     assert!(svg.contains(&want), "no {want:?} in the header");
+    // The page is wide enough for it (a narrow part's page cut it off).
+    let over = header_overflow(&svg);
+    assert!(over <= 0.0, "a header line runs {over} mm off the page");
     let drawn = finish_lines(&svg);
     let finish = &out.finish.as_ref().expect("a finishing program").toolpath;
     let mut ends = 0;
@@ -709,6 +712,28 @@ fn the_preview_names_and_draws_the_finishing_program() {
     let report = RunReport::new(&plain, &out);
     let svg = preview_svg(&plain, &out, &report, &PreviewOptions::default()).expect("preview");
     assert!(!svg.contains("then fi.finish.nc") && finish_lines(&svg).is_empty());
+}
+
+/// How far the longest header line runs past the page's right edge, mm
+/// (negative: inside), estimating a text's width as 0.55 em a character
+/// (DejaVu Sans's average), from each `<text>` of the header group's x and
+/// font size and the `viewBox`.
+fn header_overflow(svg: &str) -> f64 {
+    let view: Vec<f64> = attr(svg, "viewBox")
+        .split_whitespace()
+        .map(|v| v.parse().expect("a number"))
+        .collect();
+    let right = view[0] + view[2];
+    let head = svg.split("class=\"header\"").nth(1).expect("a header");
+    let head = &head[..head.find("</g>").expect("its end")];
+    head.split("<text")
+        .skip(1)
+        .fold(f64::NEG_INFINITY, |worst, t| {
+            let x: f64 = attr(t, "x").parse().expect("x");
+            let size: f64 = attr(t, "font-size").parse().expect("font-size");
+            let content = &t[t.find('>').expect("a tag") + 1..t.find("</text>").expect("an end")];
+            worst.max(x + content.chars().count() as f64 * 0.55 * size - right)
+        })
 }
 
 /// The polylines of the preview's finishing passes (`class="finish"`), in
