@@ -700,11 +700,7 @@ fn mfs_sections(
         .map(|c| c.flatten(tol * FLATTEN_FRACTION))
         .collect();
     MfsSections::new(MfsInput {
-        figures: crate::levels::plan::FieldFigures {
-            m: solved.m,
-            distance: solved.layout.distance,
-            max_error: solved.solution.max_error,
-        },
+        figures: solved.figures(),
         field: solved.solution.field,
         glyphs,
         profile: profile.clone(),

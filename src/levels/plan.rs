@@ -6,9 +6,8 @@
 use super::schedule;
 use super::sections::{LevelField, Sections};
 use crate::estimate::{check_bound, level_area, levels_bound, GuardError, LowerBound};
-use crate::field::{self, Boundary, FieldError, Layout, Prepared};
-use crate::geometry::polygon_area;
-use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
+use crate::field::{self, FieldError};
+use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
 use crate::toolpath::profile::ProfileError;
 use crate::toolpath::zlevel::{boss_paths, cavity_paths, LevelCut, LevelParams};
 use rayon::prelude::*;
@@ -18,10 +17,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// component of Γ(s) of the letters; vertices are exact and chords are then refined
 /// to the tolerance by `field::level::refine`.
 pub const GRID_SPACING: f64 = 0.4;
-
-/// Singularities per outer loop of a level's Γ(s) (smooth curves need fewer than
-/// the glyphs with their corners).
-pub const LEVEL_N_PER_LOOP: usize = 90;
 
 /// What the level planner reports for one level.
 #[derive(Clone, Debug, PartialEq)]
@@ -71,17 +66,6 @@ pub struct LevelJob<'a> {
     /// `machine.max_hours`: the job stops before any level is traced when its
     /// lower bound ([`crate::estimate::levels_bound`]) passes it.
     pub max_hours: f64,
-}
-
-/// One solve's figures.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FieldFigures {
-    /// Collocation points M.
-    pub m: usize,
-    /// Pseudo-boundary distance, mm.
-    pub distance: f64,
-    /// Max boundary error over the check points.
-    pub max_error: f64,
 }
 
 /// The largest error a level's field may have: a hundredth of 1 − s (issue
@@ -431,55 +415,15 @@ fn section_field(
     s: f64,
     label: &str,
 ) -> Result<LevelField, PlanError> {
-    let contours: Vec<Contour> = oriented
-        .iter()
-        .filter_map(|p| Contour::polygon(p).ok())
-        .collect();
-    let is_counter: Vec<bool> = oriented.iter().map(|p| polygon_area(p) < 0.0).collect();
-    let loops = oriented
-        .iter()
-        .filter(|p| polygon_area(p) > 0.0)
-        .count()
-        .max(1);
-    let centre = field::centroid(&contours, tol);
-    let b = Boundary {
-        contours,
-        is_counter,
-        centre,
-        radius: outer_radius,
-        flat_tol: tol,
-    };
-    let prep = Prepared::new(b)?;
-    let n_total = LEVEL_N_PER_LOOP * loops
-        + field::setup::OUTER_CHARGES
-        + prep.sinks.len() * (field::setup::SINK_CHARGES + LEVEL_N_PER_LOOP);
-    let base = Layout {
-        n_total,
-        distance: 1.0,
-        corner_clusters: true,
-        corner_fraction: 0.2,
-        pairs: false,
-    };
-    let solved = field::solve_quick(&prep, base)?;
-    let e = solved.solution.max_error;
-    if e.is_nan() {
+    let (field, figures) = field::section::solve_section(oriented, tol, outer_radius)?;
+    if figures.max_error.is_nan() {
         return Err(PlanError::Profile(ProfileError::NotFinite(format!(
             "{label}, s = {s:.6}: the max boundary error of its field"
         ))));
     }
-    // Local expansions over the level's box: the rings and the coverage grid
-    // evaluate this field millions of times (docs/method.md §12).
-    let field = match polygons_bbox(oriented) {
-        Some((lo, hi)) => solved.solution.field.accelerated_around(lo, hi),
-        None => solved.solution.field,
-    };
     Ok(LevelField {
         field,
-        figures: FieldFigures {
-            m: solved.m,
-            distance: solved.layout.distance,
-            max_error: e,
-        },
+        figures,
         warning: None,
     })
 }
