@@ -154,15 +154,16 @@ pub enum PipelineError {
     LevelPaths(ProfileError),
     /// A part of a composed shape (`[[shape.part]]`) could not be built:
     /// `part` is its 1-based index in the job file when the name is one of
-    /// them.
-    #[error("{}", compose_message(*.part, .name, .source))]
+    /// them. The message says the composition's cause, so it is not the
+    /// error's `source()` (the CLI would print it a second time).
+    #[error("{}", compose_message(*.part, .name, .cause))]
     Compose {
         /// `shape.part[i]`'s i, from 1, when the failing name is a part's.
         part: Option<usize>,
         /// The name the composition gave.
         name: String,
         /// The composition's own error (what went wrong there).
-        source: Box<crate::compose::ComposeError>,
+        cause: Box<crate::compose::ComposeError>,
     },
     /// The shape has no outline to cut.
     #[error("the shape is empty: nothing to cut")]
@@ -238,11 +239,11 @@ fn top_edge_message(t: &TopEdge) -> String {
 fn compose_message(
     part: Option<usize>,
     name: &str,
-    source: &crate::compose::ComposeError,
+    cause: &crate::compose::ComposeError,
 ) -> String {
     match part {
-        Some(i) => format!("shape.part[{i}] \"{name}\": {}", source.detail()),
-        None => format!("shape: {source}"),
+        Some(i) => format!("shape.part[{i}] \"{name}\": {}", cause.detail()),
+        None => format!("shape: {cause}"),
     }
 }
 
@@ -474,7 +475,7 @@ pub fn job_shape(
                 .position(|p| p.name == base)
                 .map(|i| i + 1),
             name,
-            source: Box::new(e),
+            cause: Box::new(e),
         }
     })?;
     let reports = built
