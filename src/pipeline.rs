@@ -848,7 +848,8 @@ fn finish_program(
     Ok(done)
 }
 
-/// The levels of a boss or cavity, planned ([`plan_with_progress`]), their
+/// The levels of a boss or cavity, planned and their paths traced
+/// ([`plan_with_progress`]), their
 /// coverage checked, linked in cutting order, fitted with arcs within tol/2
 /// of the traced rings and gouge-checked level by level (before the arcs
 /// are trusted, as for a profile): the plan, the tool path and its least

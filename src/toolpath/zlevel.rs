@@ -127,7 +127,7 @@ pub(super) fn lowest(poly: &[Vec2]) -> Vec2 {
 /// bound (`reach`, the band of that width): the rings around every outer loop
 /// of the part out to the band's width, clipped to the stock grown by r.
 /// Inside every hole of the part, rings from the innermost out.
-pub fn boss_paths<N: Navigator + Sync>(
+pub(crate) fn boss_paths<N: Navigator + Sync>(
     part: &[Vec<Vec2>],
     nav: &N,
     p: &LevelParams,
@@ -781,7 +781,7 @@ pub fn level_paths<N: Navigator + Sync>(
 /// With `band` (a level added for the scallop bound) the rings stop once they
 /// are deeper than that from the wall and coverage is measured within it: the
 /// next stepdown level below clears the rest.
-pub fn cavity_paths<N: Navigator + Sync>(
+pub(crate) fn cavity_paths<N: Navigator + Sync>(
     part: &[Vec<Vec2>],
     nav: &N,
     p: &LevelParams,
