@@ -126,47 +126,15 @@ fn eval_points(polys: &[Vec<Vec2>], count: usize) -> Vec<Vec2> {
 /// expansions.
 fn field_eval_fast(c: &mut Criterion) {
     let (_, shape, shape_field, glyphs, flat_tol) = sign_field();
-    // A level field: Γ(0.99) extracted on a 0.25 mm grid, solved as plan.rs
-    // solves a cavity level.
+    // A level field: Γ(0.99) extracted on a 0.25 mm grid, solved as
+    // `field::section` solves a cavity level (its local expansions redone over
+    // the shape's box, as before).
     let (lo, hi) = shape.bbox().unwrap();
     let pad = Vec2::new(8.0, 8.0);
     let grid = field::isolines::Grid::sample(&shape_field, lo - pad, hi + pad, 0.25, &glyphs);
     let level = field::isolines::isolines(&grid, 0.99, &shape_field, &glyphs);
-    let contours: Vec<pfcam::geometry::Contour> = level
-        .iter()
-        .filter_map(|p| pfcam::geometry::Contour::polygon(p).ok())
-        .collect();
-    let is_counter: Vec<bool> = level
-        .iter()
-        .map(|p| pfcam::geometry::polygon_area(p) < 0.0)
-        .collect();
-    let loops = is_counter.iter().filter(|c| !**c).count().max(1);
-    let centre = field::centroid(&contours, flat_tol);
-    let prep = Prepared::new(Boundary {
-        contours,
-        is_counter,
-        centre,
-        radius: 20.0 * (hi - lo).norm(),
-        flat_tol,
-    })
-    .unwrap();
-    let n_level = pfcam::levels::plan::LEVEL_N_PER_LOOP * loops
-        + field::setup::OUTER_CHARGES
-        + prep.sinks.len() * (field::setup::SINK_CHARGES + pfcam::levels::plan::LEVEL_N_PER_LOOP);
-    let lf = field::solve_quick(
-        &prep,
-        Layout {
-            n_total: n_level,
-            distance: 1.0,
-            corner_clusters: true,
-            corner_fraction: 0.2,
-            pairs: false,
-        },
-    )
-    .unwrap()
-    .solution
-    .field;
-    let level_field = lf.accelerated_around(lo, hi);
+    let (lf, _) = field::section::solve_section(&level, flat_tol, 20.0 * (hi - lo).norm()).unwrap();
+    let level_field = lf.direct().accelerated_around(lo, hi);
     let points = eval_points(&glyphs, 4096);
     let mut g = c.benchmark_group("field_eval");
     for (name, f) in [

@@ -6,7 +6,7 @@ use crate::geometry::{build_shape, DistanceIndex, Shape, ShapeSource};
 use crate::job::extent::check_extent;
 use crate::job::{Direction, Job, OperationKind};
 use crate::levels::mfs_sections::{MfsInput, MfsSections};
-use crate::levels::plan::{plan_levels_reporting, LevelInfo, LevelJob, LevelProgress};
+use crate::levels::plan::{LevelInfo, LevelJob, ToolFigures};
 use crate::levels::prism::PrismSections;
 use crate::levels::sections::Sections;
 use crate::toolpath::arcfit::{self, ArcFitParams};
@@ -15,7 +15,9 @@ use crate::toolpath::profile::{self, Loop, ProfileError, ProfileParams};
 use crate::toolpath::zlevel::{link_levels, LevelCut, LevelParams};
 use crate::toolpath::Toolpath;
 
+mod cut;
 mod internal;
+use cut::{plan_with_progress, Planned};
 pub use internal::Internal;
 
 /// Singularities per region when `field.singularities = "auto"`: enough for a
@@ -147,17 +149,21 @@ pub enum PipelineError {
     /// time guard's error is [`PipelineError::Guard`]).
     #[error("{0}")]
     Plan(crate::levels::plan::PlanError),
+    /// A level's paths could not be traced (the message names the level).
+    #[error("{0}")]
+    LevelPaths(ProfileError),
     /// A part of a composed shape (`[[shape.part]]`) could not be built:
     /// `part` is its 1-based index in the job file when the name is one of
-    /// them.
-    #[error("{}", compose_message(*.part, .name, .source))]
+    /// them. The message says the composition's cause, so it is not the
+    /// error's `source()` (the CLI would print it a second time).
+    #[error("{}", compose_message(*.part, .name, .cause))]
     Compose {
         /// `shape.part[i]`'s i, from 1, when the failing name is a part's.
         part: Option<usize>,
         /// The name the composition gave.
         name: String,
         /// The composition's own error (what went wrong there).
-        source: Box<crate::compose::ComposeError>,
+        cause: Box<crate::compose::ComposeError>,
     },
     /// The shape has no outline to cut.
     #[error("the shape is empty: nothing to cut")]
@@ -233,11 +239,11 @@ fn top_edge_message(t: &TopEdge) -> String {
 fn compose_message(
     part: Option<usize>,
     name: &str,
-    source: &crate::compose::ComposeError,
+    cause: &crate::compose::ComposeError,
 ) -> String {
     match part {
-        Some(i) => format!("shape.part[{i}] \"{name}\": {}", source.detail()),
-        None => format!("shape: {source}"),
+        Some(i) => format!("shape.part[{i}] \"{name}\": {}", cause.detail()),
+        None => format!("shape: {cause}"),
     }
 }
 
@@ -469,7 +475,7 @@ pub fn job_shape(
                 .position(|p| p.name == base)
                 .map(|i| i + 1),
             name,
-            source: Box::new(e),
+            cause: Box::new(e),
         }
     })?;
     let reports = built
@@ -700,11 +706,7 @@ fn mfs_sections(
         .map(|c| c.flatten(tol * FLATTEN_FRACTION))
         .collect();
     MfsSections::new(MfsInput {
-        figures: crate::levels::plan::FieldFigures {
-            m: solved.m,
-            distance: solved.layout.distance,
-            max_error: solved.solution.max_error,
-        },
+        figures: solved.figures(),
         field: solved.solution.field,
         glyphs,
         profile: profile.clone(),
@@ -850,7 +852,8 @@ fn finish_program(
     Ok(done)
 }
 
-/// The levels of a boss or cavity, planned ([`plan_with_progress`]), their
+/// The levels of a boss or cavity, planned and their paths traced
+/// ([`plan_with_progress`]), their
 /// coverage checked, linked in cutting order, fitted with arcs within tol/2
 /// of the traced rings and gouge-checked level by level (before the arcs
 /// are trusted, as for a profile): the plan, the tool path and its least
@@ -859,9 +862,9 @@ pub(crate) fn cut_levels(
     lj: &LevelJob,
     job: &Job,
     progress: &mut dyn FnMut(Progress),
-) -> Result<(crate::levels::plan::Planned, Toolpath, f64), PipelineError> {
+) -> Result<(Planned, Toolpath, f64), PipelineError> {
     use crate::count::{set_stage, Stage};
-    let mut planned = plan_with_progress(lj, progress)?;
+    let mut planned = plan_with_progress(lj, level_params(job), progress)?;
     set_stage(Stage::Other);
     check_coverage(&planned.info, &mut planned.warnings)?;
     // The levels in cutting order; sections[i] is the level order[i].
@@ -902,7 +905,12 @@ fn level_job<'a>(
         max_scallop: job.operation.max_scallop,
         margin: job.stock.margin,
         outer_radius,
-        params: level_params(job),
+        tol: job.operation.tolerance,
+        tool: ToolFigures {
+            radius: job.tool.diameter / 2.0,
+            stepover: job.tool.stepover,
+            feed: job.tool.feed,
+        },
         max_hours: job.machine.max_hours,
     }
 }
@@ -954,7 +962,7 @@ pub(crate) fn run_sections(
 /// What a run by levels made: the plan, its tool path and least clearance,
 /// and the finishing program.
 struct LevelsOutput {
-    planned: crate::levels::plan::Planned,
+    planned: Planned,
     toolpath: Toolpath,
     min_clearance: f64,
     finish: Option<crate::finish::Finished>,
@@ -988,59 +996,6 @@ impl LevelsOutput {
             finish: self.finish,
         }
     }
-}
-
-/// Plan the levels (in parallel, on the current rayon pool) while this thread
-/// reports each finished level: a stage of as many steps as there are levels,
-/// announced once the z schedule is known.
-pub(crate) fn plan_with_progress(
-    lj: &LevelJob,
-    progress: &mut dyn FnMut(Progress),
-) -> Result<crate::levels::plan::Planned, PipelineError> {
-    use std::sync::atomic::Ordering;
-    let counter = LevelProgress::default();
-    let result = std::sync::Mutex::new(None);
-    let (mut announced, mut reported) = (false, 0);
-    rayon::in_place_scope(|scope| {
-        scope.spawn(|_| {
-            // A panic must still end the wait below (and is then an error).
-            let r = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                plan_levels_reporting(lj, &counter)
-            })) {
-                Ok(planned) => planned.map_err(PipelineError::from),
-                Err(_) => Err(Internal::PlannerPanicked.into()),
-            };
-            *result.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
-        });
-        loop {
-            let finished = result.lock().unwrap_or_else(|e| e.into_inner()).is_some();
-            let total = counter.total.load(Ordering::Relaxed);
-            if total > 0 && !announced {
-                progress(Progress::Stage {
-                    name: "solving and tracing the levels".into(),
-                    total: total as u64,
-                });
-                announced = true;
-            }
-            let done = counter.done.load(Ordering::Relaxed);
-            while announced && reported < done {
-                progress(Progress::Step);
-                reported += 1;
-            }
-            if finished {
-                break;
-            }
-            // On a pool's own thread (a one-thread pool in tests) do the work
-            // here; otherwise wait for the pool.
-            if !matches!(rayon::yield_now(), Some(rayon::Yield::Executed)) {
-                std::thread::sleep(std::time::Duration::from_millis(50));
-            }
-        }
-    });
-    result
-        .into_inner()
-        .unwrap_or_else(|e| e.into_inner())
-        .ok_or(Internal::PlannerUnfinished)?
 }
 
 fn run_profile(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput, PipelineError> {

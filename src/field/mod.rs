@@ -7,6 +7,7 @@ pub mod isolines;
 pub(crate) mod level;
 mod march;
 pub mod mfs;
+pub mod section;
 pub mod setup;
 
 pub use mfs::{kernel, Condition, Field, Problem, Solution};
@@ -41,6 +42,28 @@ pub struct Solved {
     pub solves: usize,
     /// Collocation points M.
     pub m: usize,
+}
+
+impl Solved {
+    /// The solve's figures: M, the chosen distance and the max boundary error.
+    pub fn figures(&self) -> FieldFigures {
+        FieldFigures {
+            m: self.m,
+            distance: self.layout.distance,
+            max_error: self.solution.max_error,
+        }
+    }
+}
+
+/// One solve's figures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldFigures {
+    /// Collocation points M.
+    pub m: usize,
+    /// Pseudo-boundary distance, mm.
+    pub distance: f64,
+    /// Max boundary error over the check points.
+    pub max_error: f64,
 }
 
 /// Solve one layout.

@@ -4,12 +4,12 @@
 //! for a cavity, whose rim is the widest curve), extracted from one grid of u
 //! over the whole job (`field::level::curves`) and cached per s.
 
-use super::plan::{level_error_bound, FieldFigures, PlanError, EMPTY_BOX, GRID_SPACING};
+use super::plan::{level_error_bound, PlanError, EMPTY_BOX, GRID_SPACING};
 use super::sections::{LevelField, Sections};
 use super::DepthProfile;
 use crate::field::isolines::Grid;
 use crate::field::level;
-use crate::field::Field;
+use crate::field::{Field, FieldFigures};
 use crate::geometry::{polygons_bbox, Vec2};
 use std::collections::HashMap;
 use std::sync::Mutex;

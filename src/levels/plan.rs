@@ -1,27 +1,21 @@
-//! Levels of a boss or cavity: the schedule of z, the contour Γ(s_k) of every level
-//! extracted from the shape's field, a new MFS problem solved on each Γ(s_k) (the
-//! paper, Section 7: "The corresponding MFS problem is solved at each level to find
-//! the offset lines"), and the paths of each level traced in that level's field.
+//! Levels of a boss or cavity: the schedule of z ([`plan_schedule`]), and for
+//! every level ([`plan_level`]) its contour Γ(s_k) (the source's section) and
+//! its own field: the source's, or a new MFS problem solved on Γ(s_k) (the
+//! paper, Section 7: "The corresponding MFS problem is solved at each level to
+//! find the offset lines", [`crate::field::section`]). The planner only plans:
+//! the paths of each level are traced in its field by `toolpath::zlevel`, which
+//! `pipeline` calls level by level.
 
 use super::schedule;
 use super::sections::{LevelField, Sections};
 use crate::estimate::{check_bound, level_area, levels_bound, GuardError, LowerBound};
-use crate::field::{self, Boundary, FieldError, Layout, Prepared};
-use crate::geometry::polygon_area;
-use crate::geometry::{polygons_bbox, Contour, DistanceIndex, Vec2};
-use crate::toolpath::profile::ProfileError;
-use crate::toolpath::zlevel::{boss_paths, cavity_paths, LevelCut, LevelParams};
-use rayon::prelude::*;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use crate::field::{self, FieldError};
+use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
 
 /// Grid spacing for sampling u, mm: fine enough that marching squares finds every
 /// component of Γ(s) of the letters; vertices are exact and chords are then refined
 /// to the tolerance by `field::level::refine`.
 pub const GRID_SPACING: f64 = 0.4;
-
-/// Singularities per outer loop of a level's Γ(s) (smooth curves need fewer than
-/// the glyphs with their corners).
-pub const LEVEL_N_PER_LOOP: usize = 90;
 
 /// What the level planner reports for one level.
 #[derive(Clone, Debug, PartialEq)]
@@ -66,22 +60,25 @@ pub struct LevelJob<'a> {
     pub margin: f64,
     /// Outer radius for the level problems.
     pub outer_radius: f64,
-    /// Path settings (the stock rectangle is filled in by the planner).
-    pub params: LevelParams,
+    /// Chord tolerance, mm: a section's solve flattens within it.
+    pub tol: f64,
+    /// The tool's radius, its stepover and its cutting feed (mm, mm, mm/min),
+    /// for the lower bound of the machining time.
+    pub tool: ToolFigures,
     /// `machine.max_hours`: the job stops before any level is traced when its
     /// lower bound ([`crate::estimate::levels_bound`]) passes it.
     pub max_hours: f64,
 }
 
-/// One solve's figures.
+/// What the time bound needs of the tool.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FieldFigures {
-    /// Collocation points M.
-    pub m: usize,
-    /// Pseudo-boundary distance, mm.
-    pub distance: f64,
-    /// Max boundary error over the check points.
-    pub max_error: f64,
+pub struct ToolFigures {
+    /// Tool radius, mm.
+    pub radius: f64,
+    /// Largest distance between neighbouring clearing rings, mm.
+    pub stepover: f64,
+    /// Cutting feed, mm/min.
+    pub feed: f64,
 }
 
 /// The largest error a level's field may have: a hundredth of 1 − s (issue
@@ -104,112 +101,144 @@ pub(super) const EMPTY_BOX: (Vec2, Vec2) = (
     },
 );
 
-/// Everything the planner produced.
-pub struct Planned {
-    /// The levels with their paths, top down.
-    pub cuts: Vec<LevelCut>,
-    /// What each level's solve reported, top down.
-    pub info: Vec<LevelInfo>,
-    /// The order in which the levels are cut, as indices into `cuts`
+/// The levels to plan, known before any is: the z schedule, the cutting
+/// order, the stock rectangle and the time bound.
+#[derive(Clone, Debug)]
+pub struct Schedule {
+    /// Every level below the top, top down.
+    pub levels: Vec<Level>,
+    /// The order in which the levels are cut, as indices into `levels`
     /// ([`super::cutting_order`]).
     pub order: Vec<usize>,
-    /// Warnings.
-    pub warnings: Vec<String>,
-    /// Path settings with the stock rectangle.
-    pub params: LevelParams,
-    /// Seconds spent sampling the grid, extracting contours and choosing the
-    /// z schedule (wall clock).
+    /// The stock rectangle (lower-left, upper-right): the largest level (a
+    /// boss's base, a cavity's rim) plus the margin, mm.
+    pub stock: (Vec2, Vec2),
+    /// Seconds spent extracting contours and choosing the z schedule (wall
+    /// clock).
     pub t_schedule: f64,
     /// The lower bound of the machining time, from the levels' contours.
     pub bound: LowerBound,
 }
 
-/// How far planning has got, for a progress display on another thread: the
-/// number of levels once the schedule is known, and how many are done.
-#[derive(Debug, Default)]
-pub struct LevelProgress {
-    /// Levels to plan (0 until the z schedule is chosen).
-    pub total: AtomicUsize,
-    /// Levels planned so far.
-    pub done: AtomicUsize,
+/// One level of the schedule.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Level {
+    /// Its number, from 1 below the top.
+    pub k: usize,
+    /// Its z, relative to the stock top (negative).
+    pub z: f64,
+    /// The level below, when this one was added for the scallop bound: it
+    /// then clears only the band out to that level's contour, which is cut
+    /// first. `None` for a level of the plain stepdown schedule.
+    pub z_below: Option<f64>,
 }
 
-/// Plan every level.
-pub fn plan_levels(job: &LevelJob) -> Result<Planned, PlanError> {
-    plan_levels_reporting(job, &LevelProgress::default())
+/// One level planned: what its paths are traced from.
+pub struct PlannedLevel {
+    /// Z (absolute).
+    pub z: f64,
+    /// Equipotential value (the source's level value).
+    pub s: f64,
+    /// The level's name in paths and messages, `level k (z …)`.
+    pub label: String,
+    /// The section as the source gives it: the part's material on the left
+    /// (a cavity's: the mould's), what the paths are traced along.
+    pub section: Vec<Vec<Vec2>>,
+    /// Γ(s_k) with a boss's material on the left (a cavity's section
+    /// reversed): what the gouge check measures against.
+    pub part: Vec<Vec<Vec2>>,
+    /// The level's own field and its figures.
+    pub field: LevelField,
+    /// A level added for the scallop bound: the width of the band it clears,
+    /// mm (the gap to the level below).
+    pub reach: Option<f64>,
+    /// Warnings about this level.
+    pub warnings: Vec<String>,
+    /// Seconds spent on the level's field (wall clock, for benchmarks).
+    pub t_solve: f64,
 }
 
-/// [`plan_levels`], counting the levels in `progress` as they finish.
-pub fn plan_levels_reporting(
-    job: &LevelJob,
-    progress: &LevelProgress,
-) -> Result<Planned, PlanError> {
+impl PlannedLevel {
+    /// What the planner reports for the level, once its paths are traced
+    /// (`uncut`: a cavity's uncut share; `t_paths`: the seconds they took).
+    pub fn info(&self, uncut: Option<f64>, t_paths: f64) -> LevelInfo {
+        LevelInfo {
+            z: self.z,
+            s: self.s,
+            n: self.field.field.n(),
+            m: self.field.figures.m,
+            max_error: self.field.figures.max_error,
+            distance: self.field.figures.distance,
+            uncut,
+            min_clearance: f64::NAN,
+            t_solve: self.t_solve,
+            t_paths,
+        }
+    }
+}
+
+/// The z schedule of `job`, its cutting order, the stock rectangle and the
+/// time bound; refused when the bound passes `machine.max_hours`.
+pub fn plan_schedule(job: &LevelJob) -> Result<Schedule, PlanError> {
     let t_start = std::time::Instant::now();
     let c = LevelCurves { job };
     let depth = c.depth();
     let zs = level_schedule(job, &c)?;
     // The levels of the plain stepdown schedule clear everything; the ones added
     // for the scallop bound only the band down to the level below them, which is
-    // cut before them ([`cutting_order`]).
-    let n_rough = ((depth / job.stepdown) - 1e-9).ceil().max(1.0) as usize;
-    let rough_z: Vec<f64> = (0..=n_rough)
-        .map(|k| -depth * k as f64 / n_rough as f64)
-        .collect();
+    // cut before them ([`super::cutting_order`]).
+    let rough_z = stepdown_levels(depth, job.stepdown);
     let is_rough = |z: f64| rough_z.iter().any(|&zr| (zr - z).abs() < 1e-9);
     let t_schedule = t_start.elapsed().as_secs_f64();
-    let params = with_stock(job, &c);
-    let stock = (!job.cavity).then_some((params.stock_lo, params.stock_hi));
-    let area_at = |zrel: f64| level_area(&c.at(zrel), stock);
-    let bound = levels_bound(
-        &rough_z[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
-        &zs[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
-        2.0 * params.radius,
-        params.stepover,
-        params.feed,
-    );
-    check_bound(&bound, job.max_hours, 2.0 * params.radius, params.stepover)?;
-
-    // Every level below the top, in parallel.
-    let levels: Vec<(usize, f64, Option<f64>)> = (1..zs.len())
-        .map(|k| {
-            (
-                k,
-                zs[k],
-                zs.get(k + 1).copied().filter(|_| !is_rough(zs[k])),
-            )
+    let stock = stock_rectangle(job, &c);
+    let bound = time_bound(job, &c, &rough_z, &zs, stock);
+    let t = job.tool;
+    check_bound(&bound, job.max_hours, 2.0 * t.radius, t.stepover)?;
+    let levels: Vec<Level> = (1..zs.len())
+        .map(|k| Level {
+            k,
+            z: zs[k],
+            z_below: zs.get(k + 1).copied().filter(|_| !is_rough(zs[k])),
         })
         .collect();
-    progress.total.store(levels.len(), Ordering::Relaxed);
-    let results: Vec<Result<PlannedLevel, PlanError>> = levels
-        .par_iter()
-        .map(|&(k, z, z_below)| {
-            let r = plan_level(&c, &params, k, z, z_below);
-            progress
-                .done
-                .fetch_add(usize::from(r.is_ok()), Ordering::Relaxed);
-            r
-        })
-        .collect();
-    let (mut cuts, mut info, mut warnings) = (Vec::new(), Vec::new(), Vec::new());
-    for r in results {
-        let (c, i, w) = r?;
-        cuts.push(c);
-        info.push(i);
-        warnings.extend(w);
-    }
-    let rough: Vec<bool> = levels.iter().map(|l| l.2.is_none()).collect();
-    if job.cavity {
-        warnings.extend(cavity_error_warning(&info));
-    }
-    Ok(Planned {
-        cuts,
-        info,
+    let rough: Vec<bool> = levels.iter().map(|l| l.z_below.is_none()).collect();
+    Ok(Schedule {
+        levels,
         order: super::cutting_order(&rough),
-        warnings,
-        params,
+        stock,
         t_schedule,
         bound,
     })
+}
+
+/// The z of the plain stepdown schedule, 0 down to −depth.
+fn stepdown_levels(depth: f64, stepdown: f64) -> Vec<f64> {
+    let n_rough = ((depth / stepdown) - 1e-9).ceil().max(1.0) as usize;
+    (0..=n_rough)
+        .map(|k| -depth * k as f64 / n_rough as f64)
+        .collect()
+}
+
+/// The lower bound of the machining time ([`levels_bound`]) from the areas
+/// of the stepdown levels `rough_z` and of all levels `zs` below the top, a
+/// boss's within the stock rectangle.
+fn time_bound(
+    job: &LevelJob,
+    c: &LevelCurves,
+    rough_z: &[f64],
+    zs: &[f64],
+    stock: (Vec2, Vec2),
+) -> LowerBound {
+    let stock = (!job.cavity).then_some(stock);
+    let area_at = |zrel: f64| level_area(&c.at(zrel), stock);
+    let t = job.tool;
+    levels_bound(
+        &rough_z[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
+        &zs[1..].iter().map(|&z| area_at(z)).collect::<Vec<_>>(),
+        2.0 * t.radius,
+        t.stepover,
+        t.feed,
+    )
 }
 
 /// The curves the planner cuts along, from the job's [`Sections`].
@@ -283,44 +312,32 @@ fn level_schedule(job: &LevelJob, c: &LevelCurves) -> Result<Vec<f64>, PlanError
     Ok(zs)
 }
 
-/// The job's level settings with the stock: the largest level (a boss's
-/// base, a cavity's rim) plus the margin.
-fn with_stock(job: &LevelJob, c: &LevelCurves) -> LevelParams {
+/// The stock rectangle: the largest level (a boss's base, a cavity's rim)
+/// plus the margin.
+fn stock_rectangle(job: &LevelJob, c: &LevelCurves) -> (Vec2, Vec2) {
     let base = c.at(if job.cavity { 0.0 } else { -c.depth() });
     let (blo, bhi) = polygons_bbox(&base).unwrap_or(EMPTY_BOX);
-    let mut params = job.params;
-    params.stock_lo = blo - Vec2::new(job.margin, job.margin);
-    params.stock_hi = bhi + Vec2::new(job.margin, job.margin);
-    params
+    let m = Vec2::new(job.margin, job.margin);
+    (blo - m, bhi + m)
 }
 
-/// One level's cut, figures and warnings.
-type PlannedLevel = (LevelCut, LevelInfo, Vec<String>);
-
-/// Level `k` at `z` (relative to the stock top): its own MFS problem on
-/// Γ(s) ([`level_field`]) and its paths; `z_below` is the level below when
-/// this one was added for the scallop bound (it then clears only the band
-/// out to that level's contour, which is cut first).
-fn plan_level(
-    c: &LevelCurves,
-    params: &LevelParams,
-    k: usize,
-    z: f64,
-    z_below: Option<f64>,
-) -> Result<PlannedLevel, PlanError> {
+/// Level `level` of `job`: its section, its own field ([`level_field`]) and,
+/// when it was added for the scallop bound, the band it clears.
+pub fn plan_level(job: &LevelJob, level: &Level) -> Result<PlannedLevel, PlanError> {
     use crate::count::{set_stage, Stage};
-    let job = c.job;
+    let c = LevelCurves { job };
+    let (k, z) = (level.k, level.z);
     set_stage(Stage::LevelGrid);
     let s = job.source.level_value(z);
     // Material on the left (for a cavity the mould is outside Γ(s): the
     // section's loops are Γ(s) reversed).
-    let oriented = job.source.section(z);
-    let polys = if job.cavity {
-        reversed(&oriented)
+    let section = job.source.section(z);
+    let part = if job.cavity {
+        reversed(&section)
     } else {
-        oriented.clone()
+        section.clone()
     };
-    if polys.is_empty() {
+    if part.is_empty() {
         return Err(PlanError::NoContour {
             level: k,
             z: job.top + z,
@@ -331,43 +348,24 @@ fn plan_level(
     let label = format!("level {k} (z {:.3})", job.top + z);
     let mut warnings = Vec::new();
     set_stage(Stage::LevelSolve);
-    let level = level_field(job, &oriented, z, s, &label, &mut warnings)?;
+    let field = level_field(job, &section, z, s, &label, &mut warnings)?;
     let t_solve = t0.elapsed().as_secs_f64();
     set_stage(Stage::LevelGrid);
-    let reach = z_below.map(|zb| c.gap(z, zb));
+    let reach = level.z_below.map(|zb| c.gap(z, zb));
     if reach.is_some_and(f64::is_nan) {
-        return Err(PlanError::Profile(ProfileError::NotFinite(format!(
-            "{label}: the band it clears"
-        ))));
+        return Err(PlanError::NotFinite(format!("{label}: the band it clears")));
     }
-    set_stage(Stage::Rings);
-    // The same inputs either way; a cavity also measures its uncut share.
-    let (part, field, w) = (&oriented, &level.field, &mut warnings);
-    let (paths, uncut) = if job.cavity {
-        let (p, f) = cavity_paths(part, field, params, &label, w, reach)?;
-        (p, Some(f))
-    } else {
-        (boss_paths(part, field, params, &label, w, reach)?, None)
-    };
-    let info = LevelInfo {
+    Ok(PlannedLevel {
         z: job.top + z,
         s,
-        n: level.field.n(),
-        m: level.figures.m,
-        max_error: level.figures.max_error,
-        distance: level.figures.distance,
-        uncut,
-        min_clearance: f64::NAN,
+        label,
+        section,
+        part,
+        field,
+        reach,
+        warnings,
         t_solve,
-        t_paths: t0.elapsed().as_secs_f64() - t_solve,
-    };
-    let cut = LevelCut {
-        z: job.top + z,
-        s,
-        part: polys,
-        paths,
-    };
-    Ok((cut, info, warnings))
+    })
 }
 
 /// A level's own field: the source's, when it knows one (the MFS boss: u/s),
@@ -386,14 +384,14 @@ fn level_field(
             warnings.extend(l.warning.as_ref().map(|w| format!("{label}, {w}")));
             Ok(l)
         }
-        None => section_field(oriented, job.params.tol, job.outer_radius, s, label),
+        None => section_field(oriented, job.tol, job.outer_radius, s, label),
     }
 }
 
 /// One line for every cavity level whose field errs above
 /// `level_error_bound` (it was one line per level: ten on q-mould, all saying
 /// the same): how many, the worst, and what it means for the part.
-fn cavity_error_warning(info: &[LevelInfo]) -> Option<String> {
+pub(crate) fn cavity_error_warning(info: &[LevelInfo]) -> Option<String> {
     let over: Vec<(usize, &LevelInfo)> = info
         .iter()
         .enumerate()
@@ -431,55 +429,15 @@ fn section_field(
     s: f64,
     label: &str,
 ) -> Result<LevelField, PlanError> {
-    let contours: Vec<Contour> = oriented
-        .iter()
-        .filter_map(|p| Contour::polygon(p).ok())
-        .collect();
-    let is_counter: Vec<bool> = oriented.iter().map(|p| polygon_area(p) < 0.0).collect();
-    let loops = oriented
-        .iter()
-        .filter(|p| polygon_area(p) > 0.0)
-        .count()
-        .max(1);
-    let centre = field::centroid(&contours, tol);
-    let b = Boundary {
-        contours,
-        is_counter,
-        centre,
-        radius: outer_radius,
-        flat_tol: tol,
-    };
-    let prep = Prepared::new(b)?;
-    let n_total = LEVEL_N_PER_LOOP * loops
-        + field::setup::OUTER_CHARGES
-        + prep.sinks.len() * (field::setup::SINK_CHARGES + LEVEL_N_PER_LOOP);
-    let base = Layout {
-        n_total,
-        distance: 1.0,
-        corner_clusters: true,
-        corner_fraction: 0.2,
-        pairs: false,
-    };
-    let solved = field::solve_quick(&prep, base)?;
-    let e = solved.solution.max_error;
-    if e.is_nan() {
-        return Err(PlanError::Profile(ProfileError::NotFinite(format!(
+    let (field, figures) = field::section::solve_section(oriented, tol, outer_radius)?;
+    if figures.max_error.is_nan() {
+        return Err(PlanError::NotFinite(format!(
             "{label}, s = {s:.6}: the max boundary error of its field"
-        ))));
+        )));
     }
-    // Local expansions over the level's box: the rings and the coverage grid
-    // evaluate this field millions of times (docs/method.md §12).
-    let field = match polygons_bbox(oriented) {
-        Some((lo, hi)) => solved.solution.field.accelerated_around(lo, hi),
-        None => solved.solution.field,
-    };
     Ok(LevelField {
         field,
-        figures: FieldFigures {
-            m: solved.m,
-            distance: solved.layout.distance,
-            max_error: e,
-        },
+        figures,
         warning: None,
     })
 }
@@ -490,9 +448,6 @@ pub enum PlanError {
     /// A level's field.
     #[error("{0}")]
     Field(#[from] FieldError),
-    /// A level's paths.
-    #[error("{0}")]
-    Profile(#[from] ProfileError),
     /// The job's lower bound passes `machine.max_hours`.
     #[error("{0}")]
     Guard(#[from] GuardError),
@@ -523,6 +478,10 @@ pub enum PlanError {
         /// Its field value.
         s: f64,
     },
+    /// A broken invariant: a measure of a level (its field's error, the
+    /// band it clears) came out NaN.
+    #[error("{0} is not a number (NaN): this is a pfcam bug, please report it with the job file")]
+    NotFinite(String),
     /// A broken invariant: the horizontal step between two levels came out
     /// NaN.
     #[error("the horizontal step between two levels is not a number (NaN): this is a pfcam bug, please report it with the job file")]

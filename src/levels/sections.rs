@@ -47,7 +47,7 @@ pub struct LevelField {
     /// The field: 1 on the level's section, decreasing away from the material.
     pub field: Field,
     /// Its solve's figures.
-    pub figures: super::plan::FieldFigures,
+    pub figures: crate::field::FieldFigures,
     /// Why its accuracy is a concern, if it is.
     pub warning: Option<String>,
 }

@@ -127,7 +127,7 @@ pub(super) fn lowest(poly: &[Vec2]) -> Vec2 {
 /// bound (`reach`, the band of that width): the rings around every outer loop
 /// of the part out to the band's width, clipped to the stock grown by r.
 /// Inside every hole of the part, rings from the innermost out.
-pub fn boss_paths<N: Navigator + Sync>(
+pub(crate) fn boss_paths<N: Navigator + Sync>(
     part: &[Vec<Vec2>],
     nav: &N,
     p: &LevelParams,
@@ -739,6 +739,29 @@ pub(super) fn deepest_in_pocket(
     crate::geometry::deepest_point_in(lo, hi, &inside, index)
 }
 
+/// The paths of one level traced in its field `nav`: a cavity's
+/// ([`cavity_paths`], with the uncut share of its reachable area) when
+/// `cavity`, else a boss's ([`boss_paths`]). `section` is the level's Γ(s)
+/// with the part's material on its left (a cavity's: the mould's), `label`
+/// names the level in paths and warnings, `band` is the width of the band a
+/// level added for the scallop bound clears.
+pub fn level_paths<N: Navigator + Sync>(
+    cavity: bool,
+    section: &[Vec<Vec2>],
+    nav: &N,
+    p: &LevelParams,
+    label: &str,
+    warnings: &mut Vec<String>,
+    band: Option<f64>,
+) -> Result<(Vec<CutPath>, Option<f64>), ProfileError> {
+    if cavity {
+        let (paths, uncut) = cavity_paths(section, nav, p, label, warnings, band)?;
+        Ok((paths, Some(uncut)))
+    } else {
+        Ok((boss_paths(section, nav, p, label, warnings, band)?, None))
+    }
+}
+
 /// The paths of one cavity level. `part` holds the level's Γ(s) loops with the
 /// mould's material on their left: pockets clockwise, islands counter-clockwise.
 ///
@@ -758,7 +781,7 @@ pub(super) fn deepest_in_pocket(
 /// With `band` (a level added for the scallop bound) the rings stop once they
 /// are deeper than that from the wall and coverage is measured within it: the
 /// next stepdown level below clears the rest.
-pub fn cavity_paths<N: Navigator + Sync>(
+pub(crate) fn cavity_paths<N: Navigator + Sync>(
     part: &[Vec<Vec2>],
     nav: &N,
     p: &LevelParams,

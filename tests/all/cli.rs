@@ -204,6 +204,24 @@ fn a_composition_that_cannot_be_built_names_its_part() {
         &["shape.part[3] \"r\"", "do not overlap"],
         true,
     );
+    // The cause once: the error held it both in its message and as its
+    // source, and the CLI appended the source's own wording after it.
+    let dir = scratch("cli", "disjoint-intersection-once");
+    fs::write(dir.join("job.toml"), job).expect("write job");
+    for args in [
+        &["validate", "job.toml"][..],
+        &["run", "job.toml", "--out", "out"][..],
+    ] {
+        let o = pfcam(args, &dir);
+        let err = text(&o.stderr);
+        let last = err.lines().last().unwrap_or("");
+        assert_eq!(last.matches("do not overlap").count(), 1, "{args:?}: {err}");
+        assert_eq!(
+            err.matches("the result has no boundary").count(),
+            1,
+            "{args:?}: {err}"
+        );
+    }
 }
 
 #[test]
