@@ -731,84 +731,108 @@ fn dives(at: Vec3, pts: &[Vec3], slope: f64) -> bool {
         .any(|(a, b)| a.z - b.z > slope * run_xy(*a, *b) + 1e-3)
 }
 
-/// The moves of the whole program from the loops in order (see the module docs).
+/// The moves of the whole program from the loops in order (see the module
+/// docs). Where each loop starts depends only on where the one before it
+/// ended, so the starts are placed in order first (cheap), and the sections,
+/// whose links, entries and thinning drop the cutter thousands of times,
+/// are then built in parallel, in order.
 pub fn moves(
     loops: &[Loop],
     order: &[(usize, bool)],
     p: &FinishParams,
     mesh: &MeshIndex,
 ) -> Toolpath {
+    use rayon::prelude::*;
     let start = Vec3::new(0.0, 0.0, p.safe_z);
-    let mut sections = Vec::with_capacity(order.len());
     let mut at = start;
-    let tan = p.ramp_angle.to_radians().tan();
+    let mut placed = Vec::with_capacity(order.len());
     for &(i, linked) in order {
         let l = &loops[i];
         let tips = oriented(l, at);
-        let at_start = at;
-        let mut mv = Vec::with_capacity(tips.len() + 8);
-        let first = tips[0];
-        // A link that would dive into the wall steeper than a pass may is
-        // replaced by a retract and a ramp.
-        let link = linked
-            .then(|| surface_link(at, first, p, mesh))
-            .filter(|l| !dives(at, l, DESCENT_SLOPE));
-        if let Some(link) = link {
-            for q in link {
-                mv.push(Move::Linear {
-                    to: q,
-                    feed: p.feed,
-                });
-            }
-        } else {
-            // Over at the retract height, or higher where the tool already is.
-            let over = at.z.max(p.retract_z);
-            if at.z < over {
-                mv.push(Move::Rapid {
-                    to: Vec3::new(at.x, at.y, over),
-                });
-            }
-            mv.push(Move::Rapid {
-                to: Vec3::new(first.x, first.y, over),
-            });
-            let top = (entry_base(first, p, mesh) + p.entry).min(over);
-            mv.push(Move::Rapid {
-                to: Vec3::new(first.x, first.y, top),
-            });
-            mv.extend(ramp(&tips, l.closed, top, tan, p));
-        }
-        let back = l.closed.then_some(&first);
-        for q in tips.iter().skip(1).chain(back) {
-            mv.push(Move::Linear {
-                to: *q,
-                feed: p.feed,
-            });
-        }
+        placed.push((l, linked, at, tips));
+        let tips = &placed[placed.len() - 1].3;
         at = if l.closed {
-            first
+            tips[0]
         } else {
             tips[tips.len() - 1]
         };
-        let z = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
-        sections.push(Section {
-            label: match l.at {
-                At::S(s) => format!("{} {} s {s:.5}", crate::toolpath::FINISH_PASS, l.pass + 1),
-                At::D(d) => format!("{} {} d {d:.3}", crate::toolpath::FINISH_PASS, l.pass + 1),
-            },
-            z,
-            moves: simplify(at_start, mv, p.tol, &|m| {
-                p.cutter
-                    .drop_above(mesh, m.x, m.y, chord_threshold(&m, p.tol))
-                    .is_some()
-            }),
-        });
     }
+    let mut sections: Vec<Section> = placed
+        .into_par_iter()
+        .map(|(l, linked, at, tips)| section(l, linked, at, tips, p, mesh))
+        .collect();
     if let Some(last) = sections.last_mut() {
         last.moves.push(Move::Rapid {
             to: Vec3::new(at.x, at.y, p.safe_z),
         });
     }
     Toolpath { start, sections }
+}
+
+/// One loop's section: from `at`, where the tool is, a feed link over the
+/// surface when `linked` (unless it would dive) or a retract, a rapid and
+/// the entry's ramp; then round the loop's `tips` (already oriented for
+/// `at`), thinned.
+fn section(
+    l: &Loop,
+    linked: bool,
+    at: Vec3,
+    tips: Vec<Vec3>,
+    p: &FinishParams,
+    mesh: &MeshIndex,
+) -> Section {
+    let tan = p.ramp_angle.to_radians().tan();
+    let mut mv = Vec::with_capacity(tips.len() + 8);
+    let first = tips[0];
+    // A link that would dive into the wall steeper than a pass may is
+    // replaced by a retract and a ramp.
+    let link = linked
+        .then(|| surface_link(at, first, p, mesh))
+        .filter(|l| !dives(at, l, DESCENT_SLOPE));
+    if let Some(link) = link {
+        for q in link {
+            mv.push(Move::Linear {
+                to: q,
+                feed: p.feed,
+            });
+        }
+    } else {
+        // Over at the retract height, or higher where the tool already is.
+        let over = at.z.max(p.retract_z);
+        if at.z < over {
+            mv.push(Move::Rapid {
+                to: Vec3::new(at.x, at.y, over),
+            });
+        }
+        mv.push(Move::Rapid {
+            to: Vec3::new(first.x, first.y, over),
+        });
+        let top = (entry_base(first, p, mesh) + p.entry).min(over);
+        mv.push(Move::Rapid {
+            to: Vec3::new(first.x, first.y, top),
+        });
+        mv.extend(ramp(&tips, l.closed, top, tan, p));
+    }
+    let back = l.closed.then_some(&first);
+    for q in tips.iter().skip(1).chain(back) {
+        mv.push(Move::Linear {
+            to: *q,
+            feed: p.feed,
+        });
+    }
+    let z = tips.iter().map(|t| t.z).fold(f64::INFINITY, f64::min);
+    Section {
+        label: match l.at {
+            At::S(s) => format!("{} {} s {s:.5}", crate::toolpath::FINISH_PASS, l.pass + 1),
+            At::D(d) => format!("{} {} d {d:.3}", crate::toolpath::FINISH_PASS, l.pass + 1),
+        },
+        z,
+        moves: simplify(at, mv, p.tol, &|m| {
+            p.cutter
+                .drop_above(mesh, m.x, m.y, chord_threshold(&m, p.tol))
+                .is_some()
+        }),
+    }
 }
 
 /// The entry's ramp from `top` over the first of `tips` down to the pass at
