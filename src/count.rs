@@ -24,12 +24,23 @@ pub enum Stage {
     Rings,
     /// The cavities' coverage measure.
     Coverage,
-    /// The finishing program: S2's mesh, the passes, the drop-cutter.
+    /// The finishing program: the passes and their contact points (S2's
+    /// mesh and the drops below are counted on their own).
     Finishing,
+    /// The finishing's mesh of S2 and its drop-cutter index.
+    FinishMesh,
+    /// The finishing's tip drops: one per contact point of every pass.
+    FinishTips,
+    /// The finishing's chord checks: the drops that keep a straight move
+    /// between two tips above the drop-cutter's height.
+    FinishChords,
+    /// The finishing's links, entries and thinning (Douglas–Peucker with a
+    /// drop at every point a longer chord passes).
+    FinishMoves,
 }
 
 /// Every stage, in the order of [`Stage`]'s discriminants.
-pub const STAGES: [Stage; 8] = [
+pub const STAGES: [Stage; 12] = [
     Stage::Other,
     Stage::ShapeSolve,
     Stage::LevelGrid,
@@ -38,6 +49,10 @@ pub const STAGES: [Stage; 8] = [
     Stage::Rings,
     Stage::Coverage,
     Stage::Finishing,
+    Stage::FinishMesh,
+    Stage::FinishTips,
+    Stage::FinishChords,
+    Stage::FinishMoves,
 ];
 
 impl Stage {
@@ -52,6 +67,10 @@ impl Stage {
             Stage::Rings => "rings (tracing)",
             Stage::Coverage => "coverage",
             Stage::Finishing => "finishing",
+            Stage::FinishMesh => "finishing: mesh, index",
+            Stage::FinishTips => "finishing: tip drops",
+            Stage::FinishChords => "finishing: chord checks",
+            Stage::FinishMoves => "finishing: links, thinning",
         }
     }
 }
@@ -129,6 +148,26 @@ mod imp {
 
 /// Whether this build counts (the `count-evals` feature).
 pub const ENABLED: bool = cfg!(feature = "count-evals");
+
+/// Makes `s` the current stage until the guard is dropped, when the stage
+/// it replaced is current again (for a stage inside another).
+#[inline(always)]
+pub fn enter(s: Stage) -> StageGuard {
+    StageGuard(set_stage(s))
+}
+
+/// Restores a stage when dropped ([`enter`]).
+#[must_use = "the stage ends when the guard is dropped"]
+pub struct StageGuard(Stage);
+
+impl Drop for StageGuard {
+    #[inline(always)]
+    fn drop(&mut self) {
+        if ENABLED {
+            set_stage(self.0);
+        }
+    }
+}
 
 /// Make `s` the current stage; returns the one it replaces.
 #[inline(always)]

@@ -782,6 +782,7 @@ pub fn section_view(
 /// The finisher's drop-cutter index over the part's triangles (built at
 /// [`FINISH_MESH`]): cells of four mesh spacings.
 pub(crate) fn finish_index(tris: Vec<[[f64; 3]; 3]>) -> crate::toolpath::dropcutter::MeshIndex {
+    let _stage = crate::count::enter(crate::count::Stage::FinishMesh);
     crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * FINISH_MESH)
 }
 
@@ -820,7 +821,10 @@ fn finish_program(
     let opts = SurfaceOptions {
         resolution: FINISH_MESH,
     };
-    let surface = build(&sj, &opts, progress)?;
+    let surface = {
+        let _stage = crate::count::enter(crate::count::Stage::FinishMesh);
+        build(&sj, &opts, progress)?
+    };
     progress(Progress::Stage {
         name: "finishing passes".into(),
         total: 1,

@@ -318,7 +318,10 @@ fn drop_tips(axes: &Axes, p: &FinishParams, mesh: &MeshIndex) -> Result<Vec<Vec3
             (a.x, a.y, p.z_of(axes.z[i]) - axes.sags[i] - HINT_MARGIN)
         })
         .collect();
-    let zs = p.cutter.drop_many_hinted(mesh, &pts);
+    let zs = {
+        let _stage = crate::count::enter(crate::count::Stage::FinishTips);
+        p.cutter.drop_many_hinted(mesh, &pts)
+    };
     axes.axes
         .iter()
         .zip(zs)
@@ -356,6 +359,7 @@ fn chord_safe(tips: Vec<Vec3>, closed: bool, p: &FinishParams, mesh: &MeshIndex)
 /// start) so that no straight move passes below the drop-cutter's height
 /// (see [`chord_safe`]).
 fn split_chords(chords: &[(Vec3, Vec3)], p: &FinishParams, mesh: &MeshIndex) -> Vec<Vec<Vec3>> {
+    let _stage = crate::count::enter(crate::count::Stage::FinishChords);
     // The first test of every chord in one parallel batch; the few chords
     // that need more are split one at a time.
     let points: Vec<Vec<Vec3>> = chords.iter().map(|&(a, b)| chord_points(a, b)).collect();
@@ -781,6 +785,7 @@ fn section(
     p: &FinishParams,
     mesh: &MeshIndex,
 ) -> Section {
+    let _stage = crate::count::enter(crate::count::Stage::FinishMoves);
     let tan = p.ramp_angle.to_radians().tan();
     let mut mv = Vec::with_capacity(tips.len() + 8);
     let first = tips[0];
