@@ -1055,6 +1055,15 @@ fn the_program_is_the_same_on_any_number_of_threads() {
              [[shape.part]]\nname = \"r\"\nop = \"subtract\"\nof = [\"a\", \"c\"]\n\
              [tool]\ndiameter = 3.175\n[operation]\ndepth = 2.0\n",
         ),
+        // With a finishing program, whose passes, tips and sections are
+        // computed in parallel.
+        (
+            "f",
+            "[shape]\ntext = \"I\"\nheight = 20.0\n[tool]\ndiameter = 3.175\nstepdown = 1.5\n\
+             [stock]\nmargin = 4.0\n[operation]\nkind = \"boss\"\ndepth = 2.0\nmax_scallop = 1.0\n\
+             [profile]\nkind = \"sigmoid\"\ns1 = 0.97\ns2 = 0.85\nsteepness = 6.0\n\
+             [finish]\ndiameter = 3.175\nfeed = 1200.0\n",
+        ),
     ];
     for (name, job) in jobs {
         fs::write(dir.join(format!("{name}.toml")), job).expect("write job");
@@ -1068,9 +1077,19 @@ fn the_program_is_the_same_on_any_number_of_threads() {
                 .output()
                 .expect("run pfcam");
             assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
-            programs.push(fs::read(dir.join(&out).join(format!("{name}.nc"))).expect("program"));
+            let files: &[String] = if name == "f" {
+                &[format!("{name}.rough.nc"), format!("{name}.finish.nc")]
+            } else {
+                &[format!("{name}.nc")]
+            };
+            let mut program = Vec::new();
+            for f in files {
+                let bytes = fs::read(dir.join(&out).join(f)).expect("program");
+                assert!(bytes.len() > 1000, "{name}: {f}");
+                program.extend(bytes);
+            }
+            programs.push(program);
         }
-        assert!(programs[0].len() > 1000, "{name}");
         assert!(
             programs[0] == programs[1] && programs[1] == programs[2],
             "{name}: the program differs with the thread count"
