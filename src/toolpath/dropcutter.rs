@@ -170,6 +170,13 @@ pub const CELL_PLANE_MARGIN: f64 = 1e-6;
 /// hold stay far below it.
 pub const MAX_CELLS: usize = 4_000_000;
 
+/// Cells per side of a block ([`MeshIndex`]'s second, coarser level).
+pub const BLOCK: usize = 4;
+
+/// Most blocks a drop judges before its cells (a footprint of up to about
+/// 7 × 7 blocks; a wider one goes cell by cell).
+const BLOCKS_NEAR: usize = 64;
+
 /// Bucket entries allowed per triangle on average (plus [`MAX_CELLS`]) before
 /// the cell is coarsened: a cell much smaller than the triangles would store
 /// each triangle many times and gain nothing.
@@ -344,8 +351,9 @@ impl Cutter {
         d2 < reach * reach
     }
 
-    /// Whether the triangles of cell `k` of `mesh` may lift the tip (axis
-    /// through `c`) above `floor`, judged by the cell's upper plane
+    /// Whether the triangles under upper plane `pl` (of a cell or block
+    /// whose lower-left corner is `m`) may lift the tip (axis through `c`)
+    /// above `floor`, judged by that plane
     /// z ≤ A + g·(q − m) ([`CellPlane`]): every point of those triangles lies
     /// on or under it, so f = z − p(ρ) on them is at most the plane's own
     /// drop, its facet contact (module notes) with tan θ = |g|: ρ_c = a +
@@ -353,14 +361,12 @@ impl Cutter {
     /// trusted for |g| ≤ 1000 (cos θ ≥ 1e-3) and only when it falls short
     /// by more than [`CELL_PLANE_MARGIN`], far above the rounding.
     #[inline]
-    fn plane_may_beat(&self, mesh: &MeshIndex, k: usize, c: [f64; 2], floor: f64) -> bool {
-        let pl = &mesh.planes[k];
+    fn plane_may_beat(&self, (pl, m): (&CellPlane, [f64; 2]), c: [f64; 2], floor: f64) -> bool {
         let (gx, gy) = (f64::from(pl.g[0]), f64::from(pl.g[1]));
         let t = norm(gx, gy);
         if t.is_nan() || t > 1000.0 {
             return true;
         }
-        let m = mesh.cell_corner(k);
         let sec = (1.0 + t * t).sqrt();
         let rho = self.flat_radius() + self.corner * (t / sec);
         let z = f64::from(pl.a) + gx * (c[0] - m[0]) + gy * (c[1] - m[1]) + t * rho;
@@ -423,8 +429,8 @@ impl Cutter {
         // at the distance to the box round all of them.
         let may_win = |b: &Bounds, d2: f64| self.may_beat(b.top(), d2, floor_cell.get());
         // ... and on its upper plane's contact.
-        let cell_may_win = |k: usize, b: &Bounds, d2: f64| {
-            may_win(b, d2) && self.plane_may_beat(mesh, k, c, floor_cell.get())
+        let cell_may_win = |plane: (&CellPlane, [f64; 2]), b: &Bounds, d2: f64| {
+            may_win(b, d2) && self.plane_may_beat(plane, c, floor_cell.get())
         };
         mesh.for_each_near(c, r, range, cell_may_win, may_win, |ti, b, d2| {
             let mut floor = floor_cell.get();
@@ -1030,6 +1036,14 @@ pub struct MeshIndex {
     cells: Vec<Bounds>,
     /// Cell k's upper plane ([`CellPlane`]).
     planes: Vec<CellPlane>,
+    /// Blocks of [`BLOCK`] × [`BLOCK`] cells, row by row (`bnx` a row):
+    /// block b's box round all its cells' triangles and their highest
+    /// corner, and its upper plane, so that a drop rules out a block's
+    /// cells with one test where the block lies out of reach or under the
+    /// floor.
+    bnx: usize,
+    blocks: Vec<Bounds>,
+    block_planes: Vec<CellPlane>,
     skipped: usize,
 }
 
@@ -1068,6 +1082,9 @@ impl MeshIndex {
             items: Vec::new(),
             cells: Vec::new(),
             planes: Vec::new(),
+            bnx: 0,
+            blocks: Vec::new(),
+            block_planes: Vec::new(),
             skipped,
         };
         if tris.is_empty() {
@@ -1154,6 +1171,8 @@ impl MeshIndex {
         sort_cells(&mut items, &count, &bounds);
         index.cells = cell_bounds(&items, &count, &bounds);
         index.planes = cell_planes(&index, &items, &count, &tris, &normals);
+        (index.bnx, index.blocks, index.block_planes) =
+            blocks(&index, &items, &count, &tris, &normals);
         index.rank_at = rank_offsets(&items, &count);
         index.start = count;
         index.items = items;
@@ -1252,7 +1271,7 @@ impl MeshIndex {
         c: [f64; 2],
         r: f64,
         (i0, i1, j0, j1): (usize, usize, usize, usize),
-        cell_may_win: impl Fn(usize, &Bounds, f64) -> bool,
+        cell_may_win: impl Fn((&CellPlane, [f64; 2]), &Bounds, f64) -> bool,
         tri_may_win: impl Fn(&Bounds, f64) -> bool,
         mut f: impl FnMut(u32, &Bounds, f64),
     ) {
@@ -1265,13 +1284,37 @@ impl MeshIndex {
             let dy = (lo[1] - c[1]).max(c[1] - hi[1]).max(0.0);
             dx * dx + dy * dy
         };
+        // The blocks the range touches, each judged the first time one of
+        // its cells comes up (at the floor of that moment): 0 not yet, 1 in,
+        // 2 out. A range over more than BLOCKS_NEAR blocks judges none.
+        let (bi0, bj0) = (i0 / BLOCK, j0 / BLOCK);
+        let bw = i1 / BLOCK - bi0 + 1;
+        let judge_blocks = bw * (j1 / BLOCK - bj0 + 1) <= BLOCKS_NEAR;
+        let mut judged = [0u8; BLOCKS_NEAR];
         let mut visit = |i: usize, j: usize| {
+            if judge_blocks {
+                let (bi, bj) = (i / BLOCK, j / BLOCK);
+                let slot = &mut judged[(bj - bj0) * bw + bi - bi0];
+                if *slot == 0 {
+                    let b = bj * self.bnx + bi;
+                    let corner = self.cell_corner(bj * BLOCK * self.nx + bi * BLOCK);
+                    let d2 = box_dist2(&self.blocks[b]);
+                    let may = d2 <= r2
+                        && cell_may_win((&self.block_planes[b], corner), &self.blocks[b], d2);
+                    *slot = if may { 1 } else { 2 };
+                }
+                if *slot == 2 {
+                    return;
+                }
+            }
             let k = j * self.nx + i;
             // A cell's box holds every triangle's box listed in it, so a
             // cell out of reach, or one the caller's bound rules out,
-            // holds nothing to visit, whichever cell would visit them.
+            // holds nothing to visit, whichever cell would visit them (and
+            // the same for a block and its cells).
             let d2 = box_dist2(&self.cells[k]);
-            if d2 > r2 || !cell_may_win(k, &self.cells[k], d2) {
+            if d2 > r2 || !cell_may_win((&self.planes[k], self.cell_corner(k)), &self.cells[k], d2)
+            {
                 return;
             }
             let cell = &self.items[self.start[k]..self.start[k + 1]];
@@ -1390,33 +1433,79 @@ fn cell_planes(
         .into_par_iter()
         .map(|k| {
             let cell = &items[count[k]..count[k + 1]];
-            let mut sum = [0.0f64; 3];
-            for &it in cell {
-                let p = normals[(it >> 2) as usize];
-                let s = if p[2] < 0.0 { -1.0 } else { 1.0 };
-                sum = [sum[0] + s * p[0], sum[1] + s * p[1], sum[2] + s * p[2]];
-            }
-            let g = if sum[2] > 1e-3 * cell.len() as f64 {
-                [(-sum[0] / sum[2]) as f32, (-sum[1] / sum[2]) as f32]
-            } else {
-                [0.0, 0.0]
-            };
-            let g = if g.iter().all(|c| c.is_finite()) {
-                g
-            } else {
-                [0.0, 0.0]
-            };
-            let m = index.cell_corner(k);
-            let (gx, gy) = (f64::from(g[0]), f64::from(g[1]));
-            let mut a = f64::NEG_INFINITY;
-            for &it in cell {
-                for v in &tris[(it >> 2) as usize] {
-                    a = a.max(v[2] - gx * (v[0] - m[0]) - gy * (v[1] - m[1]));
-                }
-            }
-            CellPlane { a: f32_up(a), g }
+            upper_plane(cell, index.cell_corner(k), tris, normals)
         })
         .collect()
+}
+
+/// The upper plane ([`CellPlane`]) over the triangles of `items` (entries
+/// as in a cell), referred to the corner `m`.
+fn upper_plane(
+    items: &[u32],
+    m: [f64; 2],
+    tris: &[[[f64; 3]; 3]],
+    normals: &[[f64; 3]],
+) -> CellPlane {
+    let mut sum = [0.0f64; 3];
+    for &it in items {
+        let p = normals[(it >> 2) as usize];
+        let s = if p[2] < 0.0 { -1.0 } else { 1.0 };
+        sum = [sum[0] + s * p[0], sum[1] + s * p[1], sum[2] + s * p[2]];
+    }
+    let g = if sum[2] > 1e-3 * items.len() as f64 {
+        [(-sum[0] / sum[2]) as f32, (-sum[1] / sum[2]) as f32]
+    } else {
+        [0.0, 0.0]
+    };
+    let g = if g.iter().all(|c| c.is_finite()) {
+        g
+    } else {
+        [0.0, 0.0]
+    };
+    let (gx, gy) = (f64::from(g[0]), f64::from(g[1]));
+    let mut a = f64::NEG_INFINITY;
+    for &it in items {
+        for v in &tris[(it >> 2) as usize] {
+            a = a.max(v[2] - gx * (v[0] - m[0]) - gy * (v[1] - m[1]));
+        }
+    }
+    CellPlane { a: f32_up(a), g }
+}
+
+/// The blocks of [`BLOCK`] × [`BLOCK`] cells of `index` (whose `cells` are
+/// set): blocks along a row, and each block's bounds (the union of its
+/// cells') and upper plane over every triangle its cells list, referred to
+/// its lower-left corner; the blocks in parallel.
+fn blocks(
+    index: &MeshIndex,
+    items: &[u32],
+    count: &[usize],
+    tris: &[[[f64; 3]; 3]],
+    normals: &[[f64; 3]],
+) -> (usize, Vec<Bounds>, Vec<CellPlane>) {
+    let bnx = index.nx.div_ceil(BLOCK);
+    let bny = index.ny.div_ceil(BLOCK);
+    let (bounds, planes) = (0..bnx * bny)
+        .into_par_iter()
+        .map(|b| {
+            let (bi, bj) = (b % bnx, b / bnx);
+            let cells: Vec<usize> = (bj * BLOCK..((bj + 1) * BLOCK).min(index.ny))
+                .flat_map(|j| {
+                    (bi * BLOCK..((bi + 1) * BLOCK).min(index.nx)).map(move |i| j * index.nx + i)
+                })
+                .collect();
+            let all: Vec<u32> = cells
+                .iter()
+                .flat_map(|&k| items[count[k]..count[k + 1]].iter().copied())
+                .collect();
+            let corner = index.cell_corner(bj * BLOCK * index.nx + bi * BLOCK);
+            (
+                Bounds::union(cells.iter().map(|&k| &index.cells[k])),
+                upper_plane(&all, corner, tris, normals),
+            )
+        })
+        .unzip();
+    (bnx, bounds, planes)
 }
 
 /// For each cell (`items[count[k]..count[k + 1]]`, sorted by rank) the
@@ -2011,7 +2100,7 @@ mod tests {
     /// The single-precision bounds are rounded outwards: f32_down(x) ≤ x ≤
     /// f32_up(x), each the nearest f32 on its side (exact when x is one).
     #[test]
-    fn dropcutter_cell_planes_lie_over_their_triangles_and_prune() {
+    fn dropcutter_cell_and_block_planes_lie_over_their_triangles_and_prune() {
         // Every corner of every triangle a cell lists lies on or under the
         // cell's upper plane, on a random mesh (rough, with loose
         // triangles) and on a smooth tilted one.
@@ -2037,10 +2126,23 @@ mod tests {
             for k in 0..m.nx * m.ny {
                 let (pl, c) = (m.planes[k], m.cell_corner(k));
                 let (gx, gy) = (f64::from(pl.g[0]), f64::from(pl.g[1]));
+                // ... and under its block's plane, in its block's bounds.
+                let (i, j) = (k % m.nx, k / m.nx);
+                let b = (j / BLOCK) * m.bnx + i / BLOCK;
+                let bc = m.cell_corner((j / BLOCK) * BLOCK * m.nx + (i / BLOCK) * BLOCK);
+                let bp = m.block_planes[b];
+                let (bx, by) = (f64::from(bp.g[0]), f64::from(bp.g[1]));
+                let (cb, bb) = (m.cells[k], m.blocks[b]);
+                if cb.zmax > f32::NEG_INFINITY {
+                    assert!(bb.zmax >= cb.zmax && bb.lo[0] <= cb.lo[0] && bb.lo[1] <= cb.lo[1]);
+                    assert!(bb.hi[0] >= cb.hi[0] && bb.hi[1] >= cb.hi[1], "block {b}");
+                }
                 for &it in &m.items[m.start[k]..m.start[k + 1]] {
                     for v in m.tris[(it >> 2) as usize] {
                         let over = f64::from(pl.a) + gx * (v[0] - c[0]) + gy * (v[1] - c[1]);
                         assert!(v[2] <= over + 1e-12, "cell {k}: {v:?} above {over}");
+                        let over = f64::from(bp.a) + bx * (v[0] - bc[0]) + by * (v[1] - bc[1]);
+                        assert!(v[2] <= over + 1e-12, "block {b}: {v:?} above {over}");
                     }
                 }
             }
@@ -2060,7 +2162,8 @@ mod tests {
                 let k = j * m.nx + i;
                 if m.cells[k].top() > floor {
                     by_top += 1;
-                    by_plane += usize::from(!c.plane_may_beat(&m, k, [x, y], floor));
+                    let plane = (&m.planes[k], m.cell_corner(k));
+                    by_plane += usize::from(!c.plane_may_beat(plane, [x, y], floor));
                 }
             }
         }
