@@ -302,7 +302,7 @@ pub enum JobError {
         why: String,
     },
     /// The TOML does not parse, or does not fit the schema (unknown key, wrong type).
-    #[error("{origin}:{line}:{column}: {}{message}", key.as_ref().map(|k| format!("{k}: ")).unwrap_or_default())]
+    #[error("{origin}:{line}:{column}: {}{}", key.as_ref().map(|k| format!("{k}: ")).unwrap_or_default(), toml_message(error, *misplaced))]
     Parse {
         /// the file, or `job` for text not read from a file
         origin: String,
@@ -312,8 +312,13 @@ pub enum JobError {
         column: usize,
         /// the key at that place, when one can be named (`tool.diamter`)
         key: Option<String>,
-        /// what the TOML reader says
-        message: String,
+        /// what the TOML reader says (not a `source`: the message already
+        /// says it, once)
+        error: Box<toml::de::Error>,
+        /// the key is one of `[shape]`'s written after the first
+        /// `[[shape.part]]`, which TOML reads as the part's: the message says
+        /// where it belongs
+        misplaced: bool,
     },
     /// A value is out of range or inconsistent: `tool.diameter must be ...`.
     #[error("{key} {message}")]
@@ -350,6 +355,18 @@ fn io_reason(e: &std::io::Error) -> String {
         ErrorKind::PermissionDenied => "permission denied".into(),
         _ => e.to_string(),
     }
+}
+
+/// What the TOML reader says, trimmed, with where a misplaced `[shape]`
+/// key belongs, and clipped ([`echo::clip_message`]).
+fn toml_message(e: &toml::de::Error, misplaced: bool) -> String {
+    let mut message = e.message().trim().to_string();
+    if misplaced {
+        message.push_str(
+            " (shape.result, shape.height and shape.origin belong in [shape], above the first [[shape.part]])",
+        );
+    }
+    echo::clip_message(&message)
 }
 
 impl JobError {

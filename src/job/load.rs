@@ -103,35 +103,31 @@ pub fn parse_job(text: &str, name_hint: &str, base_dir: &Path) -> Result<Job, Jo
 
 /// As [`parse_job`], with font names looked up in `src.fonts`.
 pub fn parse_job_with(text: &str, name_hint: &str, src: &Sources<'_>) -> Result<Job, JobError> {
-    let table: toml::Table = text.parse().map_err(|e| parse_error(text, &e))?;
+    let table: toml::Table = text.parse().map_err(|e| parse_error(text, e))?;
     check_sections(&table)?;
-    let raw: RawJob = toml::from_str(text).map_err(|e| parse_error(text, &e))?;
+    let raw: RawJob = toml::from_str(text).map_err(|e| parse_error(text, e))?;
     raw.resolve_with(name_hint, src)
 }
 
-pub(super) fn parse_error(text: &str, e: &toml::de::Error) -> JobError {
+/// A TOML error placed in `text`: its line, column and dotted key.
+pub(super) fn parse_error(text: &str, e: toml::de::Error) -> JobError {
     let pos = e.span().map_or(0, |s| s.start).min(text.len());
     let (line, column) = line_col(text, pos);
     let key = e.span().and_then(|_| key_at(text, pos));
-    let mut message = e.message().trim().to_string();
     // TOML puts every key after `[[shape.part]]` into that part.
     let misplaced = key.as_deref().is_some_and(|k| {
         k.starts_with("shape.part[")
             && ["result", "height", "origin"]
                 .iter()
                 .any(|f| k.ends_with(&format!("].{f}")))
-    });
-    if misplaced && message.starts_with("unknown field") {
-        message.push_str(
-            " (shape.result, shape.height and shape.origin belong in [shape], above the first [[shape.part]])",
-        );
-    }
+    }) && e.message().trim().starts_with("unknown field");
     JobError::Parse {
         origin: "job".into(),
         line,
         column,
         key: key.map(|k| echo::clip(&k).into_owned()),
-        message: echo::clip_message(&message),
+        error: Box::new(e),
+        misplaced,
     }
 }
 

@@ -150,7 +150,7 @@ pub fn load_machine(path: &Path) -> Result<(Machine, MachineSource), JobError> {
         return Ok((load_job(path)?.machine, MachineSource::Job));
     }
     let raw: RawMachineFile =
-        toml::from_str(&text).map_err(|e| parse_error(&text, &e).in_file(path))?;
+        toml::from_str(&text).map_err(|e| parse_error(&text, e).in_file(path))?;
     Ok((
         raw.machine.unwrap_or_default().resolve()?,
         MachineSource::MachineFile,
