@@ -4,8 +4,9 @@
 //! from 1 in messages, in the order of the file: `shape.part[2].level`.
 
 use super::font::{resolve_font, Sources};
+use super::resolve::{at_most_one, one_of, show};
 use super::text::{check_line, check_text};
-use super::{at_most_one, defaults, echo, field, invalid, limits, one_of, show, JobError, RawPart};
+use super::{defaults, echo, field, invalid, limits, JobError, RawPart};
 use crate::geometry::{BoolOp, Composition, Part, PartSource, Vec2};
 
 /// The accepted values of `shape.part.op`.

@@ -4,7 +4,8 @@
 //! a given height are only known from the geometry: a 1 km polygon would
 //! otherwise be traced, cleared and written as G-code for hours.
 
-use super::{limits, show, JobError};
+use super::resolve::show;
+use super::{limits, JobError};
 use crate::geometry::svgfile::SvgSize;
 use crate::geometry::{Shape, ShapeSource};
 

@@ -1,7 +1,8 @@
 //! `[field]` into a [`FieldSpec`], and the `"auto"`-or-number keys it shares
 //! with `shape.part[i].singularities`.
 
-use super::{auto_word, invalid, limits, AutoOr, FieldSpec, JobError, RawField};
+use super::resolve::auto_word;
+use super::{invalid, limits, AutoOr, FieldSpec, JobError, RawField};
 
 /// `[field]`: each key `"auto"` (chosen by the solver, `None`) or a value.
 pub(super) fn resolve(f: RawField) -> Result<FieldSpec, JobError> {

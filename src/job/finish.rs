@@ -5,7 +5,8 @@
 //! programs: `<name>.rough.nc` with `[tool]` and `<name>.finish.nc` with this
 //! tool (docs/job-format.md, docs/method.md §12).
 
-use super::{invalid, limits, show, JobError};
+use super::resolve::{one_of, show};
+use super::{invalid, limits, JobError};
 use serde::Deserialize;
 
 /// The shape of a cutter's end.
@@ -111,7 +112,7 @@ impl RawFinish {
         let pattern = match self.pattern.as_deref() {
             None => Pattern::Geodesic,
             Some(p) => {
-                super::one_of("finish.pattern", p, PATTERNS)?;
+                one_of("finish.pattern", p, PATTERNS)?;
                 if p == "geodesic" {
                     Pattern::Geodesic
                 } else {
@@ -120,7 +121,7 @@ impl RawFinish {
             }
         };
         let word = self.shape.unwrap_or_else(|| defaults::SHAPE.into());
-        super::one_of("finish.shape", &word, SHAPES)?;
+        one_of("finish.shape", &word, SHAPES)?;
         let diameter = limits::TOOL_DIAMETER.check(
             "finish.diameter",
             self.diameter

@@ -3,7 +3,8 @@
 //! `origin`, into a [`PatchSpec`] whose patch is known to build. The patch's
 //! height range (by the maximum principle, on its edges) is the part's depth.
 
-use super::{invalid, limits, one_of, show, JobError, RawShape};
+use super::resolve::{one_of, show};
+use super::{invalid, limits, JobError, RawShape};
 use crate::geometry::{ShapeSource, Vec2};
 use crate::sources::harmonic_bezier::{default_form, Form, HarmonicError, PatchSpec};
 

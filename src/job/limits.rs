@@ -2,9 +2,10 @@
 //! time (points, parts, text, singularities), checked when a job is loaded so
 //! that a value no machine could use fails at once, naming its key, instead of
 //! exhausting memory or running for hours. `docs/job-format.md` lists the same
-//! ranges; `every_range_is_documented` (in `job.rs`) keeps the two in step.
+//! ranges; `every_range_is_documented` (in `job/doc_tests.rs`) keeps the two in step.
 
-use super::{invalid, show, JobError};
+use super::resolve::show;
+use super::{invalid, JobError};
 
 /// A closed or half-open interval of accepted values, with its unit.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,9 +2,10 @@
 //! cavity takes: `[profile]` (the depth profile) and `[finish]`.
 
 use super::finish::{self, RawFinish};
+use super::resolve::{one_of, show};
 use super::{
-    defaults, invalid, limits, one_of, show, Direction, Finish, JobError, Operation, OperationKind,
-    RawOperation, RawProfile, Side, Stock, Tool, DIRECTIONS, OPERATION_KINDS, SIDES,
+    defaults, invalid, limits, Direction, Finish, JobError, Operation, OperationKind, RawOperation,
+    RawProfile, Side, Stock, Tool, DIRECTIONS, OPERATION_KINDS, SIDES,
 };
 use crate::profile::DepthProfile;
 

@@ -7,7 +7,8 @@
 //! The relief is solved and built here (`PolySpec::build_cached`), so the
 //! job's depth, max h − base, is known when the job is.
 
-use super::{invalid, limits, one_of, show, JobError, RawShape};
+use super::resolve::{one_of, show};
+use super::{invalid, limits, JobError, RawShape};
 use crate::geometry::{ShapeSource, Vec2};
 use crate::sources::polyharmonic::{GivenPoint, Kernel, PointKind, PolyInputs, PolySpec, Solid};
 use nalgebra::Vector3;

@@ -2,7 +2,8 @@
 //! `stock.top`) of the equipotential s ∈ (0, 1) for a boss or cavity. Each
 //! kind takes only its own keys.
 
-use super::{defaults, invalid, limits, one_of, show, JobError, RawProfile, PROFILE_KINDS};
+use super::resolve::{one_of, show};
+use super::{defaults, invalid, limits, JobError, RawProfile, PROFILE_KINDS};
 use crate::profile::DepthProfile;
 
 /// `[profile]` with `depth` = `operation.depth`, which spline and table

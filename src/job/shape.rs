@@ -3,9 +3,10 @@
 //! keys that apply to it; `origin` and `height` in mm.
 
 use super::font::Sources;
+use super::resolve::at_most_one;
 use super::{
-    at_most_one, composition, dxffile, harmonic, invalid, limits, polyharmonic, svgfile, text,
-    tube, JobError, RawShape,
+    composition, dxffile, harmonic, invalid, limits, polyharmonic, svgfile, text, tube, JobError,
+    RawShape,
 };
 use crate::geometry::{Composition, ShapeSource, Vec2};
 

@@ -1,7 +1,8 @@
 //! `[stock]` into a [`Stock`]: the top of the stock, the safe and retract
 //! heights above it and the margin cleared around the shape (all mm).
 
-use super::{defaults, finite, invalid, limits, show, JobError, RawStock, Stock};
+use super::resolve::{finite, show};
+use super::{defaults, invalid, limits, JobError, RawStock, Stock};
 
 /// `[stock]` with defaults applied: `safe_z` defaults to
 /// `defaults::SAFE_CLEARANCE` above `top`, `retract_z` to `safe_z`.

@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use super::{at_most_one, defaults, extent, invalid, limits, JobError};
+use super::resolve::at_most_one;
+use super::{defaults, extent, invalid, limits, JobError};
 use crate::geometry::svgfile::{SvgFileSource, SvgSize};
 use crate::geometry::{ShapeSource, Vec2};
 

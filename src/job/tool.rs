@@ -1,7 +1,8 @@
 //! `[tool]` into a [`Tool`]: the flat roughing cutter, its feeds (mm/min),
 //! spindle (rev/min), stepdown and stepover (mm) and ramp angle (degrees).
 
-use super::{defaults, invalid, limits, show, CutterShape, JobError, RawTool, Tool};
+use super::resolve::show;
+use super::{defaults, invalid, limits, CutterShape, JobError, RawTool, Tool};
 
 /// `[tool]` with defaults applied and every value checked; `tool.diameter` is
 /// required (mm).

@@ -7,9 +7,8 @@
 //! the tolerance, [`check`] builds the part and refuses a turning spine or
 //! an overhang, naming the z, and a flat finishing tool.
 
-use super::{
-    invalid, limits, show, CutterShape, Finish, JobError, Operation, OperationKind, RawShape,
-};
+use super::resolve::show;
+use super::{invalid, limits, CutterShape, Finish, JobError, Operation, OperationKind, RawShape};
 use crate::geometry::{ShapeSource, Vec2};
 use crate::sources::pde::PdeError;
 use crate::sources::pde_tube::spec::{TubeEnd, TubeSpec};

@@ -6,7 +6,8 @@
 //! inside the wall is a window, overhung by the wall above it), its floor
 //! above the foot, narrower than 180°, on a boss.
 
-use super::{invalid, show, JobError, RawTrim};
+use super::resolve::show;
+use super::{invalid, JobError, RawTrim};
 use crate::sources::pde_tube::spec::TrimRect;
 
 /// Most trims of a tube: two trims meeting one section would leave pie
