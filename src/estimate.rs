@@ -10,8 +10,8 @@
 //! (the outline is not counted twice). Rapids, plunges, ramps and links add to
 //! it, never subtract: a program cannot be faster than its bound.
 
-use crate::geometry::{closed_length, polygon_area};
 use crate::geometry::Vec2;
+use crate::geometry::{closed_length, polygon_area};
 use crate::job::Machine;
 
 /// One level of a boss or cavity as the bound sees it.

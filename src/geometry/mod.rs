@@ -240,8 +240,8 @@ pub fn winding_rows(xs: &[f64], ys: &[f64], polys: &[Vec<Vec2>]) -> Vec<bool> {
 }
 
 /// Bounding box of the vertices of polygons; `None` when there are none.
-pub fn polygons_bbox(polys: &[Vec<Vec2>]) -> Option<(Vec2, Vec2)> {
-    let mut it = polys.iter().flatten();
+pub fn polygons_bbox<P: AsRef<[Vec2]>>(polys: &[P]) -> Option<(Vec2, Vec2)> {
+    let mut it = polys.iter().flat_map(|p| p.as_ref());
     let first = *it.next()?;
     Some(it.fold((first, first), |(lo, hi), p| {
         (

@@ -73,11 +73,12 @@ impl Ring {
         self.signed_area() > 0.0
     }
 
-    /// The same ring traversed the other way, from the same first vertex.
+    /// The same ring traversed the other way: the vertices in reverse order,
+    /// the last one first.
     pub fn reversed(&self) -> Ring {
-        let mut pts = self.pts.clone();
-        pts[1..].reverse();
-        Ring { pts }
+        Ring {
+            pts: self.pts.iter().rev().copied().collect(),
+        }
     }
 
     /// The edges (pᵢ, pᵢ₊₁) in order, the closing edge (pₙ₋₁, p₀) last.
@@ -98,6 +99,12 @@ impl Ring {
     /// Is `p` inside (winding number ≠ 0)?
     pub fn contains(&self, p: Vec2) -> bool {
         self.winding_number(p) != 0
+    }
+}
+
+impl AsRef<[Vec2]> for Ring {
+    fn as_ref(&self) -> &[Vec2] {
+        &self.pts
     }
 }
 
@@ -211,7 +218,7 @@ mod tests {
             let back = r.reversed();
             assert_eq!(back.signed_area(), -3.0);
             assert!(!back.is_ccw());
-            assert_eq!(back.points()[0], r.points()[0]);
+            assert_eq!(back.points()[0], r.points()[5]);
             assert_eq!(back.reversed(), r);
         }
     }
