@@ -132,7 +132,10 @@ fn field_eval_fast(c: &mut Criterion) {
     let (lo, hi) = shape.bbox().unwrap();
     let pad = Vec2::new(8.0, 8.0);
     let grid = field::isolines::Grid::sample(&shape_field, lo - pad, hi + pad, 0.25, &glyphs);
-    let level = field::isolines::isolines(&grid, 0.99, &shape_field, &glyphs);
+    let level: Vec<Vec<Vec2>> = field::isolines::isolines(&grid, 0.99, &shape_field, &glyphs)
+        .into_iter()
+        .map(|r| r.into_points())
+        .collect();
     let (lf, _) = field::section::solve_section(&level, flat_tol, 20.0 * (hi - lo).norm()).unwrap();
     let level_field = lf.direct().accelerated_around(lo, hi);
     let points = eval_points(&glyphs, 4096);

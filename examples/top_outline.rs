@@ -68,7 +68,10 @@ fn main() {
     svg += &path_of(&polys, "black");
     let colours = ["red", "orange", "green", "blue", "purple", "grey"];
     for (i, s) in ss.into_iter().enumerate() {
-        let loops = isolines(&grid, s, &solved.solution.field, &polys);
+        let loops: Vec<Vec<Vec2>> = isolines(&grid, s, &solved.solution.field, &polys)
+            .into_iter()
+            .map(|r| r.into_points())
+            .collect();
         svg += &path_of(&loops, colours[i % colours.len()]);
         let outlines = loops.iter().filter(|l| polygon_area(l) > 0.0).count();
         let (out, at_out) = one_way(&loops, &polys);

@@ -40,7 +40,7 @@ use crate::geometry::polygon_area;
 use crate::geometry::{
     build_shape, deepest_point_in, line_crossing, polygon_winding_number, polygons_bbox,
     regions_from_contours, svgpath, BoolOp, Composition, Contour, DistanceIndex, GeometryError,
-    Part, PartSource, Shape, ShapeSource, Vec2,
+    Part, PartSource, Ring, Shape, ShapeSource, Vec2,
 };
 use std::collections::HashMap;
 use std::time::Instant;
@@ -431,8 +431,8 @@ pub fn invert(
     )
 }
 
-/// Γ(s) of a model's field as closed polygons, material (u ≥ s) on the left.
-pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeError> {
+/// Γ(s) of a model's field as rings, material (u ≥ s) on the left.
+pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Ring>, ComposeError> {
     if !(s > 0.0 && s < 1.0) {
         return Err(part_err(&m.name, PartFault::LevelOutOfRange { s }));
     }
@@ -456,7 +456,7 @@ pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, 
     };
     let tol = CURVE_TOL * frame.size;
     let rings = level::drop_slivers(isolines_in(&grid, s, &m.field, &inside), grid.h);
-    let out: Vec<Vec<Vec2>> = rings
+    let out: Vec<Ring> = rings
         .into_iter()
         .map(|l| level::refine(&l, &m.field, s, tol))
         .collect();
@@ -468,15 +468,12 @@ pub fn level_curves(m: &Model, s: f64, frame: &Frame) -> Result<Vec<Vec<Vec2>>, 
 
 /// A part's boundary loops (material on their left) as contours, each with
 /// whether it bounds a hole (clockwise: negative area).
-fn loop_contours(
-    name: &str,
-    loops: &[Vec<Vec2>],
-) -> Result<(Vec<Contour>, Vec<bool>), ComposeError> {
+fn loop_contours(name: &str, loops: &[Ring]) -> Result<(Vec<Contour>, Vec<bool>), ComposeError> {
     let mut cs = Vec::new();
     let mut flags = Vec::new();
     for l in loops {
-        let c = Contour::polygon(l).map_err(|_| part_err(name, PartFault::CurveOpen))?;
-        flags.push(polygon_area(l) < 0.0);
+        let c = Contour::polygon(l.points()).map_err(|_| part_err(name, PartFault::CurveOpen))?;
+        flags.push(l.signed_area() < 0.0);
         cs.push(c);
     }
     Ok((cs, flags))
@@ -486,7 +483,7 @@ fn loop_contours(
 /// loops around material (counter-clockwise) are outlines, the others counters.
 fn from_loops(
     name: &str,
-    loops: Vec<Vec<Vec2>>,
+    loops: Vec<Ring>,
     bounded: bool,
     frame: &Frame,
     n: Option<usize>,
@@ -494,7 +491,7 @@ fn from_loops(
 ) -> Result<(Model, PartReport), ComposeError> {
     let (cs, flags) = loop_contours(name, &loops)?;
     let csg = Csg::Leaf {
-        polys: loops,
+        polys: loops.into_iter().map(Ring::into_points).collect(),
         complement: !bounded,
     };
     solve_boundary(name, cs, flags, bounded, csg, frame, n, label)
@@ -828,7 +825,7 @@ fn add_crossing_clusters(pr: &mut Problem, a: &Model, b: &Model, csg: &Csg, fram
 /// the largest deficit 1 − u over its check points, just outside the material, with every vertex checked to lie on
 /// that level of the raw field (not on the edge of the membership mask), then
 /// each vertex carried onto u = 1 by Newton's method.
-fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeError> {
+fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Ring>, ComposeError> {
     // u falls short of 1 on the boundary by at most the largest deficit over the
     // check points; Γ(1 − τ) must stay outside the material, so τ exceeds it.
     let deficit = m
@@ -861,7 +858,7 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
         ));
     }
     for l in &loops {
-        for &p in l {
+        for &p in l.points() {
             let u = m.field.value(p);
             if (u - s).abs() > 1e-6 {
                 let (at, max_error) = (p, m.max_error);
@@ -885,13 +882,15 @@ fn boundary_curve(m: &Model, frame: &Frame) -> Result<Vec<Vec<Vec2>>, ComposeErr
             .unwrap_or(p)
     };
     let tol = CURVE_TOL * frame.size;
-    Ok(loops
+    // A ring whose vertices all but meet on u = 1 bounds nothing: not a curve.
+    loops
         .into_iter()
         .map(|l| {
-            let on: Vec<Vec2> = l.iter().map(|&p| onto_one(p)).collect();
-            level::refine(&on, &m.field, 1.0, tol)
+            let on = Ring::new(l.points().iter().map(|&p| onto_one(p)).collect())
+                .ok_or_else(|| part_err(&m.name, PartFault::CurveOpen))?;
+            Ok(level::refine(&on, &m.field, 1.0, tol))
         })
-        .collect())
+        .collect()
 }
 
 /// A polygon that crosses itself, split at each crossing into simple loops (the

@@ -10,8 +10,8 @@
 //! (the outline is not counted twice). Rapids, plunges, ramps and links add to
 //! it, never subtract: a program cannot be faster than its bound.
 
-use crate::geometry::polygon_area;
 use crate::geometry::Vec2;
+use crate::geometry::{closed_length, polygon_area};
 use crate::job::Machine;
 
 /// One level of a boss or cavity as the bound sees it.
@@ -38,12 +38,6 @@ pub fn level_area(polys: &[Vec<Vec2>], stock: Option<(Vec2, Vec2)>) -> LevelArea
         clear_area: clear_area.max(0.0),
         outline: polys.iter().map(|p| closed_length(p)).sum(),
     }
-}
-
-/// Length of a closed polygon.
-pub fn closed_length(p: &[Vec2]) -> f64 {
-    let n = p.len();
-    (0..n).map(|i| p[i].dist(p[(i + 1) % n])).sum()
 }
 
 /// A lower bound of a program's machining time, in its two parts.

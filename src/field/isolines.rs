@@ -19,7 +19,7 @@
 
 use super::march::{self, Edge, Gaps, Level};
 use super::Field;
-use crate::geometry::{polygon_winding_number, polygons_bbox, Vec2};
+use crate::geometry::{polygon_winding_number, polygons_bbox, Ring, Vec2};
 use rayon::prelude::*;
 
 /// Values of u on a regular grid, with the material marked.
@@ -183,10 +183,11 @@ pub fn edge_loops(grid: &Grid, s: f64) -> Vec<Vec<[(usize, usize); 2]>> {
         .collect()
 }
 
-/// The closed curves {u = s} on the grid, material on their left. Vertices are
-/// placed on grid edges by regula falsi on u (taken as 1 inside the material on
-/// edges that touch it).
-pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> Vec<Vec<Vec2>> {
+/// The closed curves {u = s} on the grid as rings, material on their left.
+/// Vertices are placed on grid edges by regula falsi on u (taken as 1 inside
+/// the material on edges that touch it); a loop with fewer than three distinct
+/// vertices is no ring and is left out.
+pub fn isolines(grid: &Grid, s: f64, field: &Field, material: &[Vec<Vec2>]) -> Vec<Ring> {
     let inside = |p: Vec2| {
         material
             .iter()
@@ -204,13 +205,15 @@ pub fn isolines_in(
     s: f64,
     field: &Field,
     inside: &(dyn Fn(Vec2) -> bool + Sync),
-) -> Vec<Vec<Vec2>> {
+) -> Vec<Ring> {
     trace_loops(grid, s)
         .par_iter()
-        .map(|lp| {
-            lp.iter()
-                .map(|&e| on_edge(grid, e, s, field, inside))
-                .collect()
+        .filter_map(|lp| {
+            Ring::new(
+                lp.iter()
+                    .map(|&e| on_edge(grid, e, s, field, inside))
+                    .collect(),
+            )
         })
         .collect()
 }
@@ -384,7 +387,6 @@ fn edge_ends(grid: &Grid, e: Edge, s: f64) -> ((Vec2, f64), (Vec2, f64)) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::polygon_area;
 
     #[test]
     fn single_charge_equipotentials_are_circles() {
@@ -396,12 +398,13 @@ mod tests {
             assert_eq!(loops.len(), 1, "s = {s}");
             let r = f64::exp(s);
             let worst = loops[0]
+                .points()
                 .iter()
                 .map(|p| (p.norm() - r).abs())
                 .fold(0.0, f64::max);
             assert!(worst < 1e-9, "s = {s}: radius error {worst:e}");
             // u grows outward, so the high side (left) is outside: clockwise.
-            assert!(polygon_area(&loops[0]) < 0.0);
+            assert!(loops[0].signed_area() < 0.0);
             // A vertex on every crossed grid edge: about 4·2r/h of them.
             assert!(loops[0].len() as f64 > 6.0 * r / 0.1);
         }
@@ -432,8 +435,9 @@ mod tests {
         let loops = isolines(&grid, s, &f, std::slice::from_ref(&sq));
         assert_eq!(loops.len(), 1);
         // u decreases outward: high side inside, loop counter-clockwise around the material.
-        assert!(polygon_area(&loops[0]) > 0.0);
+        assert!(loops[0].signed_area() > 0.0);
         let worst = loops[0]
+            .points()
             .iter()
             .map(|p| (p.norm() - 1.5).abs())
             .fold(0.0, f64::max);

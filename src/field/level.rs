@@ -19,7 +19,7 @@
 
 use super::isolines::{isolines, Grid};
 use super::Field;
-use crate::geometry::{polygon_area, Vec2};
+use crate::geometry::{Ring, Vec2};
 use rayon::prelude::*;
 
 /// Chords of a level's contour stay within this fraction of the tolerance of
@@ -43,17 +43,17 @@ pub(crate) fn closing_grid(
 /// The rings of a grid of spacing `h` without the slivers: a ring enclosing
 /// 4h² or less (two cells by two) is marching squares' answer to u grazing s
 /// between grid points, not a part of Γ(s) a tool could follow.
-pub(crate) fn drop_slivers(rings: Vec<Vec<Vec2>>, h: f64) -> Vec<Vec<Vec2>> {
+pub(crate) fn drop_slivers(rings: Vec<Ring>, h: f64) -> Vec<Ring> {
     rings
         .into_iter()
-        .filter(|p| polygon_area(p).abs() > 4.0 * h * h)
+        .filter(|p| p.signed_area().abs() > 4.0 * h * h)
         .collect()
 }
 
-/// Γ(s) as closed polygons (first point not repeated, material on the left)
-/// from u sampled on `grid` (spacing `h`), `glyphs` the material: the glyphs
-/// themselves at s = 1, else the rings of marching squares without the
-/// slivers, their chords refined onto Γ(s) within [`CHORD_FRACTION`] of `tol`.
+/// Γ(s) as rings (material on the left) from u sampled on `grid` (spacing
+/// `h`), `glyphs` the material: the glyphs themselves at s = 1 (those that are
+/// rings), else the rings of marching squares without the slivers, their
+/// chords refined onto Γ(s) within [`CHORD_FRACTION`] of `tol`.
 pub(crate) fn curves(
     grid: &Grid,
     f: &Field,
@@ -61,9 +61,9 @@ pub(crate) fn curves(
     s: f64,
     h: f64,
     tol: f64,
-) -> Vec<Vec<Vec2>> {
+) -> Vec<Ring> {
     if s >= 1.0 - 1e-12 {
-        return glyphs.to_vec();
+        return glyphs.iter().cloned().filter_map(Ring::new).collect();
     }
     drop_slivers(isolines(grid, s, f, glyphs), h)
         .into_par_iter()
@@ -71,18 +71,18 @@ pub(crate) fn curves(
         .collect()
 }
 
-/// Insert vertices on Γ(s) where a chord of the closed polygon `poly` strays
-/// more than `tol` from it (the chord's midpoint projected onto Γ(s), see
-/// [`onto_chord`]), up to four halvings.
-pub(crate) fn refine(poly: &[Vec2], field: &Field, s: f64, tol: f64) -> Vec<Vec2> {
-    let n = poly.len();
-    let mut out = Vec::with_capacity(n * 2);
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
+/// Insert vertices on Γ(s) where a chord of `ring` strays more than `tol`
+/// from it (the chord's midpoint projected onto Γ(s), see [`onto_chord`]), up
+/// to four halvings. The inserted vertices are finite (a projection that is
+/// not gives none) and lie between the chord's ends, so the result is a ring;
+/// should one coincide with an end, [`Ring::new`] drops the duplicate.
+pub(crate) fn refine(ring: &Ring, field: &Field, s: f64, tol: f64) -> Ring {
+    let mut out = Vec::with_capacity(ring.len() * 2);
+    for (a, b) in ring.edges() {
         out.push(a);
         refine_edge(a, b, field, s, tol, 4, &mut out);
     }
-    out
+    Ring::new(out).unwrap_or_else(|| ring.clone())
 }
 
 /// The vertices refining the chord a–b (`depth` halvings left), pushed in
@@ -336,8 +336,7 @@ mod tests {
         assert_eq!(c.len(), 1);
         let ring = &c[0];
         let n = ring.len();
-        for k in 0..n {
-            let (a, b) = (ring[k], ring[(k + 1) % n]);
+        for (k, (a, b)) in ring.edges().enumerate() {
             assert!((a.norm() - r0).abs() < 1e-9, "vertex {a:?}");
             let sag = r0 - a.lerp(b, 0.5).norm();
             assert!(sag <= CHORD_FRACTION * tol, "chord {k}: {sag}");
@@ -346,14 +345,17 @@ mod tests {
         assert!(n > isolines(&grid, s, &f, &[])[0].len());
         // At s = 1 the curves are the glyphs themselves.
         let sq = vec![vec![Vec2::ZERO, Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)]];
-        assert_eq!(curves(&grid, &f, &sq, 1.0, 0.5, tol), sq);
+        let top = curves(&grid, &f, &sq, 1.0, 0.5, tol);
+        assert_eq!(top.len(), 1);
+        assert_eq!(top[0].points(), &sq[0][..]);
         // A ring of area 4h² or less is a sliver.
-        let tiny = vec![
+        let tiny = Ring::new(vec![
             Vec2::ZERO,
             Vec2::new(0.9, 0.0),
             Vec2::new(0.9, 0.9),
             Vec2::new(0.0, 0.9),
-        ];
+        ])
+        .expect("a square");
         let kept = drop_slivers(vec![tiny, ring.clone()], 0.5);
         assert_eq!(kept, vec![ring.clone()]);
     }

@@ -217,9 +217,7 @@ pub fn crease_edges(
     let mut out = Vec::new();
     for poly in level::curves(grid, field, glyphs, s, h, tol) {
         let fine = level::refine(&poly, field, s, CREASE_TOL);
-        let n = fine.len();
-        for i in 0..n {
-            let (a, b) = (fine[i], fine[(i + 1) % n]);
+        for (a, b) in fine.edges() {
             let (a, b) = ([a.x, a.y, top], [b.x, b.y, top]);
             out.push([a, b, b]);
         }

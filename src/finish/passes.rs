@@ -15,7 +15,7 @@ use super::FinishError;
 use crate::field::isolines::Grid;
 use crate::field::level::curves;
 use crate::field::Field;
-use crate::geometry::{DistanceIndex, Vec2};
+use crate::geometry::{DistanceIndex, Ring, Vec2};
 use crate::levels::DepthProfile;
 use rayon::prelude::*;
 
@@ -64,16 +64,16 @@ pub struct Curves<'a> {
 }
 
 impl Curves<'_> {
-    /// Γ(s) as closed polygons (the first point is not repeated).
-    pub fn at(&self, s: f64) -> Vec<Vec<Vec2>> {
+    /// Γ(s) as rings.
+    pub fn at(&self, s: f64) -> Vec<Ring> {
         curves(&self.grid, self.field, self.glyphs, s, self.h, self.tol)
     }
 
-    /// The smallest |∇u| over the points of `loops` (where the passes are
-    /// farthest apart), or `None` if there are none or ∇u vanishes.
-    fn min_grad(&self, loops: &[Vec<Vec2>]) -> Option<f64> {
+    /// The smallest |∇u| over the vertices of `ring` (where the passes are
+    /// farthest apart), or `None` if ∇u vanishes.
+    fn min_grad(&self, ring: &Ring) -> Option<f64> {
         let mut m = f64::INFINITY;
-        for &p in loops.iter().flatten() {
+        for &p in ring.points() {
             let g = self.field.grad(p).norm();
             if !(g > 0.0 && g.is_finite()) {
                 return None;
@@ -159,7 +159,7 @@ fn equipotential_wall(
     curves: &Curves,
     profile: &DepthProfile,
     ends: (f64, f64),
-    foot_loops: Vec<Vec<Vec2>>,
+    foot_loops: Vec<Ring>,
     (w, before): (f64, usize),
 ) -> Result<Vec<Pass>, FinishError> {
     let levels = candidate_levels(curves, profile, ends, foot_loops, w, before)?;
@@ -172,7 +172,7 @@ fn equipotential_wall(
                 .loops
                 .into_iter()
                 .zip(keep)
-                .filter_map(|(lp, k)| k.then_some(Curve::closed(lp)))
+                .filter_map(|(lp, k)| k.then(|| Curve::closed(lp.into_points())))
                 .collect();
             (!loops.is_empty()).then_some((At::S(l.s), loops))
         })
@@ -185,11 +185,15 @@ fn geodesic_wall(
     curves: &Curves,
     dist: &Distance,
     (foot, top): (f64, f64),
-    foot_loops: Vec<Vec<Vec2>>,
+    foot_loops: Vec<Ring>,
     w: f64,
 ) -> Result<Vec<Pass>, FinishError> {
-    let closed =
-        |loops: Vec<Vec<Vec2>>| -> Vec<Curve> { loops.into_iter().map(Curve::closed).collect() };
+    let closed = |loops: Vec<Ring>| -> Vec<Curve> {
+        loops
+            .into_iter()
+            .map(|l| Curve::closed(l.into_points()))
+            .collect()
+    };
     let foot_curves = closed(foot_loops);
     let wall = geodesic::passes(dist, &foot_curves, w, MIN_CURVE, MAX_PASSES)
         .map_err(|n| FinishError::TooManyPasses { n, max: MAX_PASSES })?;
@@ -217,7 +221,7 @@ pub const MIN_CURVE: f64 = 1.0;
 /// flat.
 fn floor_passes(
     field: &Field,
-    foot: (f64, &[Vec<Vec2>]),
+    foot: (f64, &[Ring]),
     cavity: bool,
     w: f64,
     leave: f64,
@@ -234,7 +238,8 @@ fn floor_passes(
                 .iter()
                 .map(|l| {
                     Curve::closed(
-                        l.iter()
+                        l.points()
+                            .iter()
                             .map(|&p| p + field.grad(p).normalized() * (away * d))
                             .collect(),
                     )
@@ -260,7 +265,7 @@ pub const REFINE: usize = 2;
 /// over each loop.
 struct Level {
     s: f64,
-    loops: Vec<Vec<Vec2>>,
+    loops: Vec<Ring>,
     grad: Vec<f64>,
 }
 
@@ -273,16 +278,16 @@ fn candidate_levels(
     curves: &Curves,
     profile: &DepthProfile,
     (foot, top): (f64, f64),
-    foot_loops: Vec<Vec<Vec2>>,
+    foot_loops: Vec<Ring>,
     w: f64,
     before: usize,
 ) -> Result<Vec<Level>, FinishError> {
     let up = if top > foot { 1.0 } else { -1.0 };
     let step = w / REFINE as f64;
-    let level = |s: f64, loops: Vec<Vec<Vec2>>| -> Result<Level, FinishError> {
+    let level = |s: f64, loops: Vec<Ring>| -> Result<Level, FinishError> {
         let grad = loops
             .par_iter()
-            .map(|l| curves.min_grad(std::slice::from_ref(l)))
+            .map(|l| curves.min_grad(l))
             .collect::<Option<Vec<f64>>>()
             .ok_or(FinishError::GradientVanishes { s })?;
         Ok(Level { s, loops, grad })
@@ -385,7 +390,7 @@ fn thin(levels: &[Level], profile: &DepthProfile, w: f64) -> Vec<Vec<bool>> {
 
 /// For each curve of `next`, the curves of `below` that come within `reach`
 /// of it.
-fn predecessors(below: &[Vec<Vec2>], next: &[Vec<Vec2>], reach: f64) -> Vec<Vec<usize>> {
+fn predecessors(below: &[Ring], next: &[Ring], reach: f64) -> Vec<Vec<usize>> {
     let index: Vec<DistanceIndex> = below
         .iter()
         .map(|l| DistanceIndex::new(std::slice::from_ref(l)))
@@ -395,7 +400,7 @@ fn predecessors(below: &[Vec<Vec2>], next: &[Vec<Vec2>], reach: f64) -> Vec<Vec<
             (0..below.len())
                 .filter(|&i| {
                     let hint = std::cell::Cell::new(0);
-                    m.iter().any(|&p| index[i].closer_than(p, reach, &hint))
+                    (m.points().iter()).any(|&p| index[i].closer_than(p, reach, &hint))
                 })
                 .collect()
         })
@@ -444,13 +449,12 @@ mod tests {
             s_bottom: 0.9,
             depth: 3.0,
         };
-        let circle = |r: f64| -> Vec<Vec2> {
-            (0..200)
-                .map(|k| {
-                    let t = k as f64 / 200.0 * std::f64::consts::TAU;
-                    Vec2::new(r * t.cos(), r * t.sin())
-                })
-                .collect()
+        let circle = |r: f64| -> Ring {
+            let pts = (0..200).map(|k| {
+                let t = k as f64 / 200.0 * std::f64::consts::TAU;
+                Vec2::new(r * t.cos(), r * t.sin())
+            });
+            Ring::new(pts.collect()).expect("a circle")
         };
         let (w, g) = (pass_width(1.5875, 0.01), [0.01, 0.05]);
         let levels: Vec<Level> = (0..=40)

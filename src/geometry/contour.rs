@@ -347,11 +347,6 @@ pub(crate) mod tests {
         Contour::new(segs).expect("rounded rectangle is closed")
     }
 
-    fn shoelace(pts: &[Vec2]) -> f64 {
-        let n = pts.len();
-        (0..n).map(|i| 0.5 * pts[i].cross(pts[(i + 1) % n])).sum()
-    }
-
     fn test_contours() -> Vec<Contour> {
         let mut cs = vec![
             square(1.0, 2.0, 3.0),
@@ -392,7 +387,7 @@ pub(crate) mod tests {
     fn area_matches_flattening_and_is_invariant() {
         for c in test_contours() {
             let area = c.signed_area();
-            let poly = shoelace(&c.flatten(1e-4));
+            let poly = crate::geometry::polygon_area(&c.flatten(1e-4));
             let len = c.length();
             // The flattening is within 1e-4 of the curve, so the areas differ by at
             // most about length × 1e-4.

@@ -42,14 +42,12 @@ fn seg_dist2(p: Vec2, a: Vec2, b: Vec2) -> (f64, Vec2) {
 }
 
 impl DistanceIndex {
-    /// Index over the edges of the given closed polygons (each joins last to first).
-    pub fn new(polys: &[Vec<Vec2>]) -> DistanceIndex {
+    /// Index over the edges of the given closed polygons (each joins last to
+    /// first): rings, or vertex lists under the same convention.
+    pub fn new<P: AsRef<[Vec2]>>(polys: &[P]) -> DistanceIndex {
         let mut edges = Vec::new();
         for poly in polys {
-            let n = poly.len();
-            for i in 0..n {
-                edges.push((poly[i], poly[(i + 1) % n]));
-            }
+            edges.extend(super::ring::edges(poly.as_ref()));
         }
         let bvh = super::bvh::Bvh::new(&edges);
         DistanceIndex {
@@ -463,7 +461,7 @@ mod tests {
 
     #[test]
     fn degenerate_inputs() {
-        let empty = DistanceIndex::new(&[]);
+        let empty = DistanceIndex::new::<Vec<Vec2>>(&[]);
         assert_eq!(empty.distance(Vec2::new(1.0, 1.0)), f64::INFINITY);
         // A flat polygon (zero height) and a single point.
         let flat = DistanceIndex::new(&[vec![Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)]]);

@@ -14,6 +14,7 @@ pub mod font;
 pub mod font_lookup;
 pub mod glyphs;
 mod nesting;
+pub mod ring;
 mod segment;
 pub mod shaping;
 pub mod svgfile;
@@ -26,6 +27,7 @@ pub use contour::{Contour, Corner, Sample, JOIN_EPS};
 pub use densify::{densify, densify_values};
 pub use distance::{deepest_point, deepest_point_in, seg_seg_dist, DistanceIndex};
 pub use nesting::regions_from_contours;
+pub use ring::{closed_length, polygon_area, polygon_winding_number, Ring};
 pub use segment::Segment;
 pub use text::build_shape;
 pub use vec2::Vec2;
@@ -217,9 +219,7 @@ pub fn winding_rows(xs: &[f64], ys: &[f64], polys: &[Vec<Vec2>]) -> Vec<bool> {
         let y = ys[j];
         let mut cuts: Vec<(f64, i32)> = Vec::new();
         for poly in polys {
-            let n = poly.len();
-            for k in 0..n {
-                let (a, b) = (poly[k], poly[(k + 1) % n]);
+            for (a, b) in ring::edges(poly) {
                 if (a.y <= y) != (b.y <= y) {
                     let t = (y - a.y) / (b.y - a.y);
                     cuts.push((a.x + t * (b.x - a.x), if b.y > a.y { 1 } else { -1 }));
@@ -239,37 +239,9 @@ pub fn winding_rows(xs: &[f64], ys: &[f64], polys: &[Vec<Vec2>]) -> Vec<bool> {
     inside
 }
 
-/// Winding number of a closed polygon about `p` (the polygon's last vertex joins
-/// its first). This is the index (8.2) of the paper's Appendix I, evaluated exactly
-/// for straight edges by counting signed crossings of the ray to +x.
-pub fn polygon_winding_number(poly: &[Vec2], p: Vec2) -> i32 {
-    let n = poly.len();
-    let mut w = 0;
-    for i in 0..n {
-        let a = poly[i];
-        let b = poly[(i + 1) % n];
-        if a.y <= p.y {
-            if b.y > p.y && (b - a).cross(p - a) > 0.0 {
-                w += 1;
-            }
-        } else if b.y <= p.y && (b - a).cross(p - a) < 0.0 {
-            w -= 1;
-        }
-    }
-    w
-}
-
-/// Signed area of a closed polygon, first point not repeated (positive
-/// counter-clockwise): the shoelace sum. The one definition; the z-levels, the
-/// planner, compose and the sections all orient and drop loops by it.
-pub fn polygon_area(p: &[Vec2]) -> f64 {
-    let n = p.len();
-    (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum::<f64>() / 2.0
-}
-
 /// Bounding box of the vertices of polygons; `None` when there are none.
-pub fn polygons_bbox(polys: &[Vec<Vec2>]) -> Option<(Vec2, Vec2)> {
-    let mut it = polys.iter().flatten();
+pub fn polygons_bbox<P: AsRef<[Vec2]>>(polys: &[P]) -> Option<(Vec2, Vec2)> {
+    let mut it = polys.iter().flat_map(|p| p.as_ref());
     let first = *it.next()?;
     Some(it.fold((first, first), |(lo, hi), p| {
         (

@@ -10,7 +10,7 @@ use super::DepthProfile;
 use crate::field::isolines::Grid;
 use crate::field::level;
 use crate::field::{Field, FieldFigures};
-use crate::geometry::{polygons_bbox, Vec2};
+use crate::geometry::{polygons_bbox, Ring, Vec2};
 use std::collections::HashMap;
 use std::sync::Mutex;
 
@@ -24,7 +24,7 @@ pub struct MfsSections {
     figures: FieldFigures,
     grid: Grid,
     h: f64,
-    cache: Mutex<HashMap<u64, Vec<Vec<Vec2>>>>,
+    cache: Mutex<HashMap<u64, Vec<Ring>>>,
 }
 
 /// What [`MfsSections::new`] needs.
@@ -87,7 +87,7 @@ impl MfsSections {
     /// Γ(s) (`field::level::curves`), each s extracted once (the schedule, the
     /// stock, the bound and the levels ask for the same curves); loops
     /// around the material counter-clockwise.
-    pub fn curves(&self, s: f64) -> Vec<Vec<Vec2>> {
+    pub fn curves(&self, s: f64) -> Vec<Ring> {
         if let Some(c) = self
             .cache
             .lock()
@@ -111,14 +111,11 @@ impl Sections for MfsSections {
 
     /// Γ(s(z)); for a cavity reversed, the material being outside it.
     fn section(&self, z: f64) -> Vec<Vec<Vec2>> {
-        let polys = self.curves(self.s_of(z));
+        let rings = self.curves(self.s_of(z)).into_iter();
         if self.cavity {
-            polys
-                .iter()
-                .map(|p| p.iter().rev().copied().collect())
-                .collect()
+            rings.map(|r| r.reversed().into_points()).collect()
         } else {
-            polys
+            rings.map(Ring::into_points).collect()
         }
     }
 

@@ -22,8 +22,7 @@ use super::zlevel::{
 use crate::count::{set_stage, Stage};
 use crate::field::isolines::{isolines, isolines_linear, Grid};
 use crate::field::{Field, Sink};
-use crate::geometry::polygon_area;
-use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
+use crate::geometry::{polygons_bbox, DistanceIndex, Ring, Vec2};
 
 /// The clearing paths of a level and the region V their coverage is
 /// measured in (`None`: the wall loops are the whole cut).
@@ -206,7 +205,8 @@ fn rings(
         for _ in 0..20 {
             exact = isolines(grid, c, inv, &v.mask[1..])
                 .into_iter()
-                .filter(|l| polygon_area(l).abs() > h * h)
+                .filter(|l| l.signed_area().abs() > h * h)
+                .map(Ring::into_points)
                 .collect();
             if safe(&exact, index, p) {
                 break;

@@ -6,7 +6,7 @@
 
 use cavalier_contours::polyline::{BooleanOp as CcOp, PlineSource, PlineSourceMut, Polyline};
 use pfcam::compose::{self, Model};
-use pfcam::geometry::{BoolOp, Composition, Part, PartSource, Vec2};
+use pfcam::geometry::{BoolOp, Composition, Part, PartSource, Ring, Vec2};
 
 use crate::common::seg_dist;
 use crate::doc_figures;
@@ -273,15 +273,17 @@ fn inversion_twice_gives_back_the_field_and_its_curves() {
     assert!(inv.max_error < 1e-3, "{}", inv.max_error);
     for s in [0.5, 0.9] {
         for l in compose::level_curves(&inv, s, &frame).expect("levels of the void") {
-            for p in l {
+            for p in l.points() {
                 assert!(p.x > 0.0 && p.x < 100.0 && p.y > 0.0 && p.y < 300.0);
             }
         }
     }
     let mut worst = 0.0f64;
     for s in [0.85, 0.95, 0.97] {
-        let c1 = compose::level_curves(&m, s, &frame).expect("levels");
-        let c2 = compose::level_curves(&back, s, &frame).expect("levels");
+        let points =
+            |c: Vec<Ring>| -> Vec<Vec<Vec2>> { c.into_iter().map(Ring::into_points).collect() };
+        let c1 = points(compose::level_curves(&m, s, &frame).expect("levels"));
+        let c2 = points(compose::level_curves(&back, s, &frame).expect("levels"));
         let d = hausdorff(&c1, &c2, 0.5);
         println!("Γ({s}) of m1 and of invert(invert(m1)): Hausdorff {d:.2e}");
         assert!(d < 1e-6 * 300.0, "s = {s}: {d}");

@@ -120,15 +120,14 @@ fn mfs_sign_boss_levels_are_gouge_free_ramped_and_reported() {
 /// polygon may cut a hair inside a vertex).
 fn assert_top_shows_the_letters(out: &RunOutput, s1: f64) {
     use pfcam::field::isolines::{isolines, Grid};
-    use pfcam::geometry::polygon_area;
-    use pfcam::geometry::{deepest_point, polygon_winding_number, DistanceIndex, Vec2};
+    use pfcam::geometry::{deepest_point, DistanceIndex, Ring, Vec2};
     let polys: Vec<Vec<Vec2>> = out.shape.contours().map(|c| c.flatten(0.01)).collect();
     let (lo, hi) = out.shape.bbox().unwrap();
     let pad = Vec2::new(3.0, 3.0);
     let grid = Grid::sample(&out.field, lo - pad, hi + pad, 0.25, &polys);
-    let outlines: Vec<Vec<Vec2>> = isolines(&grid, s1, &out.field, &polys)
+    let outlines: Vec<Ring> = isolines(&grid, s1, &out.field, &polys)
         .into_iter()
-        .filter(|l| polygon_area(l) > 0.0)
+        .filter(Ring::is_ccw)
         .collect();
     // M, F and S have no counters: one contour each.
     assert_eq!(polys.len(), 3);
@@ -136,10 +135,7 @@ fn assert_top_shows_the_letters(out: &RunOutput, s1: f64) {
     for o in &outlines {
         let held = polys
             .iter()
-            .filter(|g| {
-                polygon_winding_number(o, deepest_point(g, &DistanceIndex::new(&[g.to_vec()])).0)
-                    != 0
-            })
+            .filter(|g| o.contains(deepest_point(g, &DistanceIndex::new(&[g.to_vec()])).0))
             .count();
         assert_eq!(held, 1, "an outline of Γ({s1}) holds {held} letters");
     }

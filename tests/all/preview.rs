@@ -367,10 +367,12 @@ fn single_charge_circles_radius_error() {
         let curves = isolines(&grid, s, &f, &[]);
         assert_eq!(curves.len(), 1);
         let c = &curves[0];
-        let vert = c.iter().map(|p| (p.dist(q) - r0).abs()).fold(0.0, f64::max);
+        let vert = (c.points().iter())
+            .map(|p| (p.dist(q) - r0).abs())
+            .fold(0.0, f64::max);
         let n = c.len();
-        let chord = (0..n)
-            .map(|k| (c[k].lerp(c[(k + 1) % n], 0.5).dist(q) - r0).abs())
+        let chord = (c.edges())
+            .map(|(a, b)| (a.lerp(b, 0.5).dist(q) - r0).abs())
             .fold(0.0, f64::max);
         eprintln!(
             "r {r0} cell {cell}: {n} vertices, vertex error {vert:.1e}, chord error {chord:.1e} (bound {:.1e})",
@@ -400,7 +402,7 @@ fn cassini_ovals_change_topology_at_the_lemniscate() {
         let curves = isolines(&grid, s, &f, &[]);
         assert_eq!(curves.len(), loops, "b {b}");
         for c in &curves {
-            for p in c {
+            for p in c.points() {
                 let e = (p.dist(q1) * p.dist(q2) - b * b).abs() / (b * b);
                 assert!(e < 1e-9, "b {b}: relative error {e}");
             }
