@@ -101,7 +101,11 @@ pub enum Progress {
 fn shape_message(e: &crate::geometry::GeometryError) -> String {
     match e {
         crate::geometry::GeometryError::SvgFile { .. }
-        | crate::geometry::GeometryError::DxfFile { .. } => e.to_string(),
+        | crate::geometry::GeometryError::DxfFile { .. }
+        | crate::geometry::GeometryError::FileRead { .. }
+        | crate::geometry::GeometryError::SvgXml { .. }
+        | crate::geometry::GeometryError::SvgTree { .. }
+        | crate::geometry::GeometryError::DxfLoad { .. } => e.to_string(),
         _ => format!("shape: {e}"),
     }
 }
