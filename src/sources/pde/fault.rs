@@ -75,7 +75,7 @@ mod tests {
     fn messages_are_the_strings_they_replace() {
         let (a, k, modes, j) = (-0.5, 7, 4, 3);
         let (s, t) = (0.25, 0.125);
-        let (det, xi, eta) = (-1.234_567e-3, 0.123_456, 3.141_59);
+        let (det, xi, eta) = (-1.234_567e-3, 0.123_456, 2.718_39);
         let need = 2 * modes + 1;
         let cases = [
             (PdeFault::NotPositive { value: a }, format!("must be finite and > 0, got {a}")),
