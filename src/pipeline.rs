@@ -99,14 +99,9 @@ pub enum Progress {
 
 /// A shape error as the run reports it: `shape: ...`, or the key it names.
 fn shape_message(e: &crate::geometry::GeometryError) -> String {
-    match e {
-        crate::geometry::GeometryError::SvgFile { .. }
-        | crate::geometry::GeometryError::DxfFile { .. }
-        | crate::geometry::GeometryError::FileRead { .. }
-        | crate::geometry::GeometryError::SvgXml { .. }
-        | crate::geometry::GeometryError::SvgTree { .. }
-        | crate::geometry::GeometryError::DxfLoad { .. } => e.to_string(),
-        _ => format!("shape: {e}"),
+    match e.file_key() {
+        Some(_) => e.to_string(),
+        None => format!("shape: {e}"),
     }
 }
 

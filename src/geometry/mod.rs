@@ -168,6 +168,21 @@ pub enum GeometryError {
     },
 }
 
+impl GeometryError {
+    /// The job key an error of a drawing's file names (`shape.svg_file`,
+    /// `shape.id`, `shape.dxf_file`, `shape.layer`, ...), its text being
+    /// `key: ...`; `None` for the other errors.
+    pub fn file_key(&self) -> Option<&str> {
+        match self {
+            GeometryError::SvgFile { key, .. } | GeometryError::DxfFile { key, .. } => Some(key),
+            GeometryError::FileRead { key, .. } => Some(key),
+            GeometryError::SvgXml { .. } | GeometryError::SvgTree { .. } => Some("shape.svg_file"),
+            GeometryError::DxfLoad { .. } => Some("shape.dxf_file"),
+            _ => None,
+        }
+    }
+}
+
 /// One connected piece of material: an outline (counter-clockwise) and the
 /// counters (holes, clockwise) nested directly inside it.
 #[derive(Clone, Debug, PartialEq)]
@@ -584,6 +599,7 @@ mod tests {
         ];
         for (e, text) in cases {
             assert_eq!(e.to_string(), text);
+            assert!(text.starts_with(&format!("{}: ", e.file_key().expect("a key"))));
             let source = std::error::Error::source(&e).expect("a source");
             assert!(text.contains(&source.to_string()), "{text}");
         }
