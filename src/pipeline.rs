@@ -99,10 +99,9 @@ pub enum Progress {
 
 /// A shape error as the run reports it: `shape: ...`, or the key it names.
 fn shape_message(e: &crate::geometry::GeometryError) -> String {
-    match e {
-        crate::geometry::GeometryError::SvgFile { .. }
-        | crate::geometry::GeometryError::DxfFile { .. } => e.to_string(),
-        _ => format!("shape: {e}"),
+    match e.file_key() {
+        Some(_) => e.to_string(),
+        None => format!("shape: {e}"),
     }
 }
 

@@ -60,9 +60,24 @@ pub const MAX_GRID_POINTS: usize = 16_000_000;
 /// Why a grid cannot be sampled.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum ContourError {
-    /// Bad rectangle or cell size.
-    #[error("equipotential grid: {0}")]
-    Grid(String),
+    /// A cell size that is not a positive number, or a corner of the box
+    /// that is not finite.
+    #[error("equipotential grid: cell size must be a positive number, got {h}")]
+    CellSize {
+        /// The cell size given.
+        h: f64,
+    },
+    /// A box whose `hi` does not exceed its `lo` in x and y.
+    #[error("equipotential grid: the rectangle is empty (hi must exceed lo in x and y)")]
+    EmptyRect,
+    /// More than [`MAX_GRID_POINTS`] points.
+    #[error("equipotential grid: {nx} × {ny} cells are too many (at most {MAX_GRID_POINTS} points); use a larger cell")]
+    TooManyCells {
+        /// Cells across.
+        nx: f64,
+        /// Cells down.
+        ny: f64,
+    },
 }
 
 impl Grid {
@@ -77,21 +92,15 @@ impl Grid {
         material: &[Vec<Vec2>],
     ) -> Result<Grid, ContourError> {
         if !(h > 0.0 && h.is_finite() && lo.is_finite() && hi.is_finite()) {
-            return Err(ContourError::Grid(format!(
-                "cell size must be a positive number, got {h}"
-            )));
+            return Err(ContourError::CellSize { h });
         }
         if !(hi.x > lo.x && hi.y > lo.y) {
-            return Err(ContourError::Grid(
-                "the rectangle is empty (hi must exceed lo in x and y)".into(),
-            ));
+            return Err(ContourError::EmptyRect);
         }
         let nx = ((hi.x - lo.x) / h).ceil();
         let ny = ((hi.y - lo.y) / h).ceil();
         if (nx + 1.0) * (ny + 1.0) > MAX_GRID_POINTS as f64 {
-            return Err(ContourError::Grid(format!(
-                "{nx} × {ny} cells are too many (at most {MAX_GRID_POINTS} points); use a larger cell"
-            )));
+            return Err(ContourError::TooManyCells { nx, ny });
         }
         Ok(Grid::sample(field, lo, hi, h, material))
     }
@@ -477,16 +486,41 @@ mod tests {
     #[test]
     fn bad_grids_are_errors() {
         let f = Field::new(vec![Vec2::ZERO], vec![1.0]);
-        for (lo, hi, h) in [
+        let cases = [
             (Vec2::ZERO, Vec2::new(1.0, 1.0), 0.0),
             (Vec2::ZERO, Vec2::new(1.0, 1.0), f64::NAN),
             (Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0), 0.1),
             (Vec2::ZERO, Vec2::new(1e6, 1e6), 1e-3),
-        ] {
-            assert!(
-                Grid::try_sample(&f, lo, hi, h, &[]).is_err(),
-                "{lo:?} {hi:?} {h}"
-            );
+        ];
+        let want = [
+            ContourError::CellSize { h: 0.0 },
+            ContourError::CellSize { h: f64::NAN },
+            ContourError::EmptyRect,
+            ContourError::TooManyCells { nx: 1e9, ny: 1e9 },
+        ];
+        for ((lo, hi, h), want) in cases.into_iter().zip(want) {
+            let got = Grid::try_sample(&f, lo, hi, h, &[])
+                .map(|_| ())
+                .unwrap_err();
+            // NaN is not equal to itself: compare the texts.
+            assert_eq!(got.to_string(), want.to_string(), "{lo:?} {hi:?} {h}");
+        }
+    }
+
+    /// The texts are the ones the causes had as strings (issue 16).
+    #[test]
+    fn grid_errors_say_the_strings_they_replace() {
+        let (h, nx, ny) = (-0.25, 4001.0, 4000.0);
+        let cases = [
+            (ContourError::CellSize { h }, format!("cell size must be a positive number, got {h}")),
+            (ContourError::EmptyRect, "the rectangle is empty (hi must exceed lo in x and y)".to_string()),
+            (
+                ContourError::TooManyCells { nx, ny },
+                format!("{nx} × {ny} cells are too many (at most {MAX_GRID_POINTS} points); use a larger cell"),
+            ),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), format!("equipotential grid: {text}"));
         }
     }
 

@@ -19,7 +19,9 @@ mod entities;
 use std::path::{Path, PathBuf};
 
 use super::fill::{fill_outlines, FillRule};
-use super::{polygons_bbox, regions_from_contours, Contour, GeometryError, Region, Shape, Vec2};
+use super::{
+    polygons_bbox, regions_from_contours, Cause, Contour, GeometryError, Region, Shape, Vec2,
+};
 
 /// Largest DXF file read, bytes.
 pub const MAX_DXF_BYTES: u64 = 64 << 20;
@@ -123,8 +125,8 @@ pub fn dxf_file_shape(src: &DxfFileSource) -> Result<Shape, GeometryError> {
 /// The drawing in the file, refused past [`MAX_DXF_BYTES`].
 fn read_drawing(path: &Path) -> Result<dxf::Drawing, GeometryError> {
     let shown = path.display();
-    let bytes =
-        super::capped::read_capped(path, "a DXF", MAX_DXF_BYTES).map_err(|m| fail(FILE, m))?;
+    let bytes = super::capped::read_capped(path, "a DXF", MAX_DXF_BYTES)
+        .map_err(|reason| GeometryError::FileRead { key: FILE, reason })?;
     if !looks_like_dxf(&bytes) {
         return Err(fail(
             FILE,
@@ -139,7 +141,10 @@ fn read_drawing(path: &Path) -> Result<dxf::Drawing, GeometryError> {
     let loaded = std::panic::catch_unwind(|| dxf::Drawing::load(&mut std::io::Cursor::new(bytes)));
     match loaded {
         Ok(Ok(d)) => Ok(d),
-        Ok(Err(e)) => Err(fail(FILE, format!("is not a readable DXF file: {e}: {shown}"))),
+        Ok(Err(e)) => Err(GeometryError::DxfLoad {
+            path: path.to_path_buf(),
+            source: Cause::new(e),
+        }),
         Err(_) => Err(fail(FILE, format!("is not a readable DXF file: the DXF reader (dxf-rs) failed on a malformed value: {shown}"))),
     }
 }

@@ -5,7 +5,7 @@
 //! Quadratic (TrueType) curves are raised to cubics exactly with
 //! [`Segment::quad`]; CFF cubics are kept as they are.
 
-use super::{Contour, GeometryError, Segment, Vec2};
+use super::{Cause, Contour, GeometryError, Segment, Vec2};
 use std::path::Path;
 
 /// A font file read into memory and checked to parse.
@@ -17,10 +17,41 @@ pub struct FontFile {
     index: u32,
 }
 
-fn font_err(name: &str, reason: impl Into<String>) -> GeometryError {
+/// Why a font file cannot be used ([`GeometryError::Font`]).
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum FontFault {
+    /// The file cannot be opened.
+    #[error("{0}")]
+    Open(#[source] Cause<std::io::Error>),
+    /// The file cannot be read.
+    #[error("{0}")]
+    Read(#[source] Cause<std::io::Error>),
+    /// The file is larger than [`MAX_FONT_BYTES`].
+    #[error("larger than {cap} bytes; not a font file")]
+    TooLarge {
+        /// The cap, bytes.
+        cap: u64,
+    },
+    /// `ttf-parser` refuses the face.
+    #[error("not a TrueType/OpenType font ({0})")]
+    NotAFont(#[source] ttf_parser::FaceParsingError),
+    /// No cap height to size the text by.
+    #[error("the font gives no cap height (OS/2) and has no glyph `H` to measure it")]
+    NoCapHeight,
+    /// A glyph's outline is not a closed contour.
+    #[error("glyph for {what:?}: {source}")]
+    Glyph {
+        /// The characters the glyph stands for.
+        what: String,
+        /// What is wrong with its outline.
+        source: Box<GeometryError>,
+    },
+}
+
+fn font_err(name: &str, reason: FontFault) -> GeometryError {
     GeometryError::Font {
         path: name.to_string(),
-        reason: reason.into(),
+        reason,
     }
 }
 
@@ -45,7 +76,7 @@ impl FontFile {
     pub fn face(&self) -> Result<rustybuzz::Face<'_>, GeometryError> {
         ttf_parser::Face::parse(&self.data, self.index)
             .map(rustybuzz::Face::from_face)
-            .map_err(|e| font_err(&self.name, format!("not a TrueType/OpenType font ({e})")))
+            .map_err(|e| font_err(&self.name, FontFault::NotAFont(e)))
     }
 }
 
@@ -54,16 +85,14 @@ impl FontFile {
 fn read_capped(path: &Path, cap: u64) -> Result<Vec<u8>, GeometryError> {
     use std::io::Read;
     let name = path.display().to_string();
-    let file = std::fs::File::open(path).map_err(|e| font_err(&name, e.to_string()))?;
+    let file =
+        std::fs::File::open(path).map_err(|e| font_err(&name, FontFault::Open(Cause::new(e))))?;
     let mut data = Vec::new();
     file.take(cap + 1)
         .read_to_end(&mut data)
-        .map_err(|e| font_err(&name, e.to_string()))?;
+        .map_err(|e| font_err(&name, FontFault::Read(Cause::new(e))))?;
     if data.len() as u64 > cap {
-        return Err(font_err(
-            &name,
-            format!("larger than {cap} bytes; not a font file"),
-        ));
+        return Err(font_err(&name, FontFault::TooLarge { cap }));
     }
     Ok(data)
 }
@@ -78,12 +107,7 @@ pub fn cap_height(face: &ttf_parser::Face<'_>, name: &str) -> Result<f64, Geomet
         .and_then(|id| face.glyph_bounding_box(id))
         .map(|r| f64::from(r.y_max))
         .filter(|&h| h > 0.0)
-        .ok_or_else(|| {
-            font_err(
-                name,
-                "the font gives no cap height (OS/2) and has no glyph `H` to measure it",
-            )
-        })
+        .ok_or_else(|| font_err(name, FontFault::NoCapHeight))
 }
 
 /// Baseline-to-baseline distance the font asks for, font units: ascender −
@@ -113,7 +137,16 @@ pub fn outline(
         .filter(|segs| !segs.is_empty())
         .map(Contour::new)
         .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| font_err(name, format!("glyph for {what:?}: {e}")))
+        .map_err(|e| {
+            let what = what.to_string();
+            font_err(
+                name,
+                FontFault::Glyph {
+                    what,
+                    source: Box::new(e),
+                },
+            )
+        })
 }
 
 /// Collects `ttf-parser` outline callbacks into closed segment lists.
@@ -187,6 +220,48 @@ impl ttf_parser::OutlineBuilder for Builder {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The texts are the ones the causes had as strings (issue 16), and the
+    /// I/O error stays in the chain.
+    #[test]
+    fn faults_say_the_strings_they_replace() {
+        let io = || std::io::Error::new(std::io::ErrorKind::NotFound, "No such file");
+        let (cap, parse) = (1u64 << 26, ttf_parser::FaceParsingError::UnknownMagic);
+        let glyph = GeometryError::Empty;
+        let cases = [
+            (FontFault::Open(Cause::new(io())), io().to_string()),
+            (FontFault::Read(Cause::new(io())), io().to_string()),
+            (
+                FontFault::TooLarge { cap },
+                format!("larger than {cap} bytes; not a font file"),
+            ),
+            (
+                FontFault::NotAFont(parse),
+                format!("not a TrueType/OpenType font ({parse})"),
+            ),
+            (
+                FontFault::NoCapHeight,
+                "the font gives no cap height (OS/2) and has no glyph `H` to measure it".into(),
+            ),
+            (
+                FontFault::Glyph {
+                    what: "fi".into(),
+                    source: Box::new(glyph.clone()),
+                },
+                format!("glyph for {:?}: {glyph}", "fi"),
+            ),
+        ];
+        for (fault, text) in cases {
+            let e = font_err("a.ttf", fault);
+            assert_eq!(e.to_string(), format!("font file `a.ttf`: {text}"));
+        }
+        let missing = FontFile::open(Path::new("/no/such/dir/font.ttf"), 0)
+            .err()
+            .expect("missing");
+        let mut chain =
+            std::iter::successors(Some(&missing as &dyn std::error::Error), |e| e.source());
+        assert!(chain.any(|c| c.is::<std::io::Error>()), "{missing}");
+    }
 
     #[test]
     fn a_file_past_the_cap_is_refused_and_one_at_it_is_read() {

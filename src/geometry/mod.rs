@@ -4,7 +4,8 @@
 pub mod arc;
 mod arrangement;
 mod bvh;
-mod capped;
+pub mod capped;
+mod cause;
 mod contour;
 mod densify;
 mod distance;
@@ -23,6 +24,7 @@ pub mod text;
 pub(crate) mod thin;
 mod vec2;
 
+pub use cause::Cause;
 pub use contour::{Contour, Corner, Sample, JOIN_EPS};
 pub use densify::{densify, densify_values};
 pub use distance::{deepest_point, deepest_point_in, seg_seg_dist, DistanceIndex};
@@ -59,8 +61,9 @@ pub enum GeometryError {
     Font {
         /// the path as given
         path: String,
-        /// what is wrong, in words
-        reason: String,
+        /// what is wrong
+        #[source]
+        reason: font::FontFault,
     },
     /// Malformed or unsupported SVG path data.
     #[error("SVG path data: {message}, at character {offset}")]
@@ -78,6 +81,36 @@ pub enum GeometryError {
         key: String,
         /// what is wrong
         message: String,
+    },
+    /// A user's drawing whose file cannot be read, with the job key to look
+    /// at (`shape.svg_file`, `shape.dxf_file`).
+    #[error("{key}: {reason}")]
+    FileRead {
+        /// the key
+        key: &'static str,
+        /// why
+        #[source]
+        reason: capped::ReadFault,
+    },
+    /// An SVG document that is not well-formed XML.
+    #[error("shape.svg_file: is not an SVG document: {source}")]
+    SvgXml {
+        /// the XML parser's error
+        source: usvg::roxmltree::Error,
+    },
+    /// An SVG document usvg cannot turn into a tree.
+    #[error("shape.svg_file: is not a usable SVG document: {source}")]
+    SvgTree {
+        /// usvg's error
+        source: Cause<usvg::Error>,
+    },
+    /// A DXF file dxf-rs cannot load.
+    #[error("shape.dxf_file: is not a readable DXF file: {source}: {}", .path.display())]
+    DxfLoad {
+        /// the file
+        path: std::path::PathBuf,
+        /// dxf-rs's error
+        source: Cause<dxf::DxfError>,
     },
     /// A DXF drawing that cannot be used, with the job key to look at
     /// (`shape.dxf_file`, `shape.layer`).
@@ -135,6 +168,21 @@ pub enum GeometryError {
         /// Its number of points.
         points: usize,
     },
+}
+
+impl GeometryError {
+    /// The job key an error of a drawing's file names (`shape.svg_file`,
+    /// `shape.id`, `shape.dxf_file`, `shape.layer`, ...), its text being
+    /// `key: ...`; `None` for the other errors.
+    pub fn file_key(&self) -> Option<&str> {
+        match self {
+            GeometryError::SvgFile { key, .. } | GeometryError::DxfFile { key, .. } => Some(key),
+            GeometryError::FileRead { key, .. } => Some(key),
+            GeometryError::SvgXml { .. } | GeometryError::SvgTree { .. } => Some("shape.svg_file"),
+            GeometryError::DxfLoad { .. } => Some("shape.dxf_file"),
+            _ => None,
+        }
+    }
 }
 
 /// One connected piece of material: an outline (counter-clockwise) and the
@@ -474,6 +522,60 @@ pub enum Align {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The file sources' library errors say what their strings said
+    /// (`{key}: {message}` with the message formatted from the error), and
+    /// stay in the chain (issue 16).
+    #[test]
+    fn file_errors_say_the_strings_they_replace() {
+        let xml = usvg::roxmltree::Document::parse("<svg")
+            .map(|_| ())
+            .unwrap_err();
+        let path = std::path::PathBuf::from("/d/a.dxf");
+        let dxf = || dxf::DxfError::UnexpectedEndOfInput;
+        let missing = capped::ReadFault::NotFound { path: path.clone() };
+        let cases = [
+            (
+                GeometryError::SvgXml {
+                    source: xml.clone(),
+                },
+                format!("shape.svg_file: is not an SVG document: {xml}"),
+            ),
+            (
+                GeometryError::SvgTree {
+                    source: Cause::new(usvg::Error::InvalidSize),
+                },
+                format!(
+                    "shape.svg_file: is not a usable SVG document: {}",
+                    usvg::Error::InvalidSize
+                ),
+            ),
+            (
+                GeometryError::DxfLoad {
+                    path: path.clone(),
+                    source: Cause::new(dxf()),
+                },
+                format!(
+                    "shape.dxf_file: is not a readable DXF file: {}: {}",
+                    dxf(),
+                    path.display()
+                ),
+            ),
+            (
+                GeometryError::FileRead {
+                    key: "shape.dxf_file",
+                    reason: missing.clone(),
+                },
+                format!("shape.dxf_file: {missing}"),
+            ),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), text);
+            assert!(text.starts_with(&format!("{}: ", e.file_key().expect("a key"))));
+            let source = std::error::Error::source(&e).expect("a source");
+            assert!(text.contains(&source.to_string()), "{text}");
+        }
+    }
 
     /// The paper's Appendix I literally: the index as the sum of the angles
     /// B_k P B_{k+1} in (−π, π), divided by 2π.

@@ -17,7 +17,9 @@ use std::path::{Path, PathBuf};
 use usvg::roxmltree;
 
 use super::fill::{fill_outlines, FillRule};
-use super::{polygons_bbox, regions_from_contours, Contour, GeometryError, Segment, Shape, Vec2};
+use super::{
+    polygons_bbox, regions_from_contours, Cause, Contour, GeometryError, Segment, Shape, Vec2,
+};
 
 /// Millimetres per CSS px (96 px to the inch).
 pub const MM_PER_PX: f64 = 25.4 / 96.0;
@@ -79,10 +81,13 @@ pub fn svg_file_shape(src: &SvgFileSource) -> Result<Shape, GeometryError> {
         ..roxmltree::ParsingOptions::default()
     };
     let doc = roxmltree::Document::parse_with_options(&text, opts)
-        .map_err(|e| fail(FILE, format!("is not an SVG document: {e}")))?;
+        .map_err(|source| GeometryError::SvgXml { source })?;
     check_document(&doc)?;
-    let tree = usvg::Tree::from_xmltree(&doc, &usvg::Options::default())
-        .map_err(|e| fail(FILE, format!("is not a usable SVG document: {e}")))?;
+    let tree = usvg::Tree::from_xmltree(&doc, &usvg::Options::default()).map_err(|e| {
+        GeometryError::SvgTree {
+            source: Cause::new(e),
+        }
+    })?;
     let mut paths = Vec::new();
     let key = match &src.id {
         Some(id) => {
@@ -103,8 +108,8 @@ pub fn svg_file_shape(src: &SvgFileSource) -> Result<Shape, GeometryError> {
 /// The bytes of the file as UTF-8 text, refused past [`MAX_SVG_BYTES`].
 fn read_document(path: &Path) -> Result<String, GeometryError> {
     let shown = path.display();
-    let bytes =
-        super::capped::read_capped(path, "an SVG", MAX_SVG_BYTES).map_err(|m| fail(FILE, m))?;
+    let bytes = super::capped::read_capped(path, "an SVG", MAX_SVG_BYTES)
+        .map_err(|reason| GeometryError::FileRead { key: FILE, reason })?;
     if bytes.starts_with(&[0x1f, 0x8b]) {
         return Err(fail(
             FILE,

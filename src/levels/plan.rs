@@ -353,7 +353,7 @@ pub fn plan_level(job: &LevelJob, level: &Level) -> Result<PlannedLevel, PlanErr
     set_stage(Stage::LevelGrid);
     let reach = level.z_below.map(|zb| c.gap(z, zb));
     if reach.is_some_and(f64::is_nan) {
-        return Err(PlanError::NotFinite(format!("{label}: the band it clears")));
+        return Err(PlanError::BandNotANumber { level: label });
     }
     Ok(PlannedLevel {
         z: job.top + z,
@@ -431,9 +431,10 @@ fn section_field(
 ) -> Result<LevelField, PlanError> {
     let (field, figures) = field::section::solve_section(oriented, tol, outer_radius)?;
     if figures.max_error.is_nan() {
-        return Err(PlanError::NotFinite(format!(
-            "{label}, s = {s:.6}: the max boundary error of its field"
-        )));
+        return Err(PlanError::FieldErrorNotANumber {
+            level: label.to_string(),
+            s,
+        });
     }
     Ok(LevelField {
         field,
@@ -478,12 +479,53 @@ pub enum PlanError {
         /// Its field value.
         s: f64,
     },
-    /// A broken invariant: a measure of a level (its field's error, the
-    /// band it clears) came out NaN.
-    #[error("{0} is not a number (NaN): this is a pfcam bug, please report it with the job file")]
-    NotFinite(String),
+    /// A broken invariant: the band a level clears came out NaN.
+    #[error("{level}: the band it clears is not a number (NaN): this is a pfcam bug, please report it with the job file")]
+    BandNotANumber {
+        /// The level, as `level k (z …)`.
+        level: String,
+    },
+    /// A broken invariant: the max boundary error of a level's field came
+    /// out NaN.
+    #[error("{level}, s = {s:.6}: the max boundary error of its field is not a number (NaN): this is a pfcam bug, please report it with the job file")]
+    FieldErrorNotANumber {
+        /// The level, as `level k (z …)`.
+        level: String,
+        /// The level's field value.
+        s: f64,
+    },
     /// A broken invariant: the horizontal step between two levels came out
     /// NaN.
     #[error("the horizontal step between two levels is not a number (NaN): this is a pfcam bug, please report it with the job file")]
     GapNotANumber,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::PlanError;
+
+    /// The texts are the ones the variants had as strings (issue 16).
+    #[test]
+    fn nan_errors_say_the_strings_they_replace() {
+        let (label, s) = ("level 3 (z -2.000)".to_string(), 0.123_456_78);
+        let bug = "is not a number (NaN): this is a pfcam bug, please report it with the job file";
+        let cases = [
+            (
+                PlanError::BandNotANumber {
+                    level: label.clone(),
+                },
+                format!("{label}: the band it clears"),
+            ),
+            (
+                PlanError::FieldErrorNotANumber {
+                    level: label.clone(),
+                    s,
+                },
+                format!("{label}, s = {s:.6}: the max boundary error of its field"),
+            ),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), format!("{text} {bug}"));
+        }
+    }
 }

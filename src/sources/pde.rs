@@ -43,13 +43,14 @@ pub const MAX_SAMPLES: usize = 4096;
 /// Bad input to [`PdeSurface::solve`]; `key` names the field at fault.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PdeError {
-    /// A parameter or curve is out of range; the message says how.
+    /// A parameter or curve is out of range; `reason` says how.
     #[error("{key}: {reason}")]
     Invalid {
         /// The field: `a`, `modes`, `x0`, `x1`, `xu0` or `xu1`.
         key: &'static str,
         /// What is wrong with it.
-        reason: String,
+        #[source]
+        reason: PdeFault,
     },
     /// A mode system of the four-curve conditions (002) amplifies its data
     /// beyond [`GAIN_LIMIT`]: the surface between the curves would
@@ -240,7 +241,7 @@ pub(crate) fn check_a(a: f64) -> Result<(), PdeError> {
     }
     Err(PdeError::Invalid {
         key: "a",
-        reason: format!("must be finite and > 0, got {a}"),
+        reason: PdeFault::NotPositive { value: a },
     })
 }
 
@@ -253,28 +254,38 @@ pub(crate) fn check_curves<const D: usize>(
     modes: usize,
     more: impl Fn(&'static str, &[[f64; D]]) -> Result<(), PdeError>,
 ) -> Result<(), PdeError> {
-    let bad = |key, reason: String| Err(PdeError::Invalid { key, reason });
+    let bad = |key, reason| Err(PdeError::Invalid { key, reason });
     let Some(&(first, c0)) = curves.first() else {
         return Ok(());
     };
     let k = c0.len();
     if k < 2 * modes + 1 || k > MAX_SAMPLES {
         let need = 2 * modes + 1;
-        return bad(
-            first,
-            format!("{k} samples; need 2·modes + 1 = {need} to {MAX_SAMPLES}"),
-        );
+        return bad(first, PdeFault::SampleCount { samples: k, need });
     }
     for &(key, curve) in curves {
         if curve.len() != k {
-            return bad(key, format!("{} samples, but {first} has {k}", curve.len()));
+            let samples = curve.len();
+            return bad(
+                key,
+                PdeFault::SampleMismatch {
+                    samples,
+                    first,
+                    first_samples: k,
+                },
+            );
         }
-        if let Some(j) = curve.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return bad(key, format!("sample {j} is not finite"));
+        if let Some(index) = first_not_finite(curve) {
+            return bad(key, PdeFault::SampleNotFinite { index });
         }
         more(key, curve)?;
     }
     Ok(())
+}
+
+/// The index of the curve's first sample with a coordinate that is not finite.
+pub(crate) fn first_not_finite<const D: usize>(curve: &[[f64; D]]) -> Option<usize> {
+    curve.iter().position(|p| p.iter().any(|x| !x.is_finite()))
 }
 
 /// Coefficients of the scaled basis for λ meeting the conditions `rhs` (rows X(0),
@@ -436,7 +447,9 @@ fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|i| a[i] + b[i])
 }
 
+mod fault;
 mod four_curves;
+pub use fault::PdeFault;
 pub use four_curves::{
     conditioning as four_curve_conditioning, FourCurves, ModeConditioning, GAIN_LIMIT,
 };

@@ -14,7 +14,7 @@
 //! hold at every sample to rounding. 004 writes the remainder "of similar form" to
 //! its (7); six terms are needed to meet six conditions.
 
-use super::pde::{fourier_curve, PdeError};
+use super::pde::{first_not_finite, fourier_curve, PdeError, PdeFault};
 use nalgebra::{Matrix6, Matrix6x3, RowVector3, RowVector6};
 
 /// The six conditions, each sampled at vₖ = 2πk/K: X(0, v), X(1, v), Xᵤ(0, v),
@@ -71,24 +71,29 @@ fn matrix(lambda: f64) -> Matrix6<f64> {
 }
 
 fn check(c: &BoundaryCurves6, a: f64, modes: usize) -> Result<(), PdeError> {
-    let bad = |key, reason: String| Err(PdeError::Invalid { key, reason });
+    let bad = |key, reason| Err(PdeError::Invalid { key, reason });
     if !(a.is_finite() && a > 0.0) {
-        return bad("a", format!("must be finite and > 0, got {a}"));
+        return bad("a", PdeFault::NotPositive { value: a });
     }
     let k = c.curves[0].len();
     if k < 2 * modes + 1 || k > super::pde::MAX_SAMPLES {
-        let max = super::pde::MAX_SAMPLES;
-        return bad(
-            "x0",
-            format!("{k} samples; need 2·modes + 1 = {} to {max}", 2 * modes + 1),
-        );
+        let need = 2 * modes + 1;
+        return bad("x0", PdeFault::SampleCount { samples: k, need });
     }
     for (key, curve) in KEYS.iter().zip(&c.curves) {
         if curve.len() != k {
-            return bad(key, format!("{} samples, but x0 has {k}", curve.len()));
+            let samples = curve.len();
+            return bad(
+                key,
+                PdeFault::SampleMismatch {
+                    samples,
+                    first: "x0",
+                    first_samples: k,
+                },
+            );
         }
-        if let Some(j) = curve.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return bad(key, format!("sample {j} is not finite"));
+        if let Some(index) = first_not_finite(curve) {
+            return bad(key, PdeFault::SampleNotFinite { index });
         }
     }
     Ok(())

@@ -35,7 +35,7 @@
 //! annulus is not univalent for every pair of curves, so [`TrimMap::solve`]
 //! samples the Jacobian and refuses a fold.
 
-use super::pde::{check_curves, fourier_curve, PdeError, PdeSurface};
+use super::pde::{check_curves, fourier_curve, PdeError, PdeFault, PdeSurface};
 use nalgebra::{Matrix2, Vector2};
 use std::f64::consts::TAU;
 
@@ -101,7 +101,7 @@ fn check(c: &TrimCurves, modes: usize) -> Result<(), PdeError> {
         if twice_area(curve) <= 0.0 {
             return Err(PdeError::Invalid {
                 key,
-                reason: "must run counter-clockwise in the (u, v) plane".into(),
+                reason: PdeFault::Clockwise,
             });
         }
         Ok(())
@@ -136,7 +136,7 @@ impl TrimMap {
         if det.is_nan() || det <= 0.0 {
             return Err(PdeError::Invalid {
                 key: "trim",
-                reason: format!("the map folds: its Jacobian is {det:.3e} at ξ = {xi:.4}, η = {eta:.4} (curves crossing, or a trim curve too far from star-shaped for a Laplace map)"),
+                reason: PdeFault::Folds { det, xi, eta },
             });
         }
         Ok(map)

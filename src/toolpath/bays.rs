@@ -135,9 +135,9 @@ pub fn clear_bays<N: Navigator>(
     let mut bays = 0;
     while let Some(&(room, q)) = spots.first() {
         if !room.is_finite() {
-            return Err(ProfileError::NotFinite(format!(
-                "{label}: the distance from the stock it leaves to the part"
-            )));
+            return Err(ProfileError::StockGapNotANumber {
+                level: label.to_string(),
+            });
         }
         if bays == MAX_BAYS {
             warnings.push(format!(

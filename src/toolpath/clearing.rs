@@ -32,7 +32,8 @@ use crate::geometry::fill::{fill_outlines, FillRule};
 use crate::geometry::{densify, polygon_area, polygon_winding_number, DistanceIndex, Vec2};
 
 /// Too many ring points for the exact difference (`geometry::fill`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("too many points for the exact difference of the stock and the part's ring")]
 pub struct TooComplex;
 
 /// What loop j is cut around.

@@ -283,9 +283,9 @@ fn next_value(
             )
         };
         if g.is_nan() {
-            return Err(ProfileError::NotFinite(format!(
-                "{label}: the distance between two clearing rings"
-            )));
+            return Err(ProfileError::RingGapNotANumber {
+                level: label.to_string(),
+            });
         }
         if fallback.is_none_or(|f| g < f.1) {
             fallback = Some((c, g));

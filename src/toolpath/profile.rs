@@ -76,11 +76,27 @@ pub enum ProfileError {
     /// A boss level's clearing loop has too many points for the exact
     /// difference of the stock rectangle and the part's ring
     /// ([`clearing`](super::clearing)).
-    #[error("{0}: too many points for the exact difference of the stock and the part's ring; raise operation.tolerance")]
-    TooComplex(String),
-    /// A measure that must be a number came out NaN.
-    #[error("{0} is not a number (NaN): this is a pfcam bug, please report it with the job file")]
-    NotFinite(String),
+    #[error("{path}: {source}; raise operation.tolerance")]
+    TooComplex {
+        /// The clearing loop, as `level k (z …): loop j of the clearing`.
+        path: String,
+        /// The clearing's refusal.
+        source: super::clearing::TooComplex,
+    },
+    /// A broken invariant: the distance between two clearing rings came out
+    /// NaN.
+    #[error("{level}: the distance between two clearing rings is not a number (NaN): this is a pfcam bug, please report it with the job file")]
+    RingGapNotANumber {
+        /// The level, as its paths' labels begin.
+        level: String,
+    },
+    /// A broken invariant: the distance from the stock a clearing leaves to
+    /// the part came out NaN (or infinite).
+    #[error("{level}: the distance from the stock it leaves to the part is not a number (NaN): this is a pfcam bug, please report it with the job file")]
+    StockGapNotANumber {
+        /// The level, as its paths' labels begin.
+        level: String,
+    },
 }
 
 /// Z of every pass: equal steps of at most `stepdown`, the last exactly at the depth.
@@ -221,4 +237,48 @@ fn loops_bounds(loops: &[Loop], r: f64) -> (Vec2, Vec2) {
     }
     let grow = Vec2::new(r, r);
     (lo - grow, hi + grow)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ProfileError;
+    use crate::toolpath::clearing::TooComplex;
+
+    /// The texts are the ones the variants had as strings (issue 16).
+    #[test]
+    fn errors_say_the_strings_they_replace() {
+        let level = "level 2 (z -1.500)".to_string();
+        let path = format!("{level}: loop 3 of the clearing");
+        let bug = "is not a number (NaN): this is a pfcam bug, please report it with the job file";
+        let cases = [
+            (
+                ProfileError::TooComplex { path: path.clone(), source: TooComplex },
+                format!("{path}: too many points for the exact difference of the stock and the part's ring; raise operation.tolerance"),
+            ),
+            (
+                ProfileError::RingGapNotANumber { level: level.clone() },
+                format!("{level}: the distance between two clearing rings {bug}"),
+            ),
+            (
+                ProfileError::StockGapNotANumber { level: level.clone() },
+                format!("{level}: the distance from the stock it leaves to the part {bug}"),
+            ),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), text);
+        }
+    }
+
+    /// The clearing's refusal stays the error's source, and the message
+    /// already says it (the CLI appends a source only when it does not).
+    #[test]
+    fn too_complex_keeps_the_clearing_error_as_its_source() {
+        let e = ProfileError::TooComplex {
+            path: "loop 1".into(),
+            source: TooComplex,
+        };
+        let source = std::error::Error::source(&e).expect("a source");
+        assert!(source.is::<TooComplex>());
+        assert!(e.to_string().contains(&source.to_string()));
+    }
 }

@@ -254,7 +254,12 @@ impl<N: Navigator + Sync> Walls<'_, N> {
             climb: p.climb,
         };
         let label = |j: usize| format!("{}: loop {j} of the clearing", self.label);
-        let too_complex = |j: usize| move |_| ProfileError::TooComplex(label(j));
+        let too_complex = |j: usize| {
+            move |source| ProfileError::TooComplex {
+                path: label(j),
+                source,
+            }
+        };
         let path = |j: usize, points: Vec<Vec2>, closed: bool| CutPath {
             label: label(j),
             points,

@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 use std::path::PathBuf;
 
 use pfcam::geometry::svgfile::{svg_file_shape, SvgFileSource, SvgSize};
-use pfcam::geometry::{build_shape, GeometryError, Shape, ShapeSource, Vec2};
+use pfcam::geometry::{build_shape, Shape, ShapeSource, Vec2};
 use pfcam::job::parse_job;
 
 use crate::common::{area, holes, perimeter, root, test_data};
@@ -202,7 +202,13 @@ fn units_px_at_96_dpi_and_inches() {
 /// The key and message of a failed SVG file.
 fn failure(src: &SvgFileSource) -> (String, String) {
     match svg_file_shape(src) {
-        Err(GeometryError::SvgFile { key, message }) => (key, message),
+        // The file's errors name their key: `key: message`.
+        Err(e) if e.file_key().is_some() => {
+            let key = e.file_key().unwrap_or_default().to_string();
+            let text = e.to_string();
+            let message = text.strip_prefix(&format!("{key}: ")).unwrap_or(&text);
+            (key, message.to_string())
+        }
         other => panic!("{:?}: expected an SVG file error, got {other:?}", src.path),
     }
 }

@@ -26,7 +26,8 @@
 //! [`GAIN_LIMIT`] the solve is refused.
 
 use super::{
-    basis, check_a, check_curves, fourier_curve, solve_mode, PdeError, PdeSurface, Spine, Term,
+    basis, check_a, check_curves, fourier_curve, solve_mode, PdeError, PdeFault, PdeSurface, Spine,
+    Term,
 };
 use nalgebra::{Matrix4, Matrix4x3, Vector4};
 
@@ -157,19 +158,13 @@ fn cubic_spine(y: [[f64; 3]; 4], s: f64, t: f64) -> Spine {
 /// Checks a, s, t and the curves (equal lengths, 2N + 1 ≤ K ≤ [`MAX_SAMPLES`](super::MAX_SAMPLES),
 /// finite).
 fn check(c: &FourCurves, a: f64, modes: usize) -> Result<(), PdeError> {
-    let bad = |key, reason: String| Err(PdeError::Invalid { key, reason });
+    let bad = |key, reason| Err(PdeError::Invalid { key, reason });
     check_a(a)?;
     if !(c.s > 0.0 && c.s < 1.0) {
-        return bad("s", format!("must lie strictly inside (0, 1), got {}", c.s));
+        return bad("s", PdeFault::SOutside { s: c.s });
     }
     if !(c.t > c.s && c.t < 1.0) {
-        return bad(
-            "t",
-            format!(
-                "must lie strictly inside (s, 1) = ({}, 1), got {}",
-                c.s, c.t
-            ),
-        );
+        return bad("t", PdeFault::TOutside { s: c.s, t: c.t });
     }
     let named = [
         ("p0", c.p0.as_slice()),

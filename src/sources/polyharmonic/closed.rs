@@ -162,7 +162,7 @@ pub fn closed_mesh(
         Grid3::covering(fine.lo, fine.hi, spacing).ok_or_else(|| too_fine(&fine, spacing))?;
     zero_set(&grid, &f).map_err(|e| match e {
         IsoError::Open { at, value } => not_closed(&region, at.into(), value),
-        e @ IsoError::NotFinite { .. } => invalid("points", e.to_string()),
+        source @ IsoError::NotFinite { .. } => PolyError::ZeroSet { source },
     })
 }
 
