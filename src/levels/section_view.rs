@@ -2,7 +2,7 @@
 //! JSON (its SVG drawing is `preview::section_svg`). The library formats;
 //! the CLI prints and writes.
 
-use super::sections::{net_area, Ring, Sections};
+use super::sections::{net_area, SectionRing, Sections};
 
 /// One section of a job's part, described.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -20,7 +20,7 @@ pub struct SectionView {
     /// Net area, mm²: outlines minus holes.
     pub area: f64,
     /// The rings, material on the left (holes clockwise).
-    pub rings: Vec<Ring>,
+    pub rings: Vec<SectionRing>,
 }
 
 impl SectionView {
@@ -36,7 +36,7 @@ impl SectionView {
             z_range: [top + lo, top + hi],
             level_value: source.level_value(z - top),
             area: net_area(&polys),
-            rings: polys.iter().map(|p| Ring::of(p)).collect(),
+            rings: polys.iter().map(|p| SectionRing::of(p)).collect(),
         }
     }
 

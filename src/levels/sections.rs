@@ -54,7 +54,7 @@ pub struct LevelField {
 
 /// One ring of a section, described.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct Ring {
+pub struct SectionRing {
     /// Its vertices, mm.
     pub points: Vec<[f64; 2]>,
     /// Signed area (shoelace), mm²: positive counter-clockwise.
@@ -63,11 +63,11 @@ pub struct Ring {
     pub hole: bool,
 }
 
-impl Ring {
+impl SectionRing {
     /// The ring of polygon `p` (material on its left).
-    pub fn of(p: &[Vec2]) -> Ring {
+    pub fn of(p: &[Vec2]) -> SectionRing {
         let area = polygon_area(p);
-        Ring {
+        SectionRing {
             points: p.iter().map(|q| [q.x, q.y]).collect(),
             area,
             hole: area < 0.0,
@@ -117,10 +117,10 @@ mod tests {
             Vec2::new(2.0, 3.0),
             Vec2::new(0.0, 3.0),
         ];
-        let r = Ring::of(&sq);
+        let r = SectionRing::of(&sq);
         assert!((r.area - 6.0).abs() < 1e-12 && !r.hole);
         let rev: Vec<Vec2> = sq.iter().rev().copied().collect();
-        let h = Ring::of(&rev);
+        let h = SectionRing::of(&rev);
         assert!((h.area + 6.0).abs() < 1e-12 && h.hole);
         assert!((net_area(&[sq.to_vec(), rev]) - 0.0).abs() < 1e-12);
     }

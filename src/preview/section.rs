@@ -65,10 +65,10 @@ fn xml_escape(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::levels::sections::Ring;
+    use crate::levels::sections::SectionRing;
 
     /// The square [a, b]², counter-clockwise, or clockwise when `hole`.
-    fn square(a: f64, b: f64, hole: bool) -> Ring {
+    fn square(a: f64, b: f64, hole: bool) -> SectionRing {
         let mut p: Vec<Vec2> = [(a, a), (b, a), (b, b), (a, b)]
             .iter()
             .map(|&(x, y)| Vec2::new(x, y))
@@ -76,10 +76,10 @@ mod tests {
         if hole {
             p.reverse();
         }
-        Ring::of(&p)
+        SectionRing::of(&p)
     }
 
-    fn view(rings: Vec<Ring>) -> SectionView {
+    fn view(rings: Vec<SectionRing>) -> SectionView {
         let area = rings.iter().map(|r| r.area).sum();
         SectionView {
             generator: "pfcam test".into(),
