@@ -753,13 +753,13 @@ pub fn moves(
     for &(i, linked) in order {
         let l = &loops[i];
         let tips = oriented(l, at);
-        placed.push((l, linked, at, tips));
-        let tips = &placed[placed.len() - 1].3;
-        at = if l.closed {
+        let end = if l.closed {
             tips[0]
         } else {
             tips[tips.len() - 1]
         };
+        placed.push((l, linked, at, tips));
+        at = end;
     }
     let mut sections: Vec<Section> = placed
         .into_par_iter()

@@ -1217,6 +1217,12 @@ impl MeshIndex {
         ]
     }
 
+    /// Lower-left corner of block (bi, bj) ([`BLOCK`] cells a side), mm:
+    /// that of its first cell.
+    fn block_corner(&self, bi: usize, bj: usize) -> [f64; 2] {
+        self.cell_corner(bj * BLOCK * self.nx + bi * BLOCK)
+    }
+
     fn cell_x(&self, x: f64) -> usize {
         (((x - self.origin[0]) / self.cell).floor().max(0.0) as usize).min(self.nx - 1)
     }
@@ -1297,7 +1303,7 @@ impl MeshIndex {
                 let slot = &mut judged[(bj - bj0) * bw + bi - bi0];
                 if *slot == 0 {
                     let b = bj * self.bnx + bi;
-                    let corner = self.cell_corner(bj * BLOCK * self.nx + bi * BLOCK);
+                    let corner = self.block_corner(bi, bj);
                     let d2 = box_dist2(&self.blocks[b]);
                     let may = d2 <= r2
                         && cell_may_win((&self.block_planes[b], corner), &self.blocks[b], d2);
@@ -1498,7 +1504,7 @@ fn blocks(
                 .iter()
                 .flat_map(|&k| items[count[k]..count[k + 1]].iter().copied())
                 .collect();
-            let corner = index.cell_corner(bj * BLOCK * index.nx + bi * BLOCK);
+            let corner = index.block_corner(bi, bj);
             (
                 Bounds::union(cells.iter().map(|&k| &index.cells[k])),
                 upper_plane(&all, corner, tris, normals),
@@ -2129,7 +2135,7 @@ mod tests {
                 // ... and under its block's plane, in its block's bounds.
                 let (i, j) = (k % m.nx, k / m.nx);
                 let b = (j / BLOCK) * m.bnx + i / BLOCK;
-                let bc = m.cell_corner((j / BLOCK) * BLOCK * m.nx + (i / BLOCK) * BLOCK);
+                let bc = m.block_corner(i / BLOCK, j / BLOCK);
                 let bp = m.block_planes[b];
                 let (bx, by) = (f64::from(bp.g[0]), f64::from(bp.g[1]));
                 let (cb, bb) = (m.cells[k], m.blocks[b]);
