@@ -14,7 +14,7 @@
 //! hold at every sample to rounding. 004 writes the remainder "of similar form" to
 //! its (7); six terms are needed to meet six conditions.
 
-use super::pde::{first_not_finite, fourier_curve, PdeError, PdeFault};
+use super::pde::{check_curves, fourier_curve, PdeError, PdeFault};
 use nalgebra::{Matrix6, Matrix6x3, RowVector3, RowVector6};
 
 /// The six conditions, each sampled at vₖ = 2πk/K: X(0, v), X(1, v), Xᵤ(0, v),
@@ -25,7 +25,7 @@ pub struct BoundaryCurves6 {
     pub curves: [Vec<[f64; 3]>; 6],
 }
 
-const KEYS: [&str; 6] = ["x0", "x1", "xu0", "xu1", "xuu0", "xuu1"];
+const KEYS: [&'static str; 6] = ["x0", "x1", "xu0", "xu1", "xuu0", "xuu1"];
 
 /// A solved sixth-order surface.
 #[derive(Debug, Clone, PartialEq)]
@@ -75,28 +75,12 @@ fn check(c: &BoundaryCurves6, a: f64, modes: usize) -> Result<(), PdeError> {
     if !(a.is_finite() && a > 0.0) {
         return bad("a", PdeFault::NotPositive { value: a });
     }
-    let k = c.curves[0].len();
-    if k < 2 * modes + 1 || k > super::pde::MAX_SAMPLES {
-        let need = 2 * modes + 1;
-        return bad("x0", PdeFault::SampleCount { samples: k, need });
-    }
-    for (key, curve) in KEYS.iter().zip(&c.curves) {
-        if curve.len() != k {
-            let samples = curve.len();
-            return bad(
-                key,
-                PdeFault::SampleMismatch {
-                    samples,
-                    first: "x0",
-                    first_samples: k,
-                },
-            );
-        }
-        if let Some(index) = first_not_finite(curve) {
-            return bad(key, PdeFault::SampleNotFinite { index });
-        }
-    }
-    Ok(())
+    let curves: Vec<(&'static str, &[[f64; 3]])> = KEYS
+        .iter()
+        .zip(&c.curves)
+        .map(|(&key, curve)| (key, curve.as_slice()))
+        .collect();
+    check_curves(&curves, modes, |_, _| Ok(()))
 }
 
 impl PdeSurface6 {

@@ -1090,84 +1090,8 @@ impl MeshIndex {
         if tris.is_empty() {
             return index;
         }
-        let mut lo = [f64::INFINITY; 2];
-        let mut hi = [f64::NEG_INFINITY; 2];
-        let mut extent = 0.0;
-        for t in &bounds {
-            let (tlo, thi) = (t.lo.map(f64::from), t.hi.map(f64::from));
-            for k in 0..2 {
-                lo[k] = lo[k].min(tlo[k]);
-                hi[k] = hi[k].max(thi[k]);
-            }
-            extent += (thi[0] - tlo[0]).max(thi[1] - tlo[1]);
-        }
-        let span = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        let mut cell = if cell.is_finite() && cell > 0.0 {
-            cell
-        } else {
-            2.0 * extent / tris.len() as f64
-        };
-        // A mesh of points (all extents 0) or a cell below rounding of the
-        // coordinates: take a cell the grid can still resolve.
-        let floor =
-            (span * 1e-9).max(lo.iter().chain(&hi).fold(0.0f64, |m, c| m.max(c.abs())) * 1e-12);
-        cell = cell.max(floor).max(f64::MIN_POSITIVE);
-        let cells_along = |w: f64, cell: f64| (w / cell).floor() + 1.0;
-        let n = tris.len();
-        let entry_cap = MAX_ENTRIES_PER_TRIANGLE * n + MAX_CELLS;
-        loop {
-            let nxf = cells_along(hi[0] - lo[0], cell);
-            let nyf = cells_along(hi[1] - lo[1], cell);
-            if nxf * nyf > MAX_CELLS as f64 {
-                cell *= 2.0;
-                continue;
-            }
-            index.origin = lo;
-            index.cell = cell;
-            index.nx = nxf as usize;
-            index.ny = nyf as usize;
-            let entries: usize = bounds
-                .iter()
-                .map(|t| {
-                    let (i0, i1) = (index.cell_x(t.lo[0].into()), index.cell_x(t.hi[0].into()));
-                    let (j0, j1) = (index.cell_y(t.lo[1].into()), index.cell_y(t.hi[1].into()));
-                    (i1 - i0 + 1) * (j1 - j0 + 1)
-                })
-                .sum();
-            if entries <= entry_cap || (index.nx == 1 && index.ny == 1) {
-                break;
-            }
-            cell *= 2.0;
-        }
-        // Counting sort into the cells, then each cell's items by rank.
-        let mut count = vec![0usize; index.nx * index.ny + 1];
-        for t in &bounds {
-            let (i0, i1) = (index.cell_x(t.lo[0].into()), index.cell_x(t.hi[0].into()));
-            let (j0, j1) = (index.cell_y(t.lo[1].into()), index.cell_y(t.hi[1].into()));
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    count[j * index.nx + i + 1] += 1;
-                }
-            }
-        }
-        for k in 1..count.len() {
-            count[k] += count[k - 1];
-        }
-        let mut fill = count.clone();
-        let mut items = vec![0u32; count[count.len() - 1]];
-        for (ti, t) in bounds.iter().enumerate() {
-            let (i0, i1) = (index.cell_x(t.lo[0].into()), index.cell_x(t.hi[0].into()));
-            let (j0, j1) = (index.cell_y(t.lo[1].into()), index.cell_y(t.hi[1].into()));
-            // ti < MAX_TRIANGLES = 2³⁰, so ti·4 + rank fits in a u32.
-            let base = (ti as u32) << 2;
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    let k = j * index.nx + i;
-                    items[fill[k]] = base | rank(i > i0, j > j0);
-                    fill[k] += 1;
-                }
-            }
-        }
+        index.size_grid(&bounds, cell);
+        let (count, mut items) = index.bucket(&bounds);
         sort_cells(&mut items, &count, &bounds);
         index.cells = cell_bounds(&items, &count, &bounds);
         index.planes = cell_planes(&index, &items, &count, &tris, &normals);
@@ -1180,6 +1104,98 @@ impl MeshIndex {
         index.normals = normals;
         index.bounds = bounds;
         index
+    }
+
+    /// Choose the grid for `bounds`: origin at their low corner, cells of
+    /// side `cell` (or twice the mean extent where `cell` is not finite and
+    /// positive), doubled until the grid keeps within [`MAX_CELLS`] cells and
+    /// [`MAX_ENTRIES_PER_TRIANGLE`]·n + [`MAX_CELLS`] entries.
+    fn size_grid(&mut self, bounds: &[Bounds], cell: f64) {
+        let mut lo = [f64::INFINITY; 2];
+        let mut hi = [f64::NEG_INFINITY; 2];
+        let mut extent = 0.0;
+        for t in bounds {
+            let (tlo, thi) = (t.lo.map(f64::from), t.hi.map(f64::from));
+            for k in 0..2 {
+                lo[k] = lo[k].min(tlo[k]);
+                hi[k] = hi[k].max(thi[k]);
+            }
+            extent += (thi[0] - tlo[0]).max(thi[1] - tlo[1]);
+        }
+        let span = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let mut cell = if cell.is_finite() && cell > 0.0 {
+            cell
+        } else {
+            2.0 * extent / bounds.len() as f64
+        };
+        // A mesh of points (all extents 0) or a cell below rounding of the
+        // coordinates: take a cell the grid can still resolve.
+        let floor =
+            (span * 1e-9).max(lo.iter().chain(&hi).fold(0.0f64, |m, c| m.max(c.abs())) * 1e-12);
+        cell = cell.max(floor).max(f64::MIN_POSITIVE);
+        let cells_along = |w: f64, cell: f64| (w / cell).floor() + 1.0;
+        let n = bounds.len();
+        let entry_cap = MAX_ENTRIES_PER_TRIANGLE * n + MAX_CELLS;
+        loop {
+            let nxf = cells_along(hi[0] - lo[0], cell);
+            let nyf = cells_along(hi[1] - lo[1], cell);
+            if nxf * nyf > MAX_CELLS as f64 {
+                cell *= 2.0;
+                continue;
+            }
+            self.origin = lo;
+            self.cell = cell;
+            self.nx = nxf as usize;
+            self.ny = nyf as usize;
+            let entries: usize = bounds
+                .iter()
+                .map(|t| {
+                    let (i0, i1) = (self.cell_x(t.lo[0].into()), self.cell_x(t.hi[0].into()));
+                    let (j0, j1) = (self.cell_y(t.lo[1].into()), self.cell_y(t.hi[1].into()));
+                    (i1 - i0 + 1) * (j1 - j0 + 1)
+                })
+                .sum();
+            if entries <= entry_cap || (self.nx == 1 && self.ny == 1) {
+                break;
+            }
+            cell *= 2.0;
+        }
+    }
+
+    /// Each triangle's index in every cell its box meets, by counting sort:
+    /// cell k's items are `items[count[k]..count[k + 1]]`, each the triangle
+    /// times 4 plus its rank in the cell.
+    fn bucket(&self, bounds: &[Bounds]) -> (Vec<usize>, Vec<u32>) {
+        // Counting sort into the cells, then each cell's items by rank.
+        let mut count = vec![0usize; self.nx * self.ny + 1];
+        for t in bounds {
+            let (i0, i1) = (self.cell_x(t.lo[0].into()), self.cell_x(t.hi[0].into()));
+            let (j0, j1) = (self.cell_y(t.lo[1].into()), self.cell_y(t.hi[1].into()));
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    count[j * self.nx + i + 1] += 1;
+                }
+            }
+        }
+        for k in 1..count.len() {
+            count[k] += count[k - 1];
+        }
+        let mut fill = count.clone();
+        let mut items = vec![0u32; count[count.len() - 1]];
+        for (ti, t) in bounds.iter().enumerate() {
+            let (i0, i1) = (self.cell_x(t.lo[0].into()), self.cell_x(t.hi[0].into()));
+            let (j0, j1) = (self.cell_y(t.lo[1].into()), self.cell_y(t.hi[1].into()));
+            // ti < MAX_TRIANGLES = 2³⁰, so ti·4 + rank fits in a u32.
+            let base = (ti as u32) << 2;
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let k = j * self.nx + i;
+                    items[fill[k]] = base | rank(i > i0, j > j0);
+                    fill[k] += 1;
+                }
+            }
+        }
+        (count, items)
     }
 
     /// Triangle `ti` with its normal.
