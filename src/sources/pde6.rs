@@ -25,7 +25,7 @@ pub struct BoundaryCurves6 {
     pub curves: [Vec<[f64; 3]>; 6],
 }
 
-const KEYS: [&'static str; 6] = ["x0", "x1", "xu0", "xu1", "xuu0", "xuu1"];
+const KEYS: [&str; 6] = ["x0", "x1", "xu0", "xu1", "xuu0", "xuu1"];
 
 /// A solved sixth-order surface.
 #[derive(Debug, Clone, PartialEq)]
