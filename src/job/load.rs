@@ -30,6 +30,7 @@ pub(super) const SECTIONS: &[&str] = &[
     "machine",
     "output",
     "profile",
+    "finish",
 ];
 
 /// Every section is a table: `[[tool]]` (an array of tables) or `tool = 3`
@@ -42,7 +43,15 @@ fn check_sections(table: &toml::Table) -> Result<(), JobError> {
             toml::Value::Array(a) if a.iter().all(|v| v.is_table()) => {
                 format!("an array of tables [[{key}]]")
             }
-            v => format!("a {}", v.type_str()),
+            v => {
+                let t = v.type_str();
+                let article = if t.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                    "an"
+                } else {
+                    "a"
+                };
+                format!("{article} {t}")
+            }
         };
         return Err(invalid(
             key,

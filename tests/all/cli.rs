@@ -737,6 +737,16 @@ fn wrongly_shaped_values_name_their_key() {
             &["tool must be a table, written [tool], not an array of tables [[tool]]"][..],
         ),
         (
+            "finish-integer",
+            format!("finish = 3\n{GOOD}"),
+            &["finish must be a table, written [finish], not an integer"][..],
+        ),
+        (
+            "profile-string",
+            format!("profile = \"linear\"\n{GOOD}"),
+            &["profile must be a table, written [profile], not a string"][..],
+        ),
+        (
             "singularities-float",
             format!("{GOOD}[field]\nsingularities = 100.0\n"),
             &["field.singularities", "got 100.0"][..],
