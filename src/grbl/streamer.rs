@@ -1159,7 +1159,7 @@ impl ResumePoint {
         let safe_z = resume
             .safe_z
             .or(highest_z)
-            .ok_or_else(|| GrblError::Input(InputFault::ResumeNoSafeZ { line: n }))?;
+            .ok_or(GrblError::Input(InputFault::ResumeNoSafeZ { line: n }))?;
         let axis = ['X', 'Y', 'Z'];
         let mut pos = [0.0; 3];
         for i in 0..3 {
@@ -1172,7 +1172,7 @@ impl ResumePoint {
         }
         let feed = state
             .feed
-            .ok_or_else(|| GrblError::Input(InputFault::ResumeNoFeed { line: n }))?;
+            .ok_or(GrblError::Input(InputFault::ResumeNoFeed { line: n }))?;
         if state.ended {
             return Err(GrblError::Input(InputFault::ResumeEnded { line: n }));
         }
