@@ -314,13 +314,13 @@ fn solve_boundary(
             radius: 0.25 * room,
         });
     }
-    let boundary = Boundary {
-        contours: contours.clone(),
-        is_counter: is_counter.clone(),
-        centre: frame.centre,
-        radius: frame.radius,
+    let boundary = Boundary::new(
+        contours.clone(),
+        is_counter.clone(),
+        frame.centre,
+        frame.radius,
         flat_tol,
-    };
+    );
     let mut prep = Prepared::with_sinks(boundary, sinks).map_err(|e| field_err(name, e))?;
     prep.outer = outer;
     let regions = is_counter.iter().filter(|c| !**c).count().max(1);
@@ -329,14 +329,8 @@ fn solve_boundary(
             + if outer { OUTER_CHARGES } else { 0 }
             + prep.sinks.len() * SINK_CHARGES,
     );
-    let base = Layout {
-        n_total,
-        distance: 1.0,
-        corner_clusters: true,
-        corner_fraction: field::DEFAULT_CORNER_FRACTION,
-        pairs: false,
-    };
-    let solved = field::solve_with(&prep, base, None).map_err(|e| field_err(name, e))?;
+    let solved =
+        field::solve_with(&prep, Layout::auto(n_total), None).map_err(|e| field_err(name, e))?;
     let groups = prep
         .groups(&solved.layout)
         .map_err(|e| field_err(name, e))?;

@@ -295,15 +295,10 @@ pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineEr
         return Err(PipelineError::EmptyShape);
     }
     let (lo, hi) = shape.bbox().ok_or(PipelineError::EmptyShape)?;
-    let centre = field::centroid(&contours, flat_tol);
     let radius = OUTER_RADIUS_FACTOR * (hi - lo).norm();
-    Ok(Boundary {
-        contours,
-        is_counter,
-        centre,
-        radius,
-        flat_tol,
-    })
+    Ok(Boundary::about_centroid(
+        contours, is_counter, radius, flat_tol,
+    ))
 }
 
 /// The loosest max boundary error asked of a shape's field (a profile job, or a

@@ -89,14 +89,7 @@ pub fn solve(
         })
         .collect();
     let is_counter = vec![false; contours.len()];
-    let centre = super::centroid(&contours, tol);
-    let b = Boundary {
-        contours,
-        is_counter,
-        centre,
-        radius: 20.0 * (hi - lo).norm().max(1.0),
-        flat_tol: tol,
-    };
+    let b = Boundary::about_centroid(contours, is_counter, 20.0 * (hi - lo).norm().max(1.0), tol);
     let prep = Prepared::with_sinks(b, sinks.to_vec())?;
     let n_total = super::setup::OUTER_CHARGES
         + sinks.len() * super::setup::SINK_CHARGES

@@ -85,11 +85,8 @@ pub fn solve_auto(
     corner_clusters: bool,
 ) -> Result<Solved, FieldError> {
     let base = Layout {
-        n_total,
-        distance: 1.0,
         corner_clusters,
-        corner_fraction: DEFAULT_CORNER_FRACTION,
-        pairs: false,
+        ..Layout::auto(n_total)
     };
     solve_with(prep, base, distance)
 }
@@ -338,14 +335,7 @@ pub fn paper_boundary(ch: char) -> Result<Boundary, FieldError> {
         contours.push(c.clone());
         is_counter.push(true);
     }
-    let centre = centroid(&contours, 0.01);
-    Ok(Boundary {
-        contours,
-        is_counter,
-        centre,
-        radius: 1e4,
-        flat_tol: 0.01,
-    })
+    Ok(Boundary::about_centroid(contours, is_counter, 1e4, 0.01))
 }
 
 /// Is `p` inside the closed polygon? (winding number ≠ 0, Appendix I)

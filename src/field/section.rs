@@ -7,7 +7,7 @@
 //! The level planner solves a cavity level's field with it; the inverse
 //! problem of a cavity level's clearing is [`super::inverse`].
 
-use super::{centroid, setup, solve_quick, Boundary, Field, FieldError, FieldFigures, Layout};
+use super::{setup, solve_quick, Boundary, Field, FieldError, FieldFigures, Layout};
 use super::{Prepared, Solved};
 use crate::geometry::{polygon_area, polygons_bbox, Contour, Vec2};
 
@@ -42,14 +42,7 @@ fn section_boundary(oriented: &[Vec<Vec2>], tol: f64, outer_radius: f64) -> Boun
         .filter_map(|p| Contour::polygon(p).ok())
         .collect();
     let is_counter: Vec<bool> = oriented.iter().map(|p| polygon_area(p) < 0.0).collect();
-    let centre = centroid(&contours, tol);
-    Boundary {
-        contours,
-        is_counter,
-        centre,
-        radius: outer_radius,
-        flat_tol: tol,
-    }
+    Boundary::about_centroid(contours, is_counter, outer_radius, tol)
 }
 
 /// The number of outer loops (counter-clockwise polygons), at least one.

@@ -83,6 +83,38 @@ pub struct Boundary {
     pub flat_tol: f64,
 }
 
+impl Boundary {
+    /// The contours (`is_counter` flags the holes) inside the outer circle
+    /// (`centre`, `radius`), flattened to `flat_tol` for geometric queries.
+    pub fn new(
+        contours: Vec<Contour>,
+        is_counter: Vec<bool>,
+        centre: Vec2,
+        radius: f64,
+        flat_tol: f64,
+    ) -> Boundary {
+        Boundary {
+            contours,
+            is_counter,
+            centre,
+            radius,
+            flat_tol,
+        }
+    }
+
+    /// As [`Boundary::new`] with the outer circle about the material's area
+    /// centroid ([`super::centroid`] of the contours flattened to `flat_tol`).
+    pub fn about_centroid(
+        contours: Vec<Contour>,
+        is_counter: Vec<bool>,
+        radius: f64,
+        flat_tol: f64,
+    ) -> Boundary {
+        let centre = super::centroid(&contours, flat_tol);
+        Boundary::new(contours, is_counter, centre, radius, flat_tol)
+    }
+}
+
 /// How singularities are laid out.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Layout {
@@ -99,6 +131,21 @@ pub struct Layout {
     /// (`PAIR_ANGLE`), a larger outer ring (`PAIRED_OUTER_CHARGES`) and
     /// `CHECKS_PER_INTERVAL.1` check points per interval.
     pub pairs: bool,
+}
+
+impl Layout {
+    /// N charges in the default layout: clustered toward convex corners
+    /// ([`super::DEFAULT_CORNER_FRACTION`] of them), unpaired, at a placeholder
+    /// distance of 1 for [`super::solve_with`] to choose.
+    pub fn auto(n_total: usize) -> Layout {
+        Layout {
+            n_total,
+            distance: 1.0,
+            corner_clusters: true,
+            corner_fraction: super::DEFAULT_CORNER_FRACTION,
+            pairs: false,
+        }
+    }
 }
 
 /// A sink inside a counter: u = 0 on the circle (centre, radius).

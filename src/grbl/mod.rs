@@ -20,12 +20,14 @@
 pub mod codes;
 #[cfg(test)]
 mod fake;
+mod fault;
 pub mod link;
 pub mod options;
 pub mod protocol;
 pub mod session;
 pub mod streamer;
 
+pub use fault::InputFault;
 pub use link::Link;
 pub use options::StreamOptions;
 pub use session::{job_blocks, run_stream};
@@ -162,7 +164,7 @@ pub enum GrblError {
     },
     /// The job cannot be sent as it is (line too long, `--from-line` impossible).
     #[error("{0}")]
-    Input(String),
+    Input(#[source] InputFault),
 }
 
 impl GrblError {

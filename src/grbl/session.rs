@@ -8,14 +8,18 @@ use super::options::StreamOptions;
 use super::streamer::{
     check_blocks, resume_blocks, Block, Observer, OperatorCommand, Resume, StreamReport, Streamer,
 };
-use super::GrblError;
+use super::{GrblError, InputFault};
 use crate::gcode::parse::Program;
 
 /// Reads the file and builds the blocks to send (with the resume preamble if
 /// `--from-line`).
 pub fn job_blocks(opts: &StreamOptions) -> Result<(Program, Vec<Block>), GrblError> {
-    let text = std::fs::read_to_string(&opts.file)
-        .map_err(|e| GrblError::Input(format!("cannot read {}: {e}", opts.file.display())))?;
+    let text = std::fs::read_to_string(&opts.file).map_err(|e| {
+        GrblError::Input(InputFault::Read {
+            path: opts.file.clone(),
+            reason: e.to_string(),
+        })
+    })?;
     let program = Program::parse(&text);
     let blocks = match opts.from_line {
         Some(line) => resume_blocks(
@@ -45,8 +49,12 @@ pub fn run_stream(
     check_blocks(&blocks, &opts.settings())?;
     let mut link = Link::open(&opts.port, opts.baud)?;
     if let Some(path) = &opts.log {
-        let file = std::fs::File::create(path)
-            .map_err(|e| GrblError::Input(format!("cannot create log {}: {e}", path.display())))?;
+        let file = std::fs::File::create(path).map_err(|e| {
+            GrblError::Input(InputFault::Log {
+                path: path.clone(),
+                reason: e.to_string(),
+            })
+        })?;
         link.set_log(Box::new(std::io::LineWriter::new(file)));
     }
     let mut streamer = Streamer::connect(link, opts.settings(), obs)?;

@@ -32,7 +32,7 @@ use super::protocol::{
     parse_response, MachineState, Override, Response, StatusReport, CYCLE_START, FEED_HOLD,
     SOFT_RESET, STATUS_QUERY,
 };
-use super::GrblError;
+use super::{GrblError, InputFault};
 use crate::gcode::parse::{Distance, FeedMode, ModalState, Motion, Plane, Program, Spindle, Units};
 
 /// Tunables of the protocol. [`Settings::default`] fits a stock GRBL 1.1.
@@ -973,19 +973,14 @@ pub fn check_blocks(blocks: &[Block], settings: &Settings) -> Result<(), GrblErr
     let max = settings.line_buffer.min(settings.rx_buffer);
     for b in blocks {
         if b.text.len() + 1 > max {
-            return Err(GrblError::Input(format!(
-                "line {}: {} characters after stripping comments and spaces; GRBL takes \
-                     at most {} per line",
-                b.line,
-                b.text.len(),
-                max - 1
-            )));
+            return Err(GrblError::Input(InputFault::LineTooLong {
+                line: b.line,
+                chars: b.text.len(),
+                most: max - 1,
+            }));
         }
         if !b.text.is_ascii() || b.text.bytes().any(|c| c.is_ascii_control()) {
-            return Err(GrblError::Input(format!(
-                "line {}: contains non-ASCII or control characters",
-                b.line
-            )));
+            return Err(GrblError::Input(InputFault::NotAscii { line: b.line }));
         }
     }
     Ok(())
@@ -1152,39 +1147,34 @@ impl ResumePoint {
         let n = resume.line;
         let last = program.lines.len();
         if n == 0 || n > last {
-            return Err(GrblError::Input(format!(
-                "--from-line {n}: the file has lines 1 to {last}"
-            )));
+            return Err(GrblError::Input(InputFault::ResumeOutside {
+                line: n,
+                last,
+            }));
         }
-        let state = program.state_before(n).map_err(|e| {
-            GrblError::Input(format!("--from-line {n}: cannot compute the state: {e}"))
-        })?;
+        let state = program
+            .state_before(n)
+            .map_err(|e| GrblError::Input(InputFault::ResumeState { line: n, error: e }))?;
         let (highest_z, plunge_feed) = history_before(program, n);
-        let safe_z = resume.safe_z.or(highest_z).ok_or_else(|| {
-            GrblError::Input(format!(
-                "--from-line {n}: no Z move before this line; give --safe-z"
-            ))
-        })?;
+        let safe_z = resume
+            .safe_z
+            .or(highest_z)
+            .ok_or(GrblError::Input(InputFault::ResumeNoSafeZ { line: n }))?;
         let axis = ['X', 'Y', 'Z'];
         let mut pos = [0.0; 3];
         for i in 0..3 {
             pos[i] = state.position[i].ok_or_else(|| {
-                GrblError::Input(format!(
-                    "--from-line {n}: the {} position before this line is not known \
-                     (set by G28/G30/G53/G10 or never set)",
-                    axis[i]
-                ))
+                GrblError::Input(InputFault::ResumePosition {
+                    line: n,
+                    axis: axis[i],
+                })
             })?;
         }
-        let feed = state.feed.ok_or_else(|| {
-            GrblError::Input(format!(
-                "--from-line {n}: no feed rate (F) is set before this line"
-            ))
-        })?;
+        let feed = state
+            .feed
+            .ok_or(GrblError::Input(InputFault::ResumeNoFeed { line: n }))?;
         if state.ended {
-            return Err(GrblError::Input(format!(
-                "--from-line {n}: the program has already ended (M2/M30) before this line"
-            )));
+            return Err(GrblError::Input(InputFault::ResumeEnded { line: n }));
         }
         Ok(ResumePoint {
             state,

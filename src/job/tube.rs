@@ -287,7 +287,7 @@ fn tube_error(e: TubeError, spec: &TubeSpec, top: f64) -> JobError {
                 "points" => "operation.tolerance",
                 _ => "shape.height",
             },
-            reason,
+            reason.to_string(),
         ),
     }
 }

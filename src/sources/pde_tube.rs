@@ -41,8 +41,11 @@ use crate::geometry::Vec2;
 use crate::levels::sections::{LevelField, Sections};
 use std::f64::consts::TAU;
 
+mod fault;
 pub mod spec;
 mod trim;
+
+pub use fault::TubeFault;
 
 /// Heights between which [`PdeTube::new`] checks that sections nest.
 pub const NEST_LEVELS: usize = 200;
@@ -71,13 +74,14 @@ pub enum TubeError {
     /// The surface's own input is bad (see [`PdeError`]).
     #[error(transparent)]
     Pde(#[from] PdeError),
-    /// A curve or parameter does not fit a tube; the message says how.
+    /// A curve or parameter does not fit a tube; `reason` says how.
     #[error("{key}: {reason}")]
     Invalid {
         /// The field: `x0`, `x1`, `xu0`, `xu1`, `points`, `tol` or `trims`.
         key: &'static str,
         /// What is wrong with it.
-        reason: String,
+        #[source]
+        reason: TubeFault,
     },
     /// A₀z(u) is not monotone: the surface turns back in z.
     #[error("xu0, xu1: the tube's spine turns back in z at z = {z:.4} mm (u = {u:.4}); A₀z(u) must be monotone for horizontal sections to be one curve each: make the z parts of xu0 and xu1 agree in sign with x1 − x0")]
@@ -137,7 +141,12 @@ fn check_flat(curves: &BoundaryCurves) -> Result<(), TubeError> {
             let z0 = c[0][2];
             return Err(TubeError::Invalid {
                 key,
-                reason: format!("a tube needs it {what}: sample {j} has z = {z}, sample 0 {z0}"),
+                reason: TubeFault::NotFlat {
+                    what,
+                    sample: j,
+                    z,
+                    z0,
+                },
             });
         }
     }
@@ -151,13 +160,13 @@ fn check_inputs(curves: &BoundaryCurves, points: usize, tol: f64) -> Result<(), 
     if !(tol.is_finite() && tol > 0.0) {
         return Err(TubeError::Invalid {
             key: "tol",
-            reason: format!("{tol}; must be finite and > 0 (mm)"),
+            reason: TubeFault::Tolerance { tol },
         });
     }
     if !(16..=MAX_POINTS).contains(&points) {
         return Err(TubeError::Invalid {
             key: "points",
-            reason: format!("{points}; must be 16 to {MAX_POINTS}"),
+            reason: TubeFault::Points { points },
         });
     }
     Ok(())
@@ -264,7 +273,7 @@ impl PdeTube {
         if z1 == z0 || !(z1 - z0).is_finite() {
             return Err(TubeError::Invalid {
                 key: "x1",
-                reason: format!("at the same height as x0 (z = {z0}): a tube needs depth"),
+                reason: TubeFault::NoDepth { z0 },
             });
         }
         let sign = (z1 - z0).signum();

@@ -60,12 +60,13 @@ impl From<ExitStatus> for ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use pfcam::grbl::InputFault;
 
     #[test]
     fn every_outcome_has_a_distinct_exit_code() {
         let outcomes = [
             Ok(StreamReport::default()),
-            Err(GrblError::Input("x".into())),
+            Err(GrblError::Input(InputFault::ResumeNoFeed { line: 1 })),
             Err(GrblError::NoGrbl {
                 port: "p".into(),
                 heard: String::new(),

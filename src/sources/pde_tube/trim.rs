@@ -1,7 +1,7 @@
 //! The tube's trims in the (u, v) plane (002 §3), cut out of its sections, and
 //! the containment test of the nesting check.
 
-use super::TubeError;
+use super::{TubeError, TubeFault};
 use crate::geometry::Vec2;
 use std::f64::consts::TAU;
 
@@ -11,21 +11,19 @@ pub const MAX_TRIM_VERTICES: usize = 100_000;
 /// Each trim: 3 to [`MAX_TRIM_VERTICES`] finite (u, v) points.
 pub(super) fn check(trims: &[Vec<[f64; 2]>]) -> Result<(), TubeError> {
     for (i, t) in trims.iter().enumerate() {
-        let bad = |reason: String| TubeError::Invalid {
+        let bad = |reason| TubeError::Invalid {
             key: "trims",
-            reason: format!("trim {i}: {reason}"),
+            reason,
         };
         if t.len() < 3 || t.len() > MAX_TRIM_VERTICES {
-            let n = t.len();
-            return Err(bad(format!(
-                "{n} points; a closed polygon needs 3 to {MAX_TRIM_VERTICES}"
-            )));
+            let points = t.len();
+            return Err(bad(TubeFault::TrimPoints { trim: i, points }));
         }
         if let Some(j) = t
             .iter()
             .position(|p| !(p[0].is_finite() && p[1].is_finite()))
         {
-            return Err(bad(format!("point {j} is not finite")));
+            return Err(bad(TubeFault::TrimNotFinite { trim: i, point: j }));
         }
     }
     Ok(())

@@ -14,6 +14,7 @@
 
 use super::error::{invalid, PolyError};
 use super::fast::FastField;
+use super::fault::PolyFault;
 use super::iso::{zero_set, Grid3, IsoError, IsoMesh};
 use super::system::{GivenPoint, PointKind, Solution};
 use super::Kernel;
@@ -64,10 +65,7 @@ impl Region {
         let lo = (lo - Vector3::repeat(pad)).sup(&(sol.mesh().lo + Vector3::repeat(side)));
         let hi = (hi + Vector3::repeat(pad)).inf(&(sol.mesh().hi - Vector3::repeat(side)));
         if (0..3).any(|k| hi[k] <= lo[k]) {
-            return Err(invalid(
-                "box",
-                "leaves no room for the closed solid: the given points must lie more than one element side inside it",
-            ));
+            return Err(invalid("box", PolyFault::NoRoom));
         }
         Ok(Region { lo, hi })
     }
@@ -103,10 +101,11 @@ impl Region {
 fn not_closed(r: &Region, p: Vector3<f64>, v: f64) -> PolyError {
     invalid(
         "shape.solid",
-        format!(
-            "= \"closed\", but the solid {{T1 < 0}} reaches the boundary of the region searched round the points, [{:.3}, {:.3}, {:.3}]..[{:.3}, {:.3}, {:.3}] mm (T1 = {v:.3e} at ({:.3}, {:.3}, {:.3})): it is not closed there; add outside points, or use shape.solid = \"relief\"",
-            r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y, r.hi.z, p.x, p.y, p.z
-        ),
+        PolyFault::NotClosed {
+            region: *r,
+            at: p,
+            t1: v,
+        },
     )
 }
 
@@ -147,12 +146,7 @@ pub fn closed_mesh(
         .filter(|(_, v)| *v < 0.0)
         .map(|(id, _)| (coarse.node(id), coarse.node(id)))
         .reduce_with(|a, b| (a.0.inf(&b.0), a.1.sup(&b.1)))
-        .ok_or_else(|| {
-            invalid(
-                "shape.solid",
-                format!("= \"closed\", but no node of a {coarse_step:.3} mm grid round the points is inside the solid (T1 < 0): the solid is empty or thinner than that"),
-            )
-        })?;
+        .ok_or_else(|| invalid("shape.solid", PolyFault::EmptySolid { step: coarse_step }))?;
     let grow = Vector3::repeat(2.0 * coarse_step);
     let fine = Region {
         lo: (lo - grow).sup(&region.lo),
@@ -170,11 +164,10 @@ pub fn closed_mesh(
 fn too_fine(r: &Region, spacing: f64) -> PolyError {
     invalid(
         "resolution",
-        format!(
-            "{spacing} mm makes more than {} grid nodes over the closed solid's region [{:.3}, {:.3}, {:.3}]..[{:.3}, {:.3}, {:.3}] mm: use a coarser one",
-            super::iso::MAX_NODES,
-            r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y, r.hi.z
-        ),
+        PolyFault::TooFine {
+            spacing,
+            region: *r,
+        },
     )
 }
 

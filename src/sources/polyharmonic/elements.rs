@@ -19,6 +19,7 @@
 //! and ∫ ∂T*/∂n dA = 0 over the element's own plane (d·n = 0).
 
 use super::error::{invalid, PolyError};
+use super::fault::PolyFault;
 use nalgebra::Vector3;
 
 /// Most elements per face edge: 6·20² = 2400 elements make a dense system of
@@ -68,16 +69,10 @@ impl BoxMesh {
     /// `per_edge` outside 1..=[`MAX_PER_EDGE`] (`elements`).
     pub fn new(lo: Vector3<f64>, hi: Vector3<f64>, per_edge: usize) -> Result<Self, PolyError> {
         if !(lo.iter().chain(hi.iter()).all(|c| c.is_finite())) || (0..3).any(|k| lo[k] >= hi[k]) {
-            return Err(invalid(
-                "box",
-                format!("needs finite corners with lo < hi on every axis (lo {lo:?}, hi {hi:?})"),
-            ));
+            return Err(invalid("box", PolyFault::BadBox { lo, hi }));
         }
         if !(1..=MAX_PER_EDGE).contains(&per_edge) {
-            return Err(invalid(
-                "elements",
-                format!("elements per face edge must be 1 to {MAX_PER_EDGE} (got {per_edge})"),
-            ));
+            return Err(invalid("elements", PolyFault::PerEdge { per_edge }));
         }
         let n = per_edge as f64;
         let mut elements = Vec::with_capacity(6 * per_edge * per_edge);

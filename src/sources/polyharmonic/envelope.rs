@@ -11,6 +11,7 @@
 //! missed: `step` is the thinnest feature the envelope promises to see.
 
 use super::error::{invalid, PolyError};
+use super::fault::PolyFault;
 use super::system::Solution;
 use nalgebra::Vector3;
 
@@ -34,19 +35,16 @@ impl Envelope {
         if !(self.step.is_finite() && self.step > 0.0 && self.tol.is_finite() && self.tol > 0.0) {
             return Err(invalid(
                 "envelope",
-                format!(
-                    "step and tol must be finite and > 0 (got {}, {})",
-                    self.step, self.tol
-                ),
+                PolyFault::EnvelopeSettings {
+                    step: self.step,
+                    tol: self.tol,
+                },
             ));
         }
         if height / self.step > MAX_SAMPLES as f64 {
             return Err(invalid(
                 "envelope",
-                format!(
-                    "step {} makes more than {MAX_SAMPLES} samples down the box",
-                    self.step
-                ),
+                PolyFault::EnvelopeSamples { step: self.step },
             ));
         }
         Ok(self)

@@ -1,18 +1,21 @@
 //! Typed errors of the polyharmonic solid (`sources::polyharmonic`).
 
+use super::fault::PolyFault;
+
 /// Bad input to the polyharmonic solid, or a system that cannot be solved.
 /// `key` names the input at fault, as the job keys will when the source is
 /// wired into jobs (`points`, `kernel.a`, `box`, `elements`, `quadrature`,
 /// `envelope`).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PolyError {
-    /// A parameter or point is out of range; the message says how.
+    /// A parameter or point is out of range; `reason` says how.
     #[error("{key}: {reason}")]
     Invalid {
         /// The input at fault.
         key: &'static str,
         /// What is wrong with it.
-        reason: String,
+        #[source]
+        reason: PolyFault,
     },
     /// The closed solid's zero set could not be extracted: the field is not
     /// finite at a node of its grid (key `points`).
@@ -32,11 +35,8 @@ pub enum PolyError {
 }
 
 /// Shorthand for [`PolyError::Invalid`].
-pub(crate) fn invalid(key: &'static str, reason: impl Into<String>) -> PolyError {
-    PolyError::Invalid {
-        key,
-        reason: reason.into(),
-    }
+pub(crate) fn invalid(key: &'static str, reason: PolyFault) -> PolyError {
+    PolyError::Invalid { key, reason }
 }
 
 #[cfg(test)]

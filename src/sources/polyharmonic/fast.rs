@@ -14,6 +14,7 @@
 //! 0.1 ms to a few µs (docs/method.md §17, "Speed").
 
 use super::error::{invalid, PolyError};
+use super::fault::PolyFault;
 use super::lagrange::LagrangeGrid;
 use super::system::Solution;
 use nalgebra::Vector3;
@@ -55,21 +56,17 @@ impl FastField {
         if !(sol.mesh().contains(start) && sol.mesh().contains(end)) {
             return Err(invalid(
                 "box",
-                format!(
-                    "the work region {:?}..{:?} (with its interpolation margin) must lie strictly inside the box {:?}..{:?}",
-                    start.as_slice(),
-                    end.as_slice(),
-                    sol.mesh().lo.as_slice(),
-                    sol.mesh().hi.as_slice()
-                ),
+                PolyFault::RegionOutsideBox {
+                    start,
+                    end,
+                    lo: sol.mesh().lo,
+                    hi: sol.mesh().hi,
+                },
             ));
         }
         let nodes = n.iter().map(|&k| k as f64).product::<f64>();
         if nodes > MAX_NODES as f64 {
-            return Err(invalid(
-                "box",
-                format!("the work region needs {nodes} interpolation nodes, more than {MAX_NODES}"),
-            ));
+            return Err(invalid("box", PolyFault::TooManyNodes { nodes }));
         }
         let grid = LagrangeGrid::sample(start, h, n, order, |x| sol.box_value(x));
         Ok(FastField { sol, grid, lo, hi })

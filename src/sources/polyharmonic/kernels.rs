@@ -28,6 +28,7 @@
 //! ΔT*₁A = −1 inside the ball and 0 outside; ΔT*₂A = T*₁A.
 
 use super::error::{invalid, PolyError};
+use super::fault::PolyFault;
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
@@ -70,10 +71,9 @@ impl Kernel {
     /// The kernel after checking its radius: `kernel.a` must be finite and > 0.
     pub fn validated(self) -> Result<Self, PolyError> {
         match self {
-            Kernel::T1A { a } | Kernel::T2A { a } if !(a.is_finite() && a > 0.0) => Err(invalid(
-                "kernel.a",
-                format!("the ball radius A must be finite and > 0 (got {a})"),
-            )),
+            Kernel::T1A { a } | Kernel::T2A { a } if !(a.is_finite() && a > 0.0) => {
+                Err(invalid("kernel.a", PolyFault::Radius { a }))
+            }
             k => Ok(k),
         }
     }

@@ -19,6 +19,7 @@
 
 use super::elements::{self_inv_r, self_r, Element};
 use super::error::{invalid, PolyError};
+use super::fault::PolyFault;
 use super::gauss::{GaussRule, MAX_ORDER};
 use super::kernels::Kernel;
 use nalgebra::Vector3;
@@ -64,21 +65,17 @@ impl QuadRule {
     /// Checks the settings (`quadrature.order`, `.ratio`, `.max_depth`).
     pub fn new(q: Quadrature) -> Result<Self, PolyError> {
         if !(1..=MAX_ORDER).contains(&q.order) {
-            return Err(invalid(
-                "quadrature",
-                format!("order must be 1 to {MAX_ORDER} (got {})", q.order),
-            ));
+            return Err(invalid("quadrature", PolyFault::Order { order: q.order }));
         }
         if !(q.ratio.is_finite() && q.ratio > 0.0) {
-            return Err(invalid(
-                "quadrature",
-                format!("ratio must be finite and > 0 (got {})", q.ratio),
-            ));
+            return Err(invalid("quadrature", PolyFault::Ratio { ratio: q.ratio }));
         }
         if q.max_depth > MAX_DEPTH {
             return Err(invalid(
                 "quadrature",
-                format!("max_depth must be ≤ {MAX_DEPTH} (got {})", q.max_depth),
+                PolyFault::Depth {
+                    max_depth: q.max_depth,
+                },
             ));
         }
         Ok(QuadRule {

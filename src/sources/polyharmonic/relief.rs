@@ -24,6 +24,7 @@
 
 use super::error::{invalid, PolyError};
 use super::fast::FastField;
+use super::fault::PolyFault;
 use crate::field::isolines::root_in_unit;
 use nalgebra::Vector3;
 
@@ -71,10 +72,7 @@ impl Relief {
     pub fn new(field: FastField, spec: ReliefSpec) -> Result<Self, PolyError> {
         let ok = |v: f64| v.is_finite() && v > 0.0;
         if !(ok(spec.step) && ok(spec.coarse) && spec.start > spec.base) {
-            return Err(invalid(
-                "shape.size",
-                "the ray step and the coarse spacing must be finite and > 0, the rays' start above the base",
-            ));
+            return Err(invalid("shape.size", PolyFault::RaySettings));
         }
         let [sx, sy] = spec.size;
         let nx = ((sx / spec.coarse).ceil().max(1.0)) as usize + 1;
@@ -82,10 +80,7 @@ impl Relief {
         if (nx as f64) * (ny as f64) > MAX_COARSE as f64
             || (spec.start - spec.base) / spec.step > 1e5
         {
-            return Err(invalid(
-                "shape.size",
-                "too many coarse rays or steps along a ray: a smaller rectangle or box",
-            ));
+            return Err(invalid("shape.size", PolyFault::TooManyRays));
         }
         let (hx, hy) = (sx / (nx - 1) as f64, sy / (ny - 1) as f64);
         let mut r = Relief {
@@ -109,12 +104,11 @@ impl Relief {
         if let Some(k) = rays.iter().position(|r| r.1) {
             return Err(invalid(
                 "shape.box",
-                format!(
-                    "the solid reaches the rays' start z = {:.3} at ({:.3}, {:.3}): raise the box top",
-                    spec.start,
-                    spec.origin[0] + (k % nx) as f64 * hx,
-                    spec.origin[1] + (k / nx) as f64 * hy
-                ),
+                PolyFault::ReachesStart {
+                    z: spec.start,
+                    x: spec.origin[0] + (k % nx) as f64 * hx,
+                    y: spec.origin[1] + (k / nx) as f64 * hy,
+                },
             ));
         }
         r.coarse = rays.into_iter().map(|r| r.0).collect();

@@ -15,6 +15,7 @@
 use super::closed::{closed_mesh, Region};
 use super::error::{invalid, PolyError};
 use super::fast::FastField;
+use super::fault::PolyFault;
 use super::iso::IsoMesh;
 use super::relief::{Relief, ReliefSpec};
 use super::system::{solve, GivenPoint, Model};
@@ -128,12 +129,7 @@ impl PolySpec {
         let zmax = i.points.iter().map(|p| p.p.z).fold(f64::MIN, f64::max);
         let start = zmax + 0.25 * (i.hi.z - zmax);
         if start <= i.base + RAY_STEP {
-            return Err(invalid(
-                "shape.base",
-                format!(
-                    "must lie below the highest given point ({zmax}) by more than {RAY_STEP} mm"
-                ),
-            ));
+            return Err(invalid("shape.base", PolyFault::BaseTooHigh { zmax }));
         }
         let [ox, oy] = i.origin;
         let lo = Vector3::new(ox, oy, i.base - RAY_STEP);

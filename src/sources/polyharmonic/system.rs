@@ -28,6 +28,7 @@
 
 use super::elements::BoxMesh;
 use super::error::{invalid, PolyError};
+use super::fault::PolyFault;
 use super::kernels::Kernel;
 use super::quadrature::{influence, QuadRule, Quadrature};
 use faer::Mat;
@@ -126,10 +127,7 @@ impl Solution {
 /// `kernel.a`), box, elements or quadrature, a singular system.
 pub fn solve(model: &Model) -> Result<Solution, PolyError> {
     if model.points.is_empty() {
-        return Err(invalid(
-            "points",
-            "no points given: the solid needs at least one",
-        ));
+        return Err(invalid("points", PolyFault::NoPoints));
     }
     let mesh = BoxMesh::new(model.lo, model.hi, model.per_edge)?;
     let n = mesh.elements.len();
@@ -165,18 +163,14 @@ pub fn solve_dirichlet(
     if 2 * n + points.len() > MAX_UNKNOWNS {
         return Err(invalid(
             "elements",
-            format!(
-                "{n} box elements and {} points make {} unknowns, more than {MAX_UNKNOWNS}: use fewer elements per edge",
-                points.len(),
-                2 * n + points.len()
-            ),
+            PolyFault::TooManyUnknowns {
+                elements: n,
+                points: points.len(),
+            },
         ));
     }
     if t1.len() != n || t2.len() != n {
-        return Err(invalid(
-            "box",
-            format!("box data needs one value per element ({n})"),
-        ));
+        return Err(invalid("box", PolyFault::BoxData { elements: n }));
     }
     let centres: Vec<Vector3<f64>> = points.iter().map(|p| p.0).collect();
     let (a, b) = assemble(&mesh, &rule, loads, t1, t2, points);
@@ -200,10 +194,7 @@ fn load_kernels(kernel: Kernel) -> Result<(Kernel, Kernel), PolyError> {
     match kernel.validated()? {
         Kernel::T2 => Ok((Kernel::T1, Kernel::T2)),
         Kernel::T2A { a } => Ok((Kernel::T1A { a }, Kernel::T2A { a })),
-        k => Err(invalid(
-            "kernel",
-            format!("{k:?} needs the l = 1 or l = 3 system, not implemented: use T2 or T2A"),
-        )),
+        kernel => Err(invalid("kernel", PolyFault::KernelUnsupported { kernel })),
     }
 }
 
@@ -212,20 +203,21 @@ fn check_points(mesh: &BoxMesh, points: &[(Vector3<f64>, f64)]) -> Result<(), Po
     if points.len() > MAX_POINTS {
         return Err(invalid(
             "points",
-            format!("at most {MAX_POINTS} points (got {})", points.len()),
+            PolyFault::TooManyPoints {
+                points: points.len(),
+            },
         ));
     }
     for (i, (p, t)) in points.iter().enumerate() {
         if !t.is_finite() || !mesh.contains(*p) {
             return Err(invalid(
                 "points",
-                format!(
-                    "point {} at {:?} is not strictly inside the box {:?}..{:?}",
-                    i + 1,
-                    p.as_slice(),
-                    mesh.lo.as_slice(),
-                    mesh.hi.as_slice()
-                ),
+                PolyFault::PointOutside {
+                    number: i + 1,
+                    at: *p,
+                    lo: mesh.lo,
+                    hi: mesh.hi,
+                },
             ));
         }
     }
@@ -241,11 +233,11 @@ fn check_points(mesh: &BoxMesh, points: &[(Vector3<f64>, f64)]) -> Result<(), Po
             if (points[i].0 - points[j].0).norm() <= tol {
                 return Err(invalid(
                     "points",
-                    format!(
-                        "points {} and {} coincide (within {tol:.1e}); give each point once",
-                        i.min(j) + 1,
-                        i.max(j) + 1
-                    ),
+                    PolyFault::Coincide {
+                        first: i.min(j) + 1,
+                        second: i.max(j) + 1,
+                        tol,
+                    },
                 ));
             }
         }
