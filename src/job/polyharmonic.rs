@@ -231,8 +231,17 @@ fn check_inside_box(
 
 /// A polyharmonic error as a job error: its key as a job key.
 fn poly_error(e: crate::sources::polyharmonic::PolyError) -> JobError {
-    let text = e.to_string();
-    let (key, message) = text.split_once(": ").unwrap_or(("shape.points", &text));
+    use crate::sources::polyharmonic::PolyError;
+    // An input's own fault names its key; the zero set and the singular
+    // system are the points' ("points: ..." in their text).
+    let (key, message) = match &e {
+        PolyError::Invalid { key, reason } => (*key, reason.to_string()),
+        other => {
+            let text = other.to_string();
+            let message = text.strip_prefix("points: ").unwrap_or(&text).to_string();
+            ("points", message)
+        }
+    };
     let key = match key {
         k if k.starts_with("shape.") => k,
         "kernel" => "shape.kernel",
