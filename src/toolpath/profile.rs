@@ -6,7 +6,7 @@ use super::entry::{enter, ramp_loop, start_near, Entry};
 use super::stock::{model_radius, StockMap};
 use super::trace::{trace, Navigator, TraceError, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
-pub use crate::geometry::deepest_point;
+pub(crate) use crate::geometry::deepest_point;
 use crate::geometry::{DistanceIndex, Shape, Vec2};
 
 /// Settings of a profile, mm and mm/min.
