@@ -19,15 +19,13 @@ use super::system::Solution;
 use nalgebra::Vector3;
 
 /// Most interpolation nodes (8 MB of values).
-pub const MAX_NODES: usize = 1_000_000;
+pub(crate) const MAX_NODES: usize = 1_000_000;
 
 /// T₁ with the box part interpolated over a region (module doc).
 #[derive(Debug, Clone)]
 pub struct FastField {
     sol: Solution,
     grid: LagrangeGrid,
-    lo: Vector3<f64>,
-    hi: Vector3<f64>,
 }
 
 impl FastField {
@@ -72,7 +70,7 @@ impl FastField {
             ));
         }
         let grid = LagrangeGrid::sample(start, h, n, order, |x| sol.box_value(x));
-        Ok(FastField { sol, grid, lo, hi })
+        Ok(FastField { sol, grid })
     }
 
     /// T₁(x) (x meant inside the region; outside it the end stencils
@@ -89,10 +87,5 @@ impl FastField {
     /// The solved field (for the exact T₁).
     pub fn solution(&self) -> &Solution {
         &self.sol
-    }
-
-    /// The region [lo, hi] the interpolant was built for.
-    pub fn region(&self) -> (Vector3<f64>, Vector3<f64>) {
-        (self.lo, self.hi)
     }
 }
