@@ -2,7 +2,7 @@
 //!
 //! Two steps, as in ripgrep's `lowargs`/`hiargs`: [`RawJob`] mirrors the TOML file
 //! exactly (every table and key optional, unknown keys rejected), and
-//! [`resolve`](RawJob::resolve) turns it into a [`Job`] with defaults applied and
+//! [`resolve_with`](RawJob::resolve_with) turns it into a [`Job`] with defaults applied and
 //! every value checked. Every error names the key (`tool.diameter`, ...), and a
 //! syntax error names the line and column. The keys, units and defaults are
 //! documented in `docs/job-format.md`.
@@ -10,7 +10,7 @@
 //! This file holds the resolved types and [`JobError`]; the steps are in
 //! `job/`: `raw.rs` (the schema), `load.rs` (reading the file, parsing the
 //! TOML, placing its errors by line, column and key), `resolve.rs`
-//! ([`RawJob::resolve`] and the checkers the tables' resolvers share),
+//! ([`RawJob::resolve_with`] and the checkers the tables' resolvers share),
 //! `machine.rs` (`[machine]`, and machine files), and one resolver per table
 //! (`tool.rs`, `shape.rs`, `stock.rs`, `operation.rs`, `field.rs`, ...).
 

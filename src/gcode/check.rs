@@ -31,7 +31,7 @@ use std::fmt;
 pub(crate) const GRBL_LINE_BUFFER: usize = 80;
 
 /// Longest raw line (comments included) before the checker warns; pfcam's own
-/// writer stays within it ([`super::MAX_LINE_LEN`]).
+/// writer stays within it ([`super::writer::MAX_LINE_LEN`]).
 pub(crate) const MAX_RAW_LINE: usize = 80;
 
 /// Slack for the travel comparisons, mm: far below a step, only absorbs the

@@ -911,7 +911,7 @@ pub struct Program {
 }
 
 impl Program {
-    /// Splits a file into lines (never fails: errors are found by [`Program::check`]).
+    /// Splits a file into lines (never fails: a line's errors are found when it is executed).
     pub fn parse(text: &str) -> Program {
         Program {
             lines: text

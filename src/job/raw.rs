@@ -306,7 +306,7 @@ pub(crate) struct RawOutput {
 }
 
 /// A number, or a word (only `"auto"` is accepted; any other word is reported
-/// with its key by [`RawJob::resolve`]).
+/// with its key by [`RawJob::resolve_with`]).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum AutoOr {
     /// An integer.

@@ -1,4 +1,4 @@
-//! Resolution: [`RawJob::resolve`] applies the defaults and checks every
+//! Resolution: [`RawJob::resolve_with`] applies the defaults and checks every
 //! value, one resolver per table (`tool.rs`, `shape.rs`, `stock.rs`,
 //! `operation.rs`, `field.rs`, `machine.rs`), and the small checkers they
 //! share (`finite`, `one_of`, `at_most_one`, `show`, ...).

@@ -27,7 +27,7 @@
 //!   tolerance are gouges ([`part`]).
 //!
 //! The library never prints; [`simulate`] returns a [`Simulation`] (the
-//! [`Report`] and the final [`HeightMap`]), and [`png::stock_png`] draws it;
+//! [`Report`] and the final [`HeightMap`]), and the tests draw it (`png::stock_png`);
 //! [`simulate_programs`] returns a [`Sequence`] (a report per program, the
 //! part compared once, the final stock), and [`png::sequence_png`] draws it.
 

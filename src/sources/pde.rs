@@ -53,7 +53,7 @@ pub enum PdeError {
         reason: PdeFault,
     },
     /// A mode system of the four-curve conditions (002) amplifies its data
-    /// beyond [`GAIN_LIMIT`]: the surface between the curves would
+    /// beyond `four_curves::GAIN_LIMIT`: the surface between the curves would
     /// be dominated by rounding.
     #[error("{key}: the mode-{mode} system (λ = {lambda}) amplifies its data {gain:.1e}-fold between the curves (limit {limit:.0e}); lower a or modes, or space the curves more evenly")]
     IllConditioned {
@@ -65,7 +65,7 @@ pub enum PdeError {
         lambda: f64,
         /// max over u ∈ [0, 1] of |φ(λ, u)ᵀ M⁻¹ eᵢ| over the unit data eᵢ.
         gain: f64,
-        /// [`GAIN_LIMIT`].
+        /// `four_curves::GAIN_LIMIT`.
         limit: f64,
     },
     /// A 4 × 4 mode system could not be solved to finite coefficients.

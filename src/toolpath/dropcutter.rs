@@ -1066,7 +1066,7 @@ impl MeshIndex {
     /// [`MAX_ENTRIES_PER_TRIANGLE`]·n + [`MAX_CELLS`] entries. For drops a cell
     /// near the tool radius is a good choice. Triangles with a coordinate that
     /// is not finite, and any beyond the first [`MAX_TRIANGLES`], are left out
-    /// and counted in [`MeshIndex::skipped`].
+    /// (the unit tests count them).
     pub fn new(triangles: Vec<[[f64; 3]; 3]>, cell: f64) -> MeshIndex {
         #[cfg(test)]
         let total = triangles.len();

@@ -23,7 +23,7 @@
 //! The row-equilibrated matrix itself stays well conditioned (cond ≈ 12 there),
 //! so the conditions are met to rounding whatever the gain; the gain is what a
 //! user's wiggle (or rounding in the data) becomes inside. Above
-//! [`GAIN_LIMIT`] the solve is refused.
+//! `GAIN_LIMIT` (1e6) the solve is refused.
 
 use super::basis;
 #[cfg(test)]

@@ -6,7 +6,7 @@
 //! ```
 //!
 //! and their gradients in P (with d = P − Q, ∂T*/∂n_Q = −g(r) d·n and
-//! ∇_P ∂T*/∂n_Q = −(h(r)(d·n) d + g(r) n), see [`Radial`](super::Radial)).
+//! ∇_P ∂T*/∂n_Q = −(h(r)(d·n) d + g(r) n), see [`Radial`](super::kernels::Radial)).
 //!
 //! From the element's own centre the integrals are exact (`elements`:
 //! g₁ = ∫dA/r / 4π, g₂ = ∫r dA / 8π, h₁ = h₂ = 0). Otherwise the element is
