@@ -40,7 +40,8 @@ pub enum Stage {
 }
 
 /// Every stage, in the order of [`Stage`]'s discriminants.
-pub const STAGES: [Stage; 12] = [
+#[cfg(feature = "count-evals")]
+pub(crate) const STAGES: [Stage; 12] = [
     Stage::Other,
     Stage::ShapeSolve,
     Stage::LevelGrid,
@@ -117,14 +118,14 @@ mod imp {
         }
         *since = Some(now);
     }
-    pub fn set_stage(s: Stage) -> Stage {
+    pub(crate) fn set_stage(s: Stage) -> Stage {
         clock();
         STAGES[STAGE.swap(s as usize, Relaxed)]
     }
-    pub fn add(k: usize, n: u64) {
+    pub(crate) fn add(k: usize, n: u64) {
         COUNTS[STAGE.load(Relaxed)][k].fetch_add(n, Relaxed);
     }
-    pub fn take() -> Vec<(Stage, Counts)> {
+    pub(crate) fn take() -> Vec<(Stage, Counts)> {
         clock();
         STAGES
             .iter()
@@ -147,18 +148,18 @@ mod imp {
 }
 
 /// Whether this build counts (the `count-evals` feature).
-pub const ENABLED: bool = cfg!(feature = "count-evals");
+pub(crate) const ENABLED: bool = cfg!(feature = "count-evals");
 
 /// Makes `s` the current stage until the guard is dropped, when the stage
 /// it replaced is current again (for a stage inside another).
 #[inline(always)]
-pub fn enter(s: Stage) -> StageGuard {
+pub(crate) fn enter(s: Stage) -> StageGuard {
     StageGuard(set_stage(s))
 }
 
 /// Restores a stage when dropped ([`enter`]).
 #[must_use = "the stage ends when the guard is dropped"]
-pub struct StageGuard(Stage);
+pub(crate) struct StageGuard(Stage);
 
 impl Drop for StageGuard {
     #[inline(always)]
@@ -192,7 +193,7 @@ fn add(_k: usize, _n: u64) {
 /// One field evaluation that summed `pairs` kernel pairs directly and
 /// `terms` expansion terms.
 #[inline(always)]
-pub fn eval(pairs: usize, terms: usize) {
+pub(crate) fn eval(pairs: usize, terms: usize) {
     add(0, 1);
     add(1, pairs as u64);
     add(2, terms as u64);
@@ -200,19 +201,19 @@ pub fn eval(pairs: usize, terms: usize) {
 
 /// `pairs` kernel pairs outside any field evaluation (a solve's matrix).
 #[inline(always)]
-pub fn pairs(pairs: usize) {
+pub(crate) fn pairs(pairs: usize) {
     add(1, pairs as u64);
 }
 
 /// One nearest-edge distance query.
 #[inline(always)]
-pub fn query() {
+pub(crate) fn query() {
     add(3, 1);
 }
 
 /// One drop of the drop-cutter.
 #[inline(always)]
-pub fn drop() {
+pub(crate) fn drop() {
     add(4, 1);
 }
 

@@ -16,19 +16,19 @@ use crate::job::Machine;
 
 /// One level of a boss or cavity as the bound sees it.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub struct LevelArea {
+pub(crate) struct LevelArea {
     /// Area of stock the level removes (a boss: the stock rectangle minus the
     /// part's section; a cavity: the cavity's section), mm².
-    pub clear_area: f64,
+    pub(crate) clear_area: f64,
     /// Length of the level's outline Γ(s), mm.
-    pub outline: f64,
+    pub(crate) outline: f64,
 }
 
 /// The level's outline and the area it leaves to clear, from its contours
 /// (material on their left: outlines counter-clockwise, holes clockwise). A
 /// boss gives its stock rectangle (the area is what lies outside the part); a
 /// cavity gives none (the area is the cavity's own).
-pub fn level_area(polys: &[Vec<Vec2>], stock: Option<(Vec2, Vec2)>) -> LevelArea {
+pub(crate) fn level_area(polys: &[Vec<Vec2>], stock: Option<(Vec2, Vec2)>) -> LevelArea {
     let inside: f64 = polys.iter().map(|p| polygon_area(p)).sum();
     let clear_area = match stock {
         Some((lo, hi)) => (hi.x - lo.x) * (hi.y - lo.y) - inside,
@@ -45,14 +45,14 @@ pub fn level_area(polys: &[Vec<Vec2>], stock: Option<(Vec2, Vec2)>) -> LevelArea
 pub struct LowerBound {
     /// Clearing: the area to clear at each stepdown, less the band the
     /// outline pass sweeps, ÷ stepover ÷ feed, s.
-    pub clearing_s: f64,
+    pub(crate) clearing_s: f64,
     /// The outline at every level (every pass of a profile) ÷ feed, s.
-    pub outline_s: f64,
+    pub(crate) outline_s: f64,
 }
 
 impl LowerBound {
     /// The whole bound, s.
-    pub fn total_s(&self) -> f64 {
+    pub(crate) fn total_s(&self) -> f64 {
         self.clearing_s + self.outline_s
     }
 }
@@ -60,7 +60,7 @@ impl LowerBound {
 /// The bound of a boss or cavity: `rough` are the levels of the plain stepdown
 /// schedule (each clears its whole area), `all` every level cut (each runs
 /// its outline at least once); mm, mm/min.
-pub fn levels_bound(
+pub(crate) fn levels_bound(
     rough: &[LevelArea],
     all: &[LevelArea],
     diameter: f64,
@@ -81,7 +81,7 @@ pub fn levels_bound(
 /// The bound of a profile: every pass runs a loop around every outline, and
 /// a closed loop around an outline is at least as long as the outline's
 /// convex hull.
-pub fn profile_bound(outlines: &[Vec<Vec2>], passes: usize, feed: f64) -> LowerBound {
+pub(crate) fn profile_bound(outlines: &[Vec<Vec2>], passes: usize, feed: f64) -> LowerBound {
     let hulls: f64 = outlines
         .iter()
         .map(|o| closed_length(&convex_hull(o)))
@@ -93,7 +93,7 @@ pub fn profile_bound(outlines: &[Vec<Vec2>], passes: usize, feed: f64) -> LowerB
 }
 
 /// The convex hull of points, counter-clockwise (Andrew's monotone chain).
-pub fn convex_hull(points: &[Vec2]) -> Vec<Vec2> {
+pub(crate) fn convex_hull(points: &[Vec2]) -> Vec<Vec2> {
     let mut p: Vec<Vec2> = points
         .iter()
         .copied()
@@ -136,7 +136,7 @@ pub enum Cause {
 impl Cause {
     /// The cause of a bound's size: its larger part, and for clearing the
     /// stepover against the default 0.4 × diameter.
-    pub fn of(bound: &LowerBound, diameter: f64, stepover: f64) -> Cause {
+    pub(crate) fn of(bound: &LowerBound, diameter: f64, stepover: f64) -> Cause {
         if bound.outline_s > bound.clearing_s {
             Cause::OutlineTooLong
         } else if stepover < crate::job::defaults::STEPOVER_FRACTION * diameter * (1.0 - 1e-9) {
@@ -147,7 +147,7 @@ impl Cause {
     }
 
     /// The cause in words, with the keys that change it.
-    pub fn advice(self) -> &'static str {
+    pub(crate) fn advice(self) -> &'static str {
         match self {
             Cause::ToolTooSmall => "tool too small for the area: use a larger tool.diameter (with its tool.stepover), or raise tool.feed",
             Cause::StepoverTooSmall => "stepover too small: raise tool.stepover (the default is 0.4 × tool.diameter), or raise tool.feed",
@@ -192,7 +192,7 @@ fn hours(s: f64) -> f64 {
 }
 
 /// The bound against `machine.max_hours`.
-pub fn check_bound(
+pub(crate) fn check_bound(
     bound: &LowerBound,
     max_hours: f64,
     diameter: f64,

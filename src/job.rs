@@ -2,7 +2,7 @@
 //!
 //! Two steps, as in ripgrep's `lowargs`/`hiargs`: [`RawJob`] mirrors the TOML file
 //! exactly (every table and key optional, unknown keys rejected), and
-//! [`resolve`](RawJob::resolve) turns it into a [`Job`] with defaults applied and
+//! [`resolve_with`](RawJob::resolve_with) turns it into a [`Job`] with defaults applied and
 //! every value checked. Every error names the key (`tool.diameter`, ...), and a
 //! syntax error names the line and column. The keys, units and defaults are
 //! documented in `docs/job-format.md`.
@@ -10,7 +10,7 @@
 //! This file holds the resolved types and [`JobError`]; the steps are in
 //! `job/`: `raw.rs` (the schema), `load.rs` (reading the file, parsing the
 //! TOML, placing its errors by line, column and key), `resolve.rs`
-//! ([`RawJob::resolve`] and the checkers the tables' resolvers share),
+//! ([`RawJob::resolve_with`] and the checkers the tables' resolvers share),
 //! `machine.rs` (`[machine]`, and machine files), and one resolver per table
 //! (`tool.rs`, `shape.rs`, `stock.rs`, `operation.rs`, `field.rs`, ...).
 
@@ -25,7 +25,7 @@ pub mod echo;
 mod exact;
 pub mod extent;
 mod field;
-pub mod finish;
+pub(crate) mod finish;
 mod font;
 mod harmonic;
 pub mod limits;
@@ -47,15 +47,28 @@ mod tool;
 mod tube;
 mod tube_trim;
 
-pub use composition::PART_OPS;
-pub use finish::{CutterShape, Finish, Pattern};
-pub use font::{Fonts, Sources};
-pub use load::{load_job, parse_job, parse_job_with};
-pub use machine::{load_machine, Machine, MachineSource, RawMachine};
-pub use raw::{
-    AutoOr, Names, RawField, RawJob, RawJobTable, RawOperation, RawOutput, RawPart, RawProfile,
-    RawShape, RawStock, RawTool, RawTrim,
-};
+pub(crate) use finish::CutterShape;
+pub(crate) use finish::Finish;
+pub(crate) use finish::Pattern;
+pub use font::Fonts;
+pub use font::Sources;
+pub use load::load_job;
+pub use load::parse_job;
+pub use load::parse_job_with;
+pub use machine::load_machine;
+pub(crate) use machine::Machine;
+pub use machine::MachineSource;
+pub(crate) use raw::AutoOr;
+pub(crate) use raw::RawField;
+pub(crate) use raw::RawJob;
+pub(crate) use raw::RawOperation;
+pub(crate) use raw::RawOutput;
+pub(crate) use raw::RawPart;
+pub(crate) use raw::RawProfile;
+pub(crate) use raw::RawShape;
+pub(crate) use raw::RawStock;
+pub(crate) use raw::RawTool;
+pub(crate) use raw::RawTrim;
 
 /// A resolved job: units in mm, mm/min and rev/min, defaults applied, validated.
 #[derive(Clone, Debug, PartialEq)]
@@ -71,7 +84,7 @@ pub struct Job {
     /// What to do.
     pub operation: Operation,
     /// How to build the potential field.
-    pub field: FieldSpec,
+    pub(crate) field: FieldSpec,
     /// Machine settings that only the G-code writer and time estimates read.
     pub machine: Machine,
     /// The depth profile φ(s) of a boss or cavity (`None` for a profile).
@@ -104,23 +117,23 @@ impl Job {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tool {
     /// Flat for `[tool]`; `[finish]` may be ball or bull nose.
-    pub shape: CutterShape,
+    pub(crate) shape: CutterShape,
     /// Corner radius, mm (0 for a flat end mill).
-    pub corner: f64,
+    pub(crate) corner: f64,
     /// Diameter, mm (> 0).
     pub diameter: f64,
     /// Cutting feed, mm/min.
-    pub feed: f64,
+    pub(crate) feed: f64,
     /// Plunge feed, mm/min.
-    pub plunge_feed: f64,
+    pub(crate) plunge_feed: f64,
     /// Spindle speed, rev/min.
-    pub spindle: f64,
+    pub(crate) spindle: f64,
     /// Largest depth of one pass, mm.
     pub stepdown: f64,
     /// Largest sideways step between clearing rings, mm.
-    pub stepover: f64,
+    pub(crate) stepover: f64,
     /// Angle of ramped entries into uncut material, degrees.
-    pub ramp_angle: f64,
+    pub(crate) ramp_angle: f64,
 }
 
 /// The stock.
@@ -129,10 +142,10 @@ pub struct Stock {
     /// Z of the stock's top surface, mm.
     pub top: f64,
     /// Z for rapid moves, mm (above `top`).
-    pub safe_z: f64,
+    pub(crate) safe_z: f64,
     /// Z for the rapids between the cuts of one program, mm: above `top`, at
     /// most `safe_z` (which the program starts and ends at).
-    pub retract_z: f64,
+    pub(crate) retract_z: f64,
     /// Stock around the part's largest level (a boss's base), mm on every side.
     pub margin: f64,
 }
@@ -150,7 +163,7 @@ pub enum OperationKind {
 
 /// Which side of the material the tool runs on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Side {
+pub(crate) enum Side {
     /// Outside the material: outside every outline, inside every counter.
     Outside,
 }
@@ -170,7 +183,7 @@ pub struct Operation {
     /// Kind.
     pub kind: OperationKind,
     /// Side.
-    pub side: Side,
+    pub(crate) side: Side,
     /// Depth of cut below `stock.top`, mm (> 0).
     pub depth: f64,
     /// Chord and fitting tolerance, mm (> 0).
@@ -178,7 +191,7 @@ pub struct Operation {
     /// Climb or conventional.
     pub direction: Direction,
     /// Largest horizontal step between the contours of neighbouring levels, mm.
-    pub max_scallop: f64,
+    pub(crate) max_scallop: f64,
     /// Material the roughing leaves on the walls, mm (in plan, beyond the tool
     /// radius); floors are cut to size.
     pub stock_to_leave: f64,
@@ -186,11 +199,11 @@ pub struct Operation {
 
 /// How the MFS field is set up.
 #[derive(Clone, Debug, PartialEq, Default)]
-pub struct FieldSpec {
+pub(crate) struct FieldSpec {
     /// Total number of singularities N; `None` chooses from the shape.
-    pub singularities: Option<usize>,
+    pub(crate) singularities: Option<usize>,
     /// Pseudo-boundary distance in mm; `None` chooses it to minimise the max boundary error.
-    pub pseudo_boundary: Option<f64>,
+    pub(crate) pseudo_boundary: Option<f64>,
 }
 
 /// What the G-code may contain.
@@ -213,74 +226,74 @@ impl Default for Output {
 }
 
 /// The defaults of optional keys (documented in `docs/job-format.md`).
-pub mod defaults {
+pub(crate) mod defaults {
     /// `shape.font`: the built-in letters of the paper.
-    pub const FONT: &str = "paper";
+    pub(crate) const FONT: &str = "paper";
     /// `shape.height` for text, mm of cap height.
-    pub const TEXT_HEIGHT: f64 = 50.0;
+    pub(crate) const TEXT_HEIGHT: f64 = 50.0;
     /// `shape.part.size`: cap height of a text part, design units.
-    pub const PART_TEXT_SIZE: f64 = 100.0;
+    pub(crate) const PART_TEXT_SIZE: f64 = 100.0;
     /// `tool.feed`, mm/min: a moderate feed for a 3 mm cutter in wood or plastic.
-    pub const FEED: f64 = 800.0;
+    pub(crate) const FEED: f64 = 800.0;
     /// `tool.plunge_feed`, mm/min: a quarter of the feed.
-    pub const PLUNGE_FEED: f64 = 200.0;
+    pub(crate) const PLUNGE_FEED: f64 = 200.0;
     /// `tool.spindle`, rev/min.
-    pub const SPINDLE: f64 = 10000.0;
+    pub(crate) const SPINDLE: f64 = 10000.0;
     /// `tool.stepdown`, mm per pass.
-    pub const STEPDOWN: f64 = 1.0;
+    pub(crate) const STEPDOWN: f64 = 1.0;
     /// `stock.top`, mm.
-    pub const STOCK_TOP: f64 = 0.0;
+    pub(crate) const STOCK_TOP: f64 = 0.0;
     /// `stock.safe_z` is this far above `stock.top`, mm.
-    pub const SAFE_CLEARANCE: f64 = 5.0;
+    pub(crate) const SAFE_CLEARANCE: f64 = 5.0;
     /// `operation.tolerance`, mm.
-    pub const TOLERANCE: f64 = 0.01;
+    pub(crate) const TOLERANCE: f64 = 0.01;
     /// `shape.join_tolerance`, mm: DXF pieces whose ends are closer join.
-    pub const JOIN_TOLERANCE: f64 = 0.01;
+    pub(crate) const JOIN_TOLERANCE: f64 = 0.01;
     /// `machine.rapid_rate`, mm/min (GRBL's own default `$110` is 500; most
     /// hobby machines are set faster).
-    pub const RAPID_RATE: f64 = 1000.0;
+    pub(crate) const RAPID_RATE: f64 = 1000.0;
     /// `machine.spindle_dwell`, seconds.
-    pub const SPINDLE_DWELL: f64 = 2.0;
+    pub(crate) const SPINDLE_DWELL: f64 = 2.0;
     /// `tool.stepover` as a fraction of the diameter.
-    pub const STEPOVER_FRACTION: f64 = 0.4;
+    pub(crate) const STEPOVER_FRACTION: f64 = 0.4;
     /// `tool.ramp_angle`, degrees: gentle enough for a flat end mill in wood, plastic or aluminium.
-    pub const RAMP_ANGLE: f64 = 3.0;
+    pub(crate) const RAMP_ANGLE: f64 = 3.0;
     /// `stock.margin`, mm.
-    pub const MARGIN: f64 = 5.0;
+    pub(crate) const MARGIN: f64 = 5.0;
     /// `operation.max_scallop`, mm.
-    pub const MAX_SCALLOP: f64 = 0.5;
+    pub(crate) const MAX_SCALLOP: f64 = 0.5;
     /// `profile.kind`.
-    pub const PROFILE_KIND: &str = "linear";
+    pub(crate) const PROFILE_KIND: &str = "linear";
     /// `profile.s_bottom` for a linear profile.
-    pub const S_BOTTOM: f64 = 0.8;
+    pub(crate) const S_BOTTOM: f64 = 0.8;
     /// `profile.s1`, `profile.s2`, `profile.steepness` for a sigmoid (the paper's Section 7 values).
-    pub const SIGMOID: (f64, f64, f64) = (0.99, 0.75, 8.0);
+    pub(crate) const SIGMOID: (f64, f64, f64) = (0.99, 0.75, 8.0);
     /// `profile.s1`, `s2`, `exponent` for a power wall: the paper's n = 500
     /// (Section 3.2), from Γ(0.999) down to Γ(0.99).
-    pub const POWER: (f64, f64, f64) = (0.999, 0.99, 500.0);
+    pub(crate) const POWER: (f64, f64, f64) = (0.999, 0.99, 500.0);
     /// `machine.coolant`: off (most hobby routers have none).
-    pub const COOLANT: bool = false;
+    pub(crate) const COOLANT: bool = false;
     /// `machine.max_hours`: a working day; the longest shipped program
     /// (mfs-sign) is estimated at under 6 h.
-    pub const MAX_HOURS: f64 = 8.0;
+    pub(crate) const MAX_HOURS: f64 = 8.0;
     /// `machine.max_file_mb`: the largest shipped program (mfs-mould.rough.nc)
     /// is 1.9 MB.
-    pub const MAX_FILE_MB: f64 = 100.0;
+    pub(crate) const MAX_FILE_MB: f64 = 100.0;
     /// `output.arcs`: on (GRBL 1.1 cuts arcs well and the file is smaller).
-    pub const ARCS: bool = true;
+    pub(crate) const ARCS: bool = true;
     /// `output.max_arc_radius`, mm: a 1000 mm arc over a 100 mm chord bulges
     /// 1.25 mm, so anything flatter is a line to the eye and to the machine.
-    pub const MAX_ARC_RADIUS: f64 = 1000.0;
+    pub(crate) const MAX_ARC_RADIUS: f64 = 1000.0;
 }
 
 /// The accepted values of `operation.kind`.
-pub const OPERATION_KINDS: &[&str] = &["profile", "boss", "cavity"];
+pub(crate) const OPERATION_KINDS: &[&str] = &["profile", "boss", "cavity"];
 /// The accepted values of `profile.kind`.
-pub const PROFILE_KINDS: &[&str] = &["linear", "sigmoid", "power", "spline", "table"];
+pub(crate) const PROFILE_KINDS: &[&str] = &["linear", "sigmoid", "power", "spline", "table"];
 /// The accepted values of `operation.side`.
-pub const SIDES: &[&str] = &["outside"];
+pub(crate) const SIDES: &[&str] = &["outside"];
 /// The accepted values of `operation.direction`.
-pub const DIRECTIONS: &[&str] = &["climb", "conventional"];
+pub(crate) const DIRECTIONS: &[&str] = &["climb", "conventional"];
 
 /// What can be wrong with a job.
 #[derive(Debug, thiserror::Error)]

@@ -10,7 +10,9 @@
 //!
 //! - **Load a job**: [`job::load_job`] (a TOML file) or [`job::parse_job`]
 //!   (TOML text) give a checked [`job::Job`] or a [`job::JobError`] naming the
-//!   key; [`job::load_machine`] reads `[machine]` alone (`--machine`).
+//!   key; [`job::load_machine`] reads `[machine]` alone (`--machine`);
+//!   [`job::parse_job_with`] looks files and font names up through its own
+//!   [`job::Sources`] (a given font database, [`job::Fonts`]).
 //! - **Run it**: [`pipeline::run`] takes the job and a progress callback
 //!   ([`pipeline::Progress`] events) and returns a [`pipeline::RunOutput`]:
 //!   the [`toolpath::Toolpath`], the MFS solves, the gouge check's least
@@ -33,6 +35,10 @@
 //!   [`surface::stl_bytes`] (the modelled part as STL).
 //! - **Send it**: [`grbl::run_stream`] streams a program to a GRBL machine,
 //!   reporting to an [`grbl::Observer`].
+//!
+//! Everything else is crate-private (`pub(crate)`) by default: an item is
+//! `pub` beyond the list above only because the binary, the integration tests,
+//! the examples or the benches use it, or a public item's signature names it.
 //!
 //! A profile of the paper's letter I (`jobs/letter-i.toml`), from TOML text
 //! to a checked program:
@@ -68,6 +74,11 @@
 //! assert!(verdict.is_ok());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+
+// The modules' docs are written for whoever works on pfcam and link to
+// crate-private items (constants, helpers) by name; `cargo doc
+// --document-private-items` resolves every such link. Broken links still warn.
+#![allow(rustdoc::private_intra_doc_links)]
 
 pub mod compose;
 pub mod count;

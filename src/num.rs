@@ -8,7 +8,7 @@ pub(crate) use condition::triangular_condition;
 /// other operand when one is NaN, so a reduction with it reads a NaN error as
 /// no error at all; every reduction of an error or a distance that a check
 /// relies on uses this instead.
-pub fn max_or_nan(a: f64, b: f64) -> f64 {
+pub(crate) fn max_or_nan(a: f64, b: f64) -> f64 {
     if a.is_nan() || b.is_nan() {
         f64::NAN
     } else {

@@ -60,7 +60,7 @@ pub enum OutputError {
 }
 
 /// Whether the existing file at `path` was written by pfcam (see [`is_pfcam_file`]).
-pub fn written_by_pfcam(path: &Path) -> io::Result<bool> {
+pub(crate) fn written_by_pfcam(path: &Path) -> io::Result<bool> {
     let f = fs::File::open(path)?;
     let mut prefix = Vec::new();
     // The markers are near the start; reading a bounded prefix keeps a huge
@@ -70,7 +70,7 @@ pub fn written_by_pfcam(path: &Path) -> io::Result<bool> {
 }
 
 /// How much of an existing file [`written_by_pfcam`] reads.
-pub const PREFIX_LEN: u64 = 4096;
+pub(crate) const PREFIX_LEN: u64 = 4096;
 
 /// The PNG signature.
 const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";

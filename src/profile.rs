@@ -63,7 +63,7 @@ pub enum DepthProfile {
 
 /// Why a profile is not usable.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
-pub enum ProfileError {
+pub(crate) enum ProfileError {
     /// Fewer than two (s, z) points.
     #[error("needs at least two (s, z) points, got {got}")]
     TooFewPoints {
@@ -147,7 +147,10 @@ impl DepthProfile {
     /// A spline or table from (s, z) points, checked: at least two points, s in
     /// (0, 1], s and z both strictly increasing, the last z equal to 0 (the top).
     /// Errors name the offending points.
-    pub fn from_points(points: &[[f64; 2]], spline: bool) -> Result<DepthProfile, ProfileError> {
+    pub(crate) fn from_points(
+        points: &[[f64; 2]],
+        spline: bool,
+    ) -> Result<DepthProfile, ProfileError> {
         if points.len() < 2 {
             return Err(ProfileError::TooFewPoints { got: points.len() });
         }

@@ -15,12 +15,12 @@ use crate::toolpath::{gouge, Move, Section, Toolpath, Vec3};
 use serde::Serialize;
 
 /// What the first key of every pfcam JSON file says: `"generator": "pfcam <version>"`.
-pub fn generator() -> String {
+pub(crate) fn generator() -> String {
     format!("pfcam {}", env!("CARGO_PKG_VERSION"))
 }
 
 /// Two depths closer than this (mm) are the same level.
-pub const Z_EPS: f64 = 1e-6;
+pub(crate) const Z_EPS: f64 = 1e-6;
 
 /// The feed moves of one level, each with the point it starts from.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,7 +35,7 @@ pub struct LevelMoves {
 /// or cavity one per planned level (a section of the tool path each, whatever
 /// depths its links and ramps pass through), shallowest first; for a profile,
 /// [`split_levels`].
-pub fn run_levels(out: &RunOutput) -> Vec<LevelMoves> {
+pub(crate) fn run_levels(out: &RunOutput) -> Vec<LevelMoves> {
     if out.levels.is_empty() || out.levels.len() != out.toolpath.sections.len() {
         return split_levels(&out.toolpath);
     }
@@ -100,66 +100,66 @@ pub fn split_levels(tp: &Toolpath) -> Vec<LevelMoves> {
     levels
 }
 
-pub use crate::toolpath::feed_length_time;
+pub(crate) use crate::toolpath::feed_length_time;
 
 /// One level of the report.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LevelReport {
     /// Depth, mm.
-    pub z: f64,
+    pub(crate) z: f64,
     /// The equipotential value the level's path offsets (1 for a profile: the
     /// part's boundary).
-    pub s: f64,
+    pub(crate) s: f64,
     /// Singularities N of the level's field.
-    pub n: usize,
+    pub(crate) n: usize,
     /// Max boundary error of the level's field.
-    pub max_boundary_error: f64,
+    pub(crate) max_boundary_error: f64,
     /// Feed length at this level (plunge and pass), mm.
-    pub path_length_mm: f64,
+    pub(crate) path_length_mm: f64,
     /// Smallest clearance (distance to the part − tool radius) of this level's
     /// moves from the independent gouge check, mm; null if none is below the
     /// stock top.
-    pub min_clearance_mm: Option<f64>,
+    pub(crate) min_clearance_mm: Option<f64>,
     /// Feed time at this level, seconds (acceleration ignored).
-    pub time_s: f64,
+    pub(crate) time_s: f64,
     /// Cavity levels: the uncut share of the reachable area, measured on a grid
     /// of a tenth of the tool radius (null for other operations).
-    pub uncut_share: Option<f64>,
+    pub(crate) uncut_share: Option<f64>,
 }
 
 /// Totals of the run.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Totals {
+pub(crate) struct Totals {
     /// Number of levels.
-    pub levels: usize,
+    pub(crate) levels: usize,
     /// Feed length, mm.
-    pub cut_length_mm: f64,
+    pub(crate) cut_length_mm: f64,
     /// Rapid length, mm.
-    pub rapid_length_mm: f64,
+    pub(crate) rapid_length_mm: f64,
     /// Estimated time, seconds, rapids at the machine's rapid rate, acceleration
     /// ignored (as in the G-code header).
-    pub time_s: f64,
+    pub(crate) time_s: f64,
     /// Smallest clearance over the whole path, mm (null if nothing is cut).
-    pub min_clearance_mm: Option<f64>,
+    pub(crate) min_clearance_mm: Option<f64>,
     /// Largest max boundary error over every solve.
-    pub max_boundary_error: f64,
+    pub(crate) max_boundary_error: f64,
     /// Tracing steps that fell back to the geometric normal.
-    pub fallbacks: usize,
+    pub(crate) fallbacks: usize,
 }
 
 /// One MFS solve in the report.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct SolveEntry {
+pub(crate) struct SolveEntry {
     /// What was solved.
-    pub label: String,
+    pub(crate) label: String,
     /// Singularities N.
-    pub n: usize,
+    pub(crate) n: usize,
     /// Collocation points M.
-    pub m: usize,
+    pub(crate) m: usize,
     /// Pseudo-boundary distance, mm.
-    pub pseudo_boundary_mm: f64,
+    pub(crate) pseudo_boundary_mm: f64,
     /// Max boundary error.
-    pub max_boundary_error: f64,
+    pub(crate) max_boundary_error: f64,
 }
 
 impl From<&SolveReport> for SolveEntry {
@@ -179,30 +179,30 @@ impl From<&SolveReport> for SolveEntry {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RunReport {
     /// `pfcam <version>`.
-    pub generator: String,
+    pub(crate) generator: String,
     /// The job's name.
-    pub job: String,
+    pub(crate) job: String,
     /// Operation, e.g. `profile outside`.
-    pub operation: String,
+    pub(crate) operation: String,
     /// Tool diameter, mm.
-    pub tool_diameter_mm: f64,
+    pub(crate) tool_diameter_mm: f64,
     /// Chord / gouge tolerance, mm.
-    pub tolerance_mm: f64,
+    pub(crate) tolerance_mm: f64,
     /// Glyphs (regions) of the shape.
-    pub glyphs: Vec<String>,
+    pub(crate) glyphs: Vec<String>,
     /// The stock and where the work zero sits on it (as in the G-code header).
     pub stock: Option<StockReport>,
     /// Every MFS solve.
-    pub solves: Vec<SolveEntry>,
+    pub(crate) solves: Vec<SolveEntry>,
     /// Per level, shallowest first.
     pub levels: Vec<LevelReport>,
     /// Totals.
-    pub totals: Totals,
+    pub(crate) totals: Totals,
     /// Each G-code program of the run (one today: `<name>.nc`) with its
     /// header's lengths and time, and the job's lower bound.
     pub programs: Vec<ProgramReport>,
     /// Warnings of the run.
-    pub warnings: Vec<String>,
+    pub(crate) warnings: Vec<String>,
 }
 
 /// One G-code program: the lengths and estimated time its header gives, the
@@ -212,7 +212,7 @@ pub struct ProgramReport {
     /// The file, `<name>.nc`.
     pub file: String,
     /// Its tool's diameter, mm.
-    pub tool_diameter_mm: f64,
+    pub(crate) tool_diameter_mm: f64,
     /// Feed length, mm (the header's `length: cut`).
     pub cut_length_mm: f64,
     /// Rapid length, mm (the header's `rapid`).
@@ -264,7 +264,7 @@ impl ProgramReport {
     }
 
     /// The (roughing) program of `job` for the finished run `out`.
-    pub fn new(job: &Job, out: &RunOutput) -> ProgramReport {
+    pub(crate) fn new(job: &Job, out: &RunOutput) -> ProgramReport {
         let st = crate::gcode::writer::program_stats(&out.toolpath, job);
         let b = out.lower_bound;
         ProgramReport {
@@ -293,13 +293,13 @@ pub struct StockReport {
     /// Lower-left corner, Y.
     pub y_min: f64,
     /// Upper-right corner, X.
-    pub x_max: f64,
+    pub(crate) x_max: f64,
     /// Upper-right corner, Y.
-    pub y_max: f64,
+    pub(crate) y_max: f64,
     /// Z of the stock's top.
-    pub top: f64,
+    pub(crate) top: f64,
     /// Z of rapid moves.
-    pub safe_z: f64,
+    pub(crate) safe_z: f64,
     /// X0 measured from the stock's left edge.
     pub zero_from_left: f64,
     /// Y0 measured from the stock's front (low-Y) edge.
@@ -327,7 +327,7 @@ impl StockReport {
 /// profile every pass follows the shape's own field, s = 1 on the part, so this
 /// is the first solve for every z. Operations with a solve per level (boss,
 /// cavity) look their level up here by z.
-pub fn level_field(out: &RunOutput, z: f64) -> (f64, usize, f64) {
+pub(crate) fn level_field(out: &RunOutput, z: f64) -> (f64, usize, f64) {
     let _ = z;
     out.solves
         .first()

@@ -35,7 +35,7 @@ use crate::job::{Job, OperationKind};
 use crate::levels::plan::GRID_SPACING;
 use crate::levels::DepthProfile;
 use crate::output::{check_target, OutputError};
-use crate::pipeline::{self, PipelineError, Progress, SolveReport, FLATTEN_FRACTION};
+use crate::pipeline::{self, PipelineError, Progress, FLATTEN_FRACTION};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::Path;
@@ -47,10 +47,10 @@ pub const BASE_THICKNESS: f64 = 2.0;
 pub const DEFAULT_RESOLUTION: f64 = GRID_SPACING;
 
 /// Largest z step between neighbouring levels of the isobands, mm.
-pub const LEVEL_DZ: f64 = 0.1;
+pub(crate) const LEVEL_DZ: f64 = 0.1;
 
 /// The levels are at most (s_top − s_bottom)/this apart in s (where φ is flat).
-pub const LEVEL_DS_DIVISIONS: usize = 16;
+pub(crate) const LEVEL_DS_DIVISIONS: usize = 16;
 
 /// No crossing vertex lies closer than this fraction of its grid edge to the
 /// edge's ends or to another crossing on the same edge (so no triangle has zero
@@ -62,7 +62,7 @@ pub const T_MIN: f64 = 1e-3;
 const ONE_BELOW: f64 = 1.0 - 1e-12;
 
 /// Largest grid the command accepts (points).
-pub const MAX_GRID_POINTS: usize = 40_000_000;
+pub(crate) const MAX_GRID_POINTS: usize = 40_000_000;
 
 /// Options of `pfcam surface`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -152,12 +152,12 @@ fn norm3(a: [f64; 3]) -> f64 {
 }
 
 /// (c₁ − c₀) × (c₂ − c₀): the triangle's normal, twice its area long.
-pub fn triangle_normal(c: &[[f64; 3]; 3]) -> [f64; 3] {
+pub(crate) fn triangle_normal(c: &[[f64; 3]; 3]) -> [f64; 3] {
     cross3(sub3(c[1], c[0]), sub3(c[2], c[0]))
 }
 
 /// The triangle's area, mm².
-pub fn triangle_area(c: &[[f64; 3]; 3]) -> f64 {
+pub(crate) fn triangle_area(c: &[[f64; 3]; 3]) -> f64 {
     0.5 * norm3(triangle_normal(c))
 }
 
@@ -174,7 +174,7 @@ impl Mesh {
 
     /// The corners of every triangle that faces up ([`up_area`] > 1e-12):
     /// what a cutter lowered from above can touch, for the drop-cutter.
-    pub fn up_triangles(&self) -> Vec<[[f64; 3]; 3]> {
+    pub(crate) fn up_triangles(&self) -> Vec<[[f64; 3]; 3]> {
         (0..self.triangles.len())
             .map(|t| self.corners(t))
             .filter(|c| up_area(c) > 1e-12)
@@ -289,7 +289,7 @@ pub struct SurfaceJob<'a> {
 /// z (absolute, mm) of S2 where u = `s`, with the stock top at `top`: a
 /// boss's top + φ(s), a cavity's top − depth − φ(s) (φ clamps s to its
 /// range).
-pub fn surface_z(profile: &DepthProfile, cavity: bool, top: f64, s: f64) -> f64 {
+pub(crate) fn surface_z(profile: &DepthProfile, cavity: bool, top: f64, s: f64) -> f64 {
     let phi = profile.z(s);
     if cavity {
         top - profile.depth() - phi
@@ -301,19 +301,19 @@ pub fn surface_z(profile: &DepthProfile, cavity: bool, top: f64, s: f64) -> f64 
 impl SurfaceJob<'_> {
     /// z (absolute, mm) of the surface where u = s: boss top + φ(s), cavity
     /// top − depth − φ(s) (φ clamps s to its range).
-    pub fn z_of(&self, s: f64) -> f64 {
+    pub(crate) fn z_of(&self, s: f64) -> f64 {
         surface_z(self.profile, self.cavity, self.top, s)
     }
 
     /// z of the stock bottom: the deepest cut minus [`BASE_THICKNESS`].
-    pub fn z_bottom(&self) -> f64 {
+    pub(crate) fn z_bottom(&self) -> f64 {
         self.top - self.profile.depth() - BASE_THICKNESS
     }
 }
 
 /// Twice the signed XY area of a triangle: positive when its corners run
 /// counter-clockwise seen from above, i.e. its normal points up.
-pub fn up_area(c: &[[f64; 3]; 3]) -> f64 {
+pub(crate) fn up_area(c: &[[f64; 3]; 3]) -> f64 {
     (c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[2][0] - c[0][0]) * (c[1][1] - c[0][1])
 }
 
@@ -345,12 +345,10 @@ pub struct JobSurface {
     pub field: Field,
     /// The glyphs, flattened as for `pfcam run`.
     pub glyphs: Vec<Vec<Vec2>>,
-    /// The MFS solves spent.
-    pub solves: Vec<SolveReport>,
 }
 
 /// The message for a profile job, which has no modelled surface.
-pub const PROFILE_MESSAGE: &str =
+pub(crate) const PROFILE_MESSAGE: &str =
     "operation.kind = \"profile\" has no modelled surface; use a boss or cavity job";
 
 /// The surface of a boss or cavity job: the shape and its field exactly as
@@ -365,10 +363,9 @@ pub fn job_surface(
         return Err(SurfaceError::ProfileJob);
     }
     let profile = job.profile.as_ref().ok_or(SurfaceError::NoProfile)?;
-    let (shape, mut solves) = pipeline::job_shape(job, progress)?;
+    let (shape, _) = pipeline::job_shape(job, progress)?;
     let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
-    let (solved, report, _) = pipeline::solve_shape(&shape, job, flat_tol, progress)?;
-    solves.push(report);
+    let (solved, _, _) = pipeline::solve_shape(&shape, job, flat_tol, progress)?;
     let glyphs: Vec<Vec<Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
     let field = solved.solution.field;
     let sj = SurfaceJob {
@@ -386,7 +383,6 @@ pub fn job_surface(
         surface,
         field,
         glyphs,
-        solves,
     })
 }
 
@@ -415,7 +411,7 @@ pub fn job_part_surface(
 
 /// The levels s of the isobands: from s_bottom to s_top, neighbours at most
 /// [`LEVEL_DZ`] apart in z and (s_top − s_bottom)/[`LEVEL_DS_DIVISIONS`] in s.
-pub fn level_values(profile: &DepthProfile) -> Vec<f64> {
+pub(crate) fn level_values(profile: &DepthProfile) -> Vec<f64> {
     let (lo, hi) = profile.s_range();
     let ds = (hi - lo) / LEVEL_DS_DIVISIONS as f64;
     let mut out = vec![lo];
@@ -583,7 +579,7 @@ fn space_out(ts: &mut [f64], ascending: bool) {
 /// the largest level Γ(s_bottom) (a boss's foot, a cavity's rim), from the
 /// same grid of u and the same curves (`crate::levels::mfs_sections::job_grid`,
 /// `field::level::curves`), plus the margin.
-pub fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
+pub(crate) fn stock_rectangle(sj: &SurfaceJob) -> Result<(Vec2, Vec2), SurfaceError> {
     if crate::geometry::polygons_bbox(sj.glyphs).is_none() {
         return Err(SurfaceError::EmptyShape);
     }
@@ -1092,7 +1088,7 @@ fn cell(pts: &[(u32, Sides, usize)], cv: &[f64; 4], levels: &[f64], out: &mut Ve
 }
 
 /// The STL's 80-byte header: `pfcam <name>`, cut to fit, padded with zeros.
-pub fn stl_header(name: &str) -> [u8; 80] {
+pub(crate) fn stl_header(name: &str) -> [u8; 80] {
     let mut h = [0u8; 80];
     let text = format!("pfcam {name}");
     let mut end = text.len().min(80);
@@ -1190,7 +1186,7 @@ pub fn weld(tris: &[StlTriangle]) -> Mesh {
 
 /// Whether the file at `path` is a binary STL pfcam wrote (its header starts
 /// with `pfcam ` and its length matches its triangle count).
-pub fn written_by_pfcam(path: &Path) -> std::io::Result<bool> {
+pub(crate) fn written_by_pfcam(path: &Path) -> std::io::Result<bool> {
     use std::io::Read;
     let len = std::fs::metadata(path)?.len();
     let mut head = Vec::new();

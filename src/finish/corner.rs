@@ -17,12 +17,12 @@ use crate::geometry::Vec2;
 use crate::toolpath::dropcutter::MeshIndex;
 
 /// How close to the floor the tip must come, mm.
-pub const SETTLE: f64 = 1e-3;
+pub(crate) const SETTLE: f64 = 1e-3;
 
 /// A foot loop's corner pass.
-pub struct Corner {
+pub(crate) struct Corner {
     /// The axis positions, as contact points of a pass over the floor.
-    pub axes: Vec<Vec2>,
+    pub(crate) axes: Vec<Vec2>,
 }
 /// How finely the axis position is found, mm.
 const STEP: f64 = 2e-3;
@@ -33,7 +33,7 @@ const STEP: f64 = 2e-3;
 /// axes everywhere on the loop (the foot's pass and the floor's, a pass
 /// width apart, pass by it). `floor_z` is the floor's height, `reach` the
 /// farthest the search goes from the foot, mm.
-pub fn corner_axes(
+pub(crate) fn corner_axes(
     foot: &[Vec2],
     field: &Field,
     p: &FinishParams,

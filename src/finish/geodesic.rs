@@ -28,7 +28,7 @@ use std::collections::{BinaryHeap, HashMap};
 
 /// Grid spacing of σ, mm (the finishing mesh's, so the level sets place the
 /// passes to a few micrometres).
-pub const SPACING: f64 = 0.1;
+pub(crate) const SPACING: f64 = 0.1;
 
 /// The 16 neighbours of a node: (1, 0), (1, 1), (2, 1) and their turns and
 /// reflections.
@@ -64,7 +64,7 @@ enum Part {
 
 /// σ on a grid: the distance on S2 from the top edge, +∞ on the floor.
 #[derive(Clone, Debug)]
-pub struct Distance {
+pub(crate) struct Distance {
     origin: Vec2,
     h: f64,
     nx: usize,
@@ -101,22 +101,22 @@ const EDGE_PIECES: usize = 16;
 
 /// One pass curve: closed (the first point not repeated) or an open arc.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Curve {
+pub(crate) struct Curve {
     /// The points in order.
-    pub pts: Vec<Vec2>,
+    pub(crate) pts: Vec<Vec2>,
     /// Whether the last point joins the first.
-    pub closed: bool,
+    pub(crate) closed: bool,
     /// The s each point stands for (a level of σ: u where its crossing of a
     /// grid edge lies, u linear along the edge), one per point; empty on an
     /// equipotential. On a near-vertical wall a point's height is far
     /// better known than its place in plan (0.01 mm across is 0.2 mm up on
     /// an 87° wall), so the finisher moves each point onto Γ(s) for its s.
-    pub s: Vec<f64>,
+    pub(crate) s: Vec<f64>,
 }
 
 impl Curve {
     /// A closed curve.
-    pub fn closed(pts: Vec<Vec2>) -> Curve {
+    pub(crate) fn closed(pts: Vec<Vec2>) -> Curve {
         Curve {
             pts,
             closed: true,
@@ -125,7 +125,7 @@ impl Curve {
     }
 
     /// Its length in XY, mm.
-    pub fn length(&self) -> f64 {
+    pub(crate) fn length(&self) -> f64 {
         let n = self.pts.len();
         let chords = if self.closed { n } else { n.saturating_sub(1) };
         (0..chords)
@@ -139,7 +139,7 @@ impl Distance {
     /// of φ = `profile` from its top edge: z at a node is `z_of(u)` with u
     /// held to φ's range; `cavity` mirrors which end of the range is the top;
     /// `corner` is the cutter's corner radius (see `dijkstra`).
-    pub fn from_top_edge(
+    pub(crate) fn from_top_edge(
         grid: &Grid,
         profile: &DepthProfile,
         (cavity, corner): (bool, f64),
@@ -204,7 +204,7 @@ impl Distance {
     }
 
     /// The largest σ on the wall, mm (0 if it has none).
-    pub fn max(&self) -> f64 {
+    pub(crate) fn max(&self) -> f64 {
         self.d
             .iter()
             .copied()
@@ -223,7 +223,7 @@ impl Distance {
     /// wall), by marching squares with linear interpolation along the cell
     /// edges: closed curves, and open arcs that end where the level meets a
     /// cell with a corner on the floor.
-    pub fn level(&self, c: f64) -> Vec<Curve> {
+    pub(crate) fn level(&self, c: f64) -> Vec<Curve> {
         let segs = self.segments(c);
         chain(&segs)
             .into_iter()
@@ -543,7 +543,7 @@ fn top_share(top: f64, other: f64, s_top: f64) -> f64 {
 /// band), and between levels k + 1 and k the pieces of σ = (k + ½)·w that
 /// neither level k + 1 nor the wall's foot `foot` comes near
 /// ([`ridge_pieces`]). `max_passes` bounds the work: `Err` names the count.
-pub fn passes(
+pub(crate) fn passes(
     dist: &Distance,
     foot: &[Curve],
     w: f64,
@@ -597,7 +597,7 @@ pub fn passes(
 /// (k + ½)·w for the point to count as covered: on a gentle wall the level
 /// lies w/2 off along the surface; a wall up to 40° steep brings that to
 /// 0.38·w in XY, and a point whose neighbour level lies farther is a ridge's.
-pub const COVERED: f64 = 0.75;
+pub(crate) const COVERED: f64 = 0.75;
 
 /// The pieces of the half level `half` (σ = (k + ½)·w) farther than
 /// [`COVERED`]·w from every curve of `next` (level k + 1 and the foot,
@@ -607,7 +607,7 @@ pub const COVERED: f64 = 0.75;
 /// level k + 1 lies only beyond the ridge, and a ridge point up to w from
 /// level k would be left with a scallop up to four times the bound; the
 /// half level runs w/2 from level k there.
-pub fn ridge_pieces(half: &[Curve], next: &[Curve], w: f64) -> Vec<Curve> {
+pub(crate) fn ridge_pieces(half: &[Curve], next: &[Curve], w: f64) -> Vec<Curve> {
     let index = segment_index(next);
     let far = |q: Vec2| index.as_ref().is_none_or(|ix| ix.distance(q) > COVERED * w);
     half.iter()

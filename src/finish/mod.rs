@@ -6,10 +6,10 @@
 //! ([`path`]), so that it never enters the part by construction; `pfcam
 //! simulate` checks the two programs against the part independently.
 
-pub mod corner;
-pub mod geodesic;
-pub mod passes;
-pub mod path;
+pub(crate) mod corner;
+pub(crate) mod geodesic;
+pub(crate) mod passes;
+pub(crate) mod path;
 
 use crate::field::isolines::Grid;
 use crate::field::level;
@@ -115,34 +115,34 @@ pub enum FinishError {
 }
 
 /// What the finisher needs besides the mesh.
-pub struct FinishParams<'a> {
+pub(crate) struct FinishParams<'a> {
     /// The cutter.
-    pub cutter: Cutter,
+    pub(crate) cutter: Cutter,
     /// φ(s).
-    pub profile: &'a DepthProfile,
+    pub(crate) profile: &'a DepthProfile,
     /// A cavity (the mould) rather than a boss.
-    pub cavity: bool,
+    pub(crate) cavity: bool,
     /// Climb (material on the right of the cutter's travel).
-    pub climb: bool,
+    pub(crate) climb: bool,
     /// Cutting feed, mm/min.
-    pub feed: f64,
+    pub(crate) feed: f64,
     /// Ramp feed, mm/min.
-    pub plunge_feed: f64,
+    pub(crate) plunge_feed: f64,
     /// Ramp angle, degrees.
-    pub ramp_angle: f64,
+    pub(crate) ramp_angle: f64,
     /// Safe Z, mm: where the program starts and ends.
-    pub safe_z: f64,
+    pub(crate) safe_z: f64,
     /// Z of the rapids between passes (`stock.retract_z`), mm.
-    pub retract_z: f64,
+    pub(crate) retract_z: f64,
     /// The stock top (`stock.top`), mm: where S2's flat top lies.
-    pub top: f64,
+    pub(crate) top: f64,
     /// Height above the surface at which an entry's ramp starts, mm: the most
     /// the roughing can have left over S2 (a stepdown and the stock to leave).
-    pub entry: f64,
+    pub(crate) entry: f64,
     /// Chord tolerance, mm.
-    pub tol: f64,
+    pub(crate) tol: f64,
     /// The stock the roughing leaves on the walls (`operation.stock_to_leave`), mm.
-    pub leave: f64,
+    pub(crate) leave: f64,
 }
 
 impl FinishParams<'_> {
@@ -150,7 +150,7 @@ impl FinishParams<'_> {
     /// r + d, rc + d: the points within d of the cutter): where it touches
     /// the mesh with its tip at z, the cutter's own tip at z + d lies d off
     /// the mesh everywhere.
-    pub fn grown(&self, d: f64) -> Cutter {
+    pub(crate) fn grown(&self, d: f64) -> Cutter {
         Cutter {
             radius: self.cutter.radius + d,
             corner: self.cutter.corner + d,
@@ -158,7 +158,7 @@ impl FinishParams<'_> {
     }
 
     /// z (absolute, mm) of S2 where u = `s` ([`crate::surface::surface_z`]).
-    pub fn z_of(&self, s: f64) -> f64 {
+    pub(crate) fn z_of(&self, s: f64) -> f64 {
         crate::surface::surface_z(self.profile, self.cavity, self.top, s)
     }
 }
@@ -169,16 +169,16 @@ pub struct Finished {
     /// The tool path (tip coordinates).
     pub toolpath: Toolpath,
     /// The pass width on the surface, mm.
-    pub width: f64,
+    pub(crate) width: f64,
     /// The lower bound of its machining time: S2's sloped area (the walls) ÷
     /// the pass width ÷ the feed, s (no pattern of passes at most w apart
     /// covers the walls with less feed length).
-    pub lower_bound_s: f64,
+    pub(crate) lower_bound_s: f64,
 }
 
 /// Area of the triangles of `tris` that are neither flat nor vertical (S2's
 /// walls), mm².
-pub fn wall_area(tris: &[[[f64; 3]; 3]]) -> f64 {
+pub(crate) fn wall_area(tris: &[[[f64; 3]; 3]]) -> f64 {
     tris.iter()
         .map(|c| {
             let n = crate::surface::triangle_normal(c);
@@ -202,7 +202,7 @@ pub fn wall_area(tris: &[[[f64; 3]; 3]]) -> f64 {
 /// lowered against those chords cuts into the corner. These segments follow
 /// Γ(s_top) within [`CREASE_TOL`] (chords refined onto the level by Newton),
 /// so the ball stays out of the letter's top.
-pub fn crease_edges(
+pub(crate) fn crease_edges(
     grid: &Grid,
     field: &Field,
     glyphs: &[Vec<Vec2>],
@@ -226,10 +226,10 @@ pub fn crease_edges(
 }
 
 /// How closely the crease segments follow Γ(s_top), mm.
-pub const CREASE_TOL: f64 = 1e-4;
+pub(crate) const CREASE_TOL: f64 = 1e-4;
 
 /// The job's finishing cutter.
-pub fn cutter_of(f: &Finish) -> Cutter {
+pub(crate) fn cutter_of(f: &Finish) -> Cutter {
     Cutter {
         radius: f.radius(),
         corner: f.corner,
@@ -239,7 +239,7 @@ pub fn cutter_of(f: &Finish) -> Cutter {
 /// The finishing passes of a boss or cavity with `[finish]`, planned before
 /// the mesh is needed: the levels (equipotential or geodesic) and their
 /// curves, and the pass width.
-pub struct PassPlan {
+pub(crate) struct PassPlan {
     /// The passes from the floor up, and which is the foot's.
     planned: passes::Planned,
     /// The pass width on the surface, mm.
@@ -250,7 +250,7 @@ pub struct PassPlan {
 /// and `glyphs` as the roughing solved them, `grid` u over the part (as the
 /// level planner samples it, spacing `h`). Needs no mesh, so a caller may
 /// build the drop-cutter's index beside it.
-pub fn plan_passes(
+pub(crate) fn plan_passes(
     job: &Job,
     f: &Finish,
     field: &Field,
@@ -285,7 +285,7 @@ pub fn plan_passes(
 /// The finishing program of a boss or cavity with `[finish]` from its
 /// passes (`plan`, [`plan_passes`]): `mesh` S2's triangles, `wall_area`
 /// their sloped area (the lower bound's).
-pub fn finish(
+pub(crate) fn finish(
     job: &Job,
     f: &Finish,
     field: &Field,

@@ -21,14 +21,14 @@ use rayon::prelude::*;
 
 /// Most passes of one program (a bound on work and file size; the job's
 /// `machine.max_hours` and `machine.max_file_mb` usually stop it first).
-pub const MAX_PASSES: usize = 2000;
+pub(crate) const MAX_PASSES: usize = 2000;
 
 /// Distance between neighbouring contact points for a scallop of height `h`
 /// under a cutter corner of radius `rc`, mm: a circle of radius rc stepped w
 /// along a flat leaves h = rc − √(rc² − w²/4), so w = 2√(2·rc·h − h²). A flat
 /// end mill (rc = 0) leaves a stair whose corner stands w·sinθ·cosθ ≤ w/2 off
 /// the surface: w = 2h.
-pub fn pass_width(rc: f64, h: f64) -> f64 {
+pub(crate) fn pass_width(rc: f64, h: f64) -> f64 {
     if rc <= 0.0 {
         2.0 * h
     } else {
@@ -38,7 +38,7 @@ pub fn pass_width(rc: f64, h: f64) -> f64 {
 
 /// dφ/ds by central differences (one-sided at the ends of φ's range, 0
 /// outside it, where φ is flat).
-pub fn dphi_ds(profile: &DepthProfile, s: f64) -> f64 {
+pub(crate) fn dphi_ds(profile: &DepthProfile, s: f64) -> f64 {
     let (lo, hi) = profile.s_range();
     if s < lo || s > hi {
         return 0.0;
@@ -50,22 +50,22 @@ pub fn dphi_ds(profile: &DepthProfile, s: f64) -> f64 {
 
 /// The curves Γ(s) of a field, from one grid (`field::level::curves`, as the
 /// level planner extracts them).
-pub struct Curves<'a> {
+pub(crate) struct Curves<'a> {
     /// The field.
-    pub field: &'a Field,
+    pub(crate) field: &'a Field,
     /// u sampled over the part.
-    pub grid: Grid,
+    pub(crate) grid: Grid,
     /// The glyphs (the material where u is pinned to 1).
-    pub glyphs: &'a [Vec<Vec2>],
+    pub(crate) glyphs: &'a [Vec<Vec2>],
     /// Grid spacing, mm.
-    pub h: f64,
+    pub(crate) h: f64,
     /// Chord tolerance, mm.
-    pub tol: f64,
+    pub(crate) tol: f64,
 }
 
 impl Curves<'_> {
     /// Γ(s) as rings.
-    pub fn at(&self, s: f64) -> Vec<Ring> {
+    pub(crate) fn at(&self, s: f64) -> Vec<Ring> {
         curves(&self.grid, self.field, self.glyphs, s, self.h, self.tol)
     }
 
@@ -86,7 +86,7 @@ impl Curves<'_> {
     /// σ, the distance on S2 from the top edge ([`geodesic::Distance`]), on
     /// a grid of [`geodesic::SPACING`] over this grid's box; `z_of(s)` is
     /// S2's height where u = s, `corner` the cutter's corner radius.
-    pub fn distance(
+    pub(crate) fn distance(
         &self,
         profile: &DepthProfile,
         (cavity, corner): (bool, f64),
@@ -103,7 +103,7 @@ impl Curves<'_> {
 /// the top edge's), or at distance σ = d (mm) on S2 from the top edge
 /// ([`super::geodesic`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum At {
+pub(crate) enum At {
     /// On Γ(s).
     S(f64),
     /// σ = d, mm.
@@ -111,14 +111,14 @@ pub enum At {
 }
 
 /// One pass: where it lies and its curves.
-pub type Pass = (At, Vec<Curve>);
+pub(crate) type Pass = (At, Vec<Curve>);
 
 /// The passes from the floor up, the floor's first.
-pub struct Planned {
+pub(crate) struct Planned {
     /// The passes in the order the finisher cuts them (ascending z).
-    pub passes: Vec<Pass>,
+    pub(crate) passes: Vec<Pass>,
     /// How many of `passes` lie over the floor; the next is the foot's.
-    pub floor: usize,
+    pub(crate) floor: usize,
 }
 
 /// The passes from the floor up (see [`Planned`]): the floor's, then the
@@ -128,7 +128,7 @@ pub struct Planned {
 /// (`candidate_levels`) with each loop kept only where its wall's spacing
 /// needs it (`thin`). `cavity` mirrors the profile (its floor is at the
 /// high end of s). Errors name what failed.
-pub fn pass_levels(
+pub(crate) fn pass_levels(
     curves: &Curves,
     geodesic: Option<&Distance>,
     profile: &DepthProfile,
@@ -209,7 +209,7 @@ fn geodesic_wall(
 /// Shortest curve of σ a pass keeps, mm: shorter ones are the grid's
 /// crumbs round a maximum of σ within a cell or two, which the passes on
 /// either side cover.
-pub const MIN_CURVE: f64 = 1.0;
+pub(crate) const MIN_CURVE: f64 = 1.0;
 
 /// Over the floor, outwards from the foot Γ(`foot`): the foot's loops
 /// offset along the field's downhill direction by k·w (k = 1, 2, ...) until
@@ -259,7 +259,7 @@ fn spread(g: f64, dphi: f64) -> f64 {
 /// w/REFINE apart where Γ(s) is most spread, and each wall (each loop of
 /// Γ(s) and its continuation up the wall) is cut only at the candidates it
 /// needs (`thin`).
-pub const REFINE: usize = 2;
+pub(crate) const REFINE: usize = 2;
 
 /// A candidate level of the wall: s, the loops of Γ(s) and the least |∇u|
 /// over each loop.

@@ -31,15 +31,15 @@ use crate::toolpath::{Move, Section, Toolpath, Vec3};
 
 /// Spacing of the contact points along a pass, mm (the chords between
 /// dropped points then follow the surface within a few µm).
-pub const SAMPLE: f64 = 0.1;
+pub(crate) const SAMPLE: f64 = 0.1;
 /// Longest feed link between a loop and its first child, in pass widths; a
 /// farther child is reached by a retract.
-pub const LINK_WIDTHS: f64 = 6.0;
+pub(crate) const LINK_WIDTHS: f64 = 6.0;
 /// Longest feed link to an open arc, mm: arcs end on the wall's foot, and
 /// the next arc's end lies along the foot, over a floor the roughing cut to
 /// size; a retract and an entry's ramp (a stepdown and more at the ramp
 /// angle and the plunge feed) take as long as a feed link of well over this.
-pub const ARC_LINK: f64 = 25.0;
+pub(crate) const ARC_LINK: f64 = 25.0;
 /// Most contact points added between two neighbours so their axes lie at
 /// most [`SAMPLE`] apart.
 const MAX_SPLIT: usize = 64;
@@ -51,18 +51,18 @@ const DESCENT_SLOPE: f64 = 0.839_099_631_177_280_1;
 
 /// One loop of one pass, as the cutter's tip follows it.
 #[derive(Clone, Debug)]
-pub struct Loop {
+pub(crate) struct Loop {
     /// The pass (index into the passes, from the floor up).
-    pub pass: usize,
+    pub(crate) pass: usize,
     /// Where the pass lies.
-    pub at: At,
+    pub(crate) at: At,
     /// Whether the curve is closed (else an open arc, cut from either end).
-    pub closed: bool,
+    pub(crate) closed: bool,
     /// The contact curve (first point not repeated), a closed one oriented
     /// for the cutting direction.
-    pub contact: Vec<Vec2>,
+    pub(crate) contact: Vec<Vec2>,
     /// The tip positions, one per contact point.
-    pub tip: Vec<Vec3>,
+    pub(crate) tip: Vec<Vec3>,
 }
 
 /// The side the material lies on: +1 when it is on the right of the loop's
@@ -82,7 +82,7 @@ fn material_side(pts: &[Vec2], away: &[Vec2]) -> f64 {
 /// tip positions (see the module docs); `Err` names a point no triangle lies
 /// under. On Γ(s) the slope φ′ is φ′(s); elsewhere it is φ′(u) at each
 /// contact point.
-pub fn tip_loop(
+pub(crate) fn tip_loop(
     curve: &Curve,
     pass: usize,
     at: At,
@@ -537,7 +537,7 @@ fn parents(loops: &[Loop], reach: f64) -> Vec<Option<usize>> {
 /// The loops in cutting order, each with whether it is reached by a feed link
 /// from the loop before it (else by a retract): a depth-first walk of the
 /// tree, nearest child first.
-pub fn order(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
+pub(crate) fn order(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
     let parent = parents(loops, reach);
     let mut children: Vec<Vec<usize>> = vec![Vec::new(); loops.len()];
     let mut roots = Vec::new();
@@ -573,7 +573,7 @@ pub fn order(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
 /// parent tree branches at every arc that the wall's foot cuts short, and a
 /// depth-first walk retracts at every branch; this walk retracts only when
 /// nothing that may be cut lies near.
-pub fn order_nearest(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
+pub(crate) fn order_nearest(loops: &[Loop], reach: f64, max_link: f64) -> Vec<(usize, bool)> {
     let parent = parents(loops, reach);
     // Every tenth contact point, and an arc's ends: where a loop is near.
     let probes: Vec<Vec<Vec2>> = loops
@@ -740,7 +740,7 @@ fn dives(at: Vec3, pts: &[Vec3], slope: f64) -> bool {
 /// ended, so the starts are placed in order first (cheap), and the sections,
 /// whose links, entries and thinning drop the cutter thousands of times,
 /// are then built in parallel, in order.
-pub fn moves(
+pub(crate) fn moves(
     loops: &[Loop],
     order: &[(usize, bool)],
     p: &FinishParams,

@@ -28,11 +28,11 @@ use std::fmt;
 /// GRBL 1.1's line buffer, characters: a block (comments and spaces removed)
 /// must be shorter, as the newline takes the last place; GRBL answers `error:11`
 /// otherwise.
-pub const GRBL_LINE_BUFFER: usize = 80;
+pub(crate) const GRBL_LINE_BUFFER: usize = 80;
 
 /// Longest raw line (comments included) before the checker warns; pfcam's own
-/// writer stays within it ([`super::MAX_LINE_LEN`]).
-pub const MAX_RAW_LINE: usize = 80;
+/// writer stays within it ([`super::writer::MAX_LINE_LEN`]).
+pub(crate) const MAX_RAW_LINE: usize = 80;
 
 /// Slack for the travel comparisons, mm: far below a step, only absorbs the
 /// binary rounding of coordinates read from text.
@@ -56,7 +56,7 @@ pub struct Finding {
     /// Error or warning.
     pub severity: Severity,
     /// GRBL 1.1's error number (`error:N`) when GRBL has one for it.
-    pub code: Option<u8>,
+    pub(crate) code: Option<u8>,
     /// What is wrong, in pfcam's words.
     pub message: String,
 }
@@ -110,11 +110,11 @@ impl Default for CheckOptions {
 
 /// Per-axis minimum and maximum, mm; `None` for an axis never known.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct Extent {
+pub(crate) struct Extent {
     /// Smallest X, Y, Z.
-    pub min: [Option<f64>; 3],
+    pub(crate) min: [Option<f64>; 3],
     /// Largest X, Y, Z.
-    pub max: [Option<f64>; 3],
+    pub(crate) max: [Option<f64>; 3],
 }
 
 impl Extent {
@@ -148,14 +148,14 @@ impl Extent {
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Totals {
     /// Lines in the file.
-    pub lines: usize,
+    pub(crate) lines: usize,
     /// Lines with a block to send (not blank, not only a comment).
-    pub blocks: usize,
+    pub(crate) blocks: usize,
     /// Every position the program reaches (work coordinates, mm).
-    pub bounds: Extent,
+    pub(crate) bounds: Extent,
     /// Where feed moves (`G1`/`G2`/`G3`/`G38.x`) go, starts included, arcs by their
     /// true extent: the same as the `cut min`/`cut max` pfcam writes in its header.
-    pub cut_bounds: Extent,
+    pub(crate) cut_bounds: Extent,
     /// Length of feed moves, mm.
     pub cut_length: f64,
     /// Length of rapid moves, mm.
@@ -166,9 +166,9 @@ pub struct Totals {
     /// dwells; acceleration ignored.
     pub time_s: f64,
     /// The rapid rate used, mm/min.
-    pub rapid_rate: f64,
+    pub(crate) rapid_rate: f64,
     /// Moves not measured because they start where the position is unknown.
-    pub unmeasured_moves: usize,
+    pub(crate) unmeasured_moves: usize,
 }
 
 impl fmt::Display for Totals {

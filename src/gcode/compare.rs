@@ -23,11 +23,11 @@ const ROUNDING_SLACK: f64 = 1e-9;
 #[derive(Debug, Clone, PartialEq)]
 pub struct GcodeDiff {
     /// 1-based line in the expected file (0 when it has run out).
-    pub expected_line: usize,
+    pub(crate) expected_line: usize,
     /// 1-based line in the actual file (0 when it has run out).
-    pub actual_line: usize,
+    pub(crate) actual_line: usize,
     /// What differs.
-    pub what: String,
+    pub(crate) what: String,
 }
 
 impl std::fmt::Display for GcodeDiff {

@@ -7,22 +7,24 @@
 //! replace pfcam's own files but never anyone else's.
 
 pub mod check;
-pub mod compare;
-pub mod motion;
+pub(crate) mod compare;
+pub(crate) mod motion;
 pub mod parse;
 pub mod writer;
 
-pub use compare::{compare_gcode, GcodeDiff, GOLDEN_TOLERANCE};
-pub use writer::{
-    format_duration, stock_extent, write_gcode, write_gcode_on, GcodeError, StockExtent, DECIMALS,
-    MAX_LINE_LEN,
-};
+pub use compare::compare_gcode;
+pub use compare::GOLDEN_TOLERANCE;
+pub use writer::format_duration;
+pub(crate) use writer::stock_extent;
+pub use writer::write_gcode;
+pub use writer::write_gcode_on;
+pub use writer::GcodeError;
 
 /// What every pfcam G-code file's first line starts with.
-pub const HEADER_PREFIX: &str = "(pfcam ";
+pub(crate) const HEADER_PREFIX: &str = "(pfcam ";
 
 /// The first line of a G-code file for job `name`.
-pub fn header_line(name: &str) -> String {
+pub(crate) fn header_line(name: &str) -> String {
     format!(
         "{HEADER_PREFIX}{} job {})",
         env!("CARGO_PKG_VERSION"),
@@ -31,7 +33,7 @@ pub fn header_line(name: &str) -> String {
 }
 
 /// Whether `first_line` is the first line of a file pfcam wrote.
-pub fn is_pfcam_output(first_line: &str) -> bool {
+pub(crate) fn is_pfcam_output(first_line: &str) -> bool {
     first_line.starts_with(HEADER_PREFIX) && first_line.trim_end().ends_with(')')
 }
 

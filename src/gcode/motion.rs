@@ -8,7 +8,7 @@ use crate::geometry::{arc, Vec2};
 const MM_PER_INCH: f64 = 25.4;
 
 /// The G codes of a block, ×10 (`G38.2` → 382).
-pub fn gcodes(words: &[Word]) -> Vec<u32> {
+pub(crate) fn gcodes(words: &[Word]) -> Vec<u32> {
     words
         .iter()
         .filter(|w| w.letter == 'G')
@@ -19,7 +19,7 @@ pub fn gcodes(words: &[Word]) -> Vec<u32> {
 /// Whether the block uses its axis words for something other than a programmed
 /// move (G10, G28, G30, G53, G92 and their .1 forms, G43.1, G49): no move to
 /// measure or simulate.
-pub fn is_axis_command(gcodes: &[u32]) -> bool {
+pub(crate) fn is_axis_command(gcodes: &[u32]) -> bool {
     gcodes
         .iter()
         .any(|g| matches!(g, 100 | 280 | 281 | 300 | 301 | 431 | 490 | 530 | 920 | 921))
@@ -27,7 +27,7 @@ pub fn is_axis_command(gcodes: &[u32]) -> bool {
 
 /// The motion-group G code the block names (`G0`, `G1`, `G2`, `G3`, `G38.x`,
 /// `G80`), ×10, if any.
-pub fn explicit_motion(gcodes: &[u32]) -> Option<u32> {
+pub(crate) fn explicit_motion(gcodes: &[u32]) -> Option<u32> {
     gcodes
         .iter()
         .copied()
@@ -37,7 +37,7 @@ pub fn explicit_motion(gcodes: &[u32]) -> Option<u32> {
 /// The motion a block GRBL accepted performs with its axis words: the one it
 /// names, else the modal one in force `before` it; `None` when the block has
 /// no axis words or uses them for an axis command ([`is_axis_command`]).
-pub fn block_motion(words: &[Word], before: &ModalState) -> Option<Motion> {
+pub(crate) fn block_motion(words: &[Word], before: &ModalState) -> Option<Motion> {
     let codes = gcodes(words);
     let has_axes = words.iter().any(|w| matches!(w.letter, 'X' | 'Y' | 'Z'));
     if !has_axes || is_axis_command(&codes) {
@@ -58,7 +58,7 @@ pub fn block_motion(words: &[Word], before: &ModalState) -> Option<Motion> {
 /// arc's plane), in the plane of `after` (the state after the block), with the
 /// block's R or offset words in its program units. Returns the arc and the
 /// indices of its plane's two axes ([`super::parse::Plane::axes`]).
-pub fn block_arc(
+pub(crate) fn block_arc(
     words: &[Word],
     after: &ModalState,
     from: [f64; 2],
@@ -92,24 +92,30 @@ pub fn block_arc(
 
 /// A circular arc in its plane's (first axis, second axis) coordinates, mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Arc {
+pub(crate) struct Arc {
     /// Centre.
-    pub centre: [f64; 2],
+    pub(crate) centre: [f64; 2],
     /// Radius (the distance from the centre to the start).
-    pub r: f64,
+    pub(crate) r: f64,
     /// Start angle, rad.
-    pub a0: f64,
+    pub(crate) a0: f64,
     /// Angle travelled, rad, in (0, 2π]; a start equal to the end is a full circle
     /// ([`arc::sweep_between`]).
-    pub sweep: f64,
+    pub(crate) sweep: f64,
     /// Counter-clockwise (G3) in the plane's axes.
-    pub ccw: bool,
+    pub(crate) ccw: bool,
 }
 
 impl Arc {
     /// From start `s`, end `t`, and either a radius `r` (negative: the long way
     /// round, as in GRBL) or the centre's `offset` from the start.
-    pub fn new(s: [f64; 2], t: [f64; 2], r: Option<f64>, offset: [f64; 2], ccw: bool) -> Arc {
+    pub(crate) fn new(
+        s: [f64; 2],
+        t: [f64; 2],
+        r: Option<f64>,
+        offset: [f64; 2],
+        ccw: bool,
+    ) -> Arc {
         let centre = match r {
             Some(r) => {
                 // GRBL's construction: the centre is on the perpendicular
@@ -146,19 +152,19 @@ impl Arc {
 
     /// Length of the arc while the third axis moves `rise`: the helix's
     /// ([`arc::helix_length`]).
-    pub fn length(&self, rise: f64) -> f64 {
+    pub(crate) fn length(&self, rise: f64) -> f64 {
         arc::helix_length(self.r, self.sweep, rise)
     }
 
     /// How many equal chords keep every chord within `tol` mm of the arc
     /// ([`arc::chords`]).
-    pub fn chords(&self, tol: f64) -> usize {
+    pub(crate) fn chords(&self, tol: f64) -> usize {
         arc::chords(self.r, self.sweep, tol)
     }
 
     /// The points where the arc crosses the quadrant angles (0, 90°, 180°, 270°),
     /// which with its ends bound it ([`arc::extremes`]).
-    pub fn extremes(&self) -> Vec<[f64; 2]> {
+    pub(crate) fn extremes(&self) -> Vec<[f64; 2]> {
         let c = Vec2::new(self.centre[0], self.centre[1]);
         arc::extremes(c, self.r, self.a0, self.sweep, self.ccw)
             .into_iter()

@@ -17,11 +17,11 @@
 
 /// One G-code word: a letter and its number (`X-1.5` → `('X', -1.5)`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Word {
+pub(crate) struct Word {
     /// Upper-case letter.
-    pub letter: char,
+    pub(crate) letter: char,
     /// The number after it.
-    pub value: f64,
+    pub(crate) value: f64,
 }
 
 /// A block GRBL would reject, with GRBL 1.1's error number for it.
@@ -31,7 +31,7 @@ pub struct BlockError {
     /// GRBL 1.1 error number (`error:N`).
     pub code: u8,
     /// What in the block is wrong, in pfcam's words.
-    pub detail: String,
+    pub(crate) detail: String,
 }
 
 impl BlockError {
@@ -48,11 +48,11 @@ impl BlockError {
 #[error("line {line}: `{text}`: {error}")]
 pub struct LineError {
     /// 1-based line number in the file.
-    pub line: usize,
+    pub(crate) line: usize,
     /// The cleaned block.
-    pub text: String,
+    pub(crate) text: String,
     /// What GRBL would say.
-    pub error: BlockError,
+    pub(crate) error: BlockError,
 }
 
 /// Strips comments and whitespace and upper-cases, as a sender does before sending.
@@ -61,7 +61,7 @@ pub struct LineError {
 /// out the rest of the line. A line holding only `%` becomes empty. Like GRBL's
 /// serial reader, control characters and the block-delete `/` are dropped too
 /// (GRBL ignores `/`: the block runs; see [`has_block_delete`]).
-pub fn clean_line(raw: &str) -> String {
+pub(crate) fn clean_line(raw: &str) -> String {
     let mut out = String::with_capacity(raw.len());
     let mut in_paren = false;
     for c in raw.chars() {
@@ -87,7 +87,7 @@ pub fn clean_line(raw: &str) -> String {
 
 /// Whether `raw` has a `/` outside comments: a block-delete mark, which GRBL
 /// ignores (the block runs anyway).
-pub fn has_block_delete(raw: &str) -> bool {
+pub(crate) fn has_block_delete(raw: &str) -> bool {
     let mut in_paren = false;
     for c in raw.chars() {
         match c {
@@ -106,7 +106,7 @@ pub fn has_block_delete(raw: &str) -> bool {
 ///
 /// Errors: 1 when a character that is not a letter starts a word, 2 when a letter
 /// is not followed by a valid number.
-pub fn tokenize(block: &str) -> Result<Vec<Word>, BlockError> {
+pub(crate) fn tokenize(block: &str) -> Result<Vec<Word>, BlockError> {
     let bytes = block.as_bytes();
     let mut words = Vec::new();
     let mut i = 0;
@@ -208,7 +208,7 @@ pub enum Spindle {
 
 /// G93/G94.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FeedMode {
+pub(crate) enum FeedMode {
     /// G93.
     InverseTime,
     /// G94.
@@ -229,7 +229,7 @@ pub struct ModalState {
     /// Arc plane.
     pub plane: Plane,
     /// Feed-rate mode.
-    pub feed_mode: FeedMode,
+    pub(crate) feed_mode: FeedMode,
     /// Work coordinate system, 54 ..= 59.
     pub wcs: u8,
     /// Feed rate in **mm/min** (GRBL converts F when it reads it, so a later
@@ -244,7 +244,7 @@ pub struct ModalState {
     /// M8 flood coolant.
     pub flood: bool,
     /// Tool number T.
-    pub tool: u32,
+    pub(crate) tool: u32,
     /// Work position X, Y, Z in **mm**, `None` while unknown (before the first
     /// absolute move on that axis, after G28/G30/G53/G10).
     pub position: [Option<f64>; 3],
@@ -868,7 +868,7 @@ impl Plane {
     /// Indices (0 = X, 1 = Y, 2 = Z) of the plane's first and second axes, in
     /// GRBL's order: XY for G17, ZX for G18, YZ for G19. The offset words follow
     /// the axes: I/J, K/I, J/K.
-    pub fn axes(self) -> [usize; 2] {
+    pub(crate) fn axes(self) -> [usize; 2] {
         match self {
             Plane::XY => [0, 1],
             Plane::ZX => [2, 0],
@@ -880,7 +880,7 @@ impl Plane {
 /// GRBL's test for an I/J/K arc whose end is off the circle through its start
 /// (error 33, `gc_execute_line`): the radii at start (`r`) and end differ by
 /// `delta` > 0.005 mm **and** by more than 0.5 mm or 0.1 % of `r`. Both in mm.
-pub fn arc_radius_mismatch(r: f64, delta: f64) -> bool {
+pub(crate) fn arc_radius_mismatch(r: f64, delta: f64) -> bool {
     delta > 0.005 && (delta > 0.5 || delta > 0.001 * r)
 }
 
@@ -896,7 +896,7 @@ fn frac(code10: u32) -> String {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Line {
     /// 1-based line number in the file.
-    pub number: usize,
+    pub(crate) number: usize,
     /// The line as written.
     pub raw: String,
     /// The block to send (see [`clean_line`]); empty for comment-only lines.
@@ -911,7 +911,7 @@ pub struct Program {
 }
 
 impl Program {
-    /// Splits a file into lines (never fails: errors are found by [`Program::check`]).
+    /// Splits a file into lines (never fails: a line's errors are found when it is executed).
     pub fn parse(text: &str) -> Program {
         Program {
             lines: text
@@ -927,13 +927,14 @@ impl Program {
     }
 
     /// Lines with something to send.
-    pub fn blocks(&self) -> impl Iterator<Item = &Line> {
+    pub(crate) fn blocks(&self) -> impl Iterator<Item = &Line> {
         self.lines.iter().filter(|l| !l.block.is_empty())
     }
 
     /// Runs every line through a fresh [`ModalState`]; returns every error (a
     /// failing line leaves the state unchanged, as in GRBL).
-    pub fn check(&self) -> Vec<LineError> {
+    #[cfg(test)]
+    pub(crate) fn check(&self) -> Vec<LineError> {
         let mut state = ModalState::default();
         let mut errors = Vec::new();
         for line in self.blocks() {

@@ -36,10 +36,10 @@ use std::fmt::Write as _;
 
 /// Decimals written for coordinates and feeds (mm, mm/min): 0.001 mm, finer than
 /// any hobby machine's step.
-pub const DECIMALS: usize = 3;
+pub(crate) const DECIMALS: usize = 3;
 
 /// The longest line written: GRBL 1.1's line buffer holds 80 characters.
-pub const MAX_LINE_LEN: usize = 80;
+pub(crate) const MAX_LINE_LEN: usize = 80;
 
 /// 10^[`DECIMALS`]: written numbers are whole multiples of 1/`SCALE` mm.
 const SCALE: f64 = 1000.0;
@@ -91,7 +91,7 @@ pub enum GcodeError {
 
 /// `x` with [`DECIMALS`] decimals, trailing zeros and a trailing point removed,
 /// and `-0` written as `0`: `1.5`, `-0.001`, `12`.
-pub fn fmt_num(x: f64) -> String {
+pub(crate) fn fmt_num(x: f64) -> String {
     let s = format!("{x:.DECIMALS$}");
     let s = if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.')
@@ -108,7 +108,7 @@ pub fn fmt_num(x: f64) -> String {
 /// Text made safe inside a G-code comment: GRBL ends a comment at the first `)`
 /// and has no nesting, so `(`/`)` become `[`/`]`, `;` becomes `,`, and anything
 /// outside printable ASCII becomes `?`.
-pub fn comment_text(s: &str) -> String {
+pub(crate) fn comment_text(s: &str) -> String {
     s.chars()
         .map(|c| match c {
             '(' => '[',
@@ -145,7 +145,7 @@ pub fn format_duration(seconds: f64) -> String {
 
 /// Min and max corners of every feed move (arcs by their true extent), or `None`
 /// when the path has no feed move.
-pub fn cut_bounds(tp: &Toolpath) -> Option<(Vec3, Vec3)> {
+pub(crate) fn cut_bounds(tp: &Toolpath) -> Option<(Vec3, Vec3)> {
     let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let mut hi = Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
     let mut add = |p: Vec3| {
@@ -453,7 +453,7 @@ fn levels_line(tp: &Toolpath) -> String {
 /// Lengths and estimated time of the program [`write_gcode_on`] writes for
 /// `tp`: its arcs legalised as the writer does, so these are the header's
 /// figures.
-pub fn program_stats(tp: &Toolpath, job: &Job) -> crate::toolpath::PathStats {
+pub(crate) fn program_stats(tp: &Toolpath, job: &Job) -> crate::toolpath::PathStats {
     arcfit::legalize(tp, &arc_limits(job)).stats(job.machine.rapid_rate)
 }
 
@@ -474,18 +474,22 @@ pub fn arc_limits(job: &Job) -> ArcLimits {
 /// stock (`known`) or, for a profile cut from a sheet, the least sheet the tool
 /// sweeps (the cut bounds grown by the tool radius `r`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StockExtent {
+pub(crate) struct StockExtent {
     /// Lower-left corner.
-    pub lo: Vec2,
+    pub(crate) lo: Vec2,
     /// Upper-right corner.
-    pub hi: Vec2,
+    pub(crate) hi: Vec2,
     /// The job's stock rectangle, not a sheet bound derived from the cut.
-    pub known: bool,
+    pub(crate) known: bool,
 }
 
 /// The [`StockExtent`] of a program: `stock` when given, else the cut bounds
 /// grown by `r`; `None` for a program with no feed move and no stock.
-pub fn stock_extent(tp: &Toolpath, r: f64, stock: Option<(Vec2, Vec2)>) -> Option<StockExtent> {
+pub(crate) fn stock_extent(
+    tp: &Toolpath,
+    r: f64,
+    stock: Option<(Vec2, Vec2)>,
+) -> Option<StockExtent> {
     match (stock, cut_bounds(tp)) {
         (Some((lo, hi)), _) => Some(StockExtent {
             lo,

@@ -16,14 +16,14 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 /// arc's direction) make a full circle rather than an arc of almost no sweep.
 /// One value for every reader of arcs, so that what pfcam writes and what
 /// `check` and `simulate` read back agree on which arcs are whole turns.
-pub const FULL_TURN_EPS: f64 = 1e-9;
+pub(crate) const FULL_TURN_EPS: f64 = 1e-9;
 
 /// Most chords [`chords`] asks for, however fine the tolerance.
-pub const MAX_CHORDS: usize = 100_000;
+pub(crate) const MAX_CHORDS: usize = 100_000;
 
 /// Sweep (radians) from angle `a0` to angle `a1` turning counter-clockwise when
 /// `ccw`: in (0, 2π], a whole turn when they agree to [`FULL_TURN_EPS`].
-pub fn sweep_between(a0: f64, a1: f64, ccw: bool) -> f64 {
+pub(crate) fn sweep_between(a0: f64, a1: f64, ccw: bool) -> f64 {
     let s = if ccw { a1 - a0 } else { a0 - a1 }.rem_euclid(TAU);
     if s <= FULL_TURN_EPS {
         s + TAU
@@ -33,29 +33,29 @@ pub fn sweep_between(a0: f64, a1: f64, ccw: bool) -> f64 {
 }
 
 /// Angle of `p` about `c` (`atan2`).
-pub fn angle(p: Vec2, c: Vec2) -> f64 {
+pub(crate) fn angle(p: Vec2, c: Vec2) -> f64 {
     (p.y - c.y).atan2(p.x - c.x)
 }
 
 /// Radius of the arc starting at `a` about `c`.
-pub fn radius(a: Vec2, c: Vec2) -> f64 {
+pub(crate) fn radius(a: Vec2, c: Vec2) -> f64 {
     (a.x - c.x).hypot(a.y - c.y)
 }
 
 /// Sweep (radians) of the arc from `a` to `b` about `c`, turning
 /// counter-clockwise when `ccw`: [`sweep_between`] of their angles.
-pub fn sweep(a: Vec2, b: Vec2, c: Vec2, ccw: bool) -> f64 {
+pub(crate) fn sweep(a: Vec2, b: Vec2, c: Vec2, ccw: bool) -> f64 {
     sweep_between(angle(a, c), angle(b, c), ccw)
 }
 
 /// Length of a helix of radius `r` turning through `sweep` while rising `rise`
 /// along the third axis: the hypotenuse of the planar length r·sweep and the rise.
-pub fn helix_length(r: f64, sweep: f64, rise: f64) -> f64 {
+pub(crate) fn helix_length(r: f64, sweep: f64, rise: f64) -> f64 {
     (r * sweep).hypot(rise)
 }
 
 /// Length of the (helical, when `rise` ≠ 0) arc from `a` to `b` about `c`.
-pub fn length(a: Vec2, b: Vec2, c: Vec2, ccw: bool, rise: f64) -> f64 {
+pub(crate) fn length(a: Vec2, b: Vec2, c: Vec2, ccw: bool, rise: f64) -> f64 {
     helix_length(radius(a, c), sweep(a, b, c, ccw), rise)
 }
 
@@ -64,7 +64,7 @@ pub fn length(a: Vec2, b: Vec2, c: Vec2, ccw: bool, rise: f64) -> f64 {
 /// r(1 − cos(φ/2)) from its arc, so φ = 2·acos(1 − tol/r) will do; when r ≤ tol
 /// any chord of at most π does (it stays within r of the arc). At least 1, at
 /// most [`MAX_CHORDS`] (and that many for a tolerance of zero).
-pub fn chords(r: f64, sweep: f64, tol: f64) -> usize {
+pub(crate) fn chords(r: f64, sweep: f64, tol: f64) -> usize {
     let phi = if r <= tol {
         PI
     } else {
@@ -76,7 +76,7 @@ pub fn chords(r: f64, sweep: f64, tol: f64) -> usize {
 /// The ends of `n` equal pieces of the arc from `a` to `b` about `c`: the point
 /// at angle a0 ± sweep·k/n for k = 1..n, the last exactly `b`. (A helix's third
 /// axis goes linearly with k/n.)
-pub fn divide(a: Vec2, b: Vec2, c: Vec2, ccw: bool, n: usize) -> Vec<Vec2> {
+pub(crate) fn divide(a: Vec2, b: Vec2, c: Vec2, ccw: bool, n: usize) -> Vec<Vec2> {
     let r = radius(a, c);
     let a0 = angle(a, c);
     let sw = sweep(a, b, c, ccw);
@@ -95,7 +95,7 @@ pub fn divide(a: Vec2, b: Vec2, c: Vec2, ccw: bool, n: usize) -> Vec<Vec2> {
 
 /// Points along the arc from `a` (excluded) to `b` (included, exactly) about
 /// `c`: equal chords within `tol` of the arc ([`chords`]).
-pub fn flatten(a: Vec2, b: Vec2, c: Vec2, ccw: bool, tol: f64) -> Vec<Vec2> {
+pub(crate) fn flatten(a: Vec2, b: Vec2, c: Vec2, ccw: bool, tol: f64) -> Vec<Vec2> {
     let n = chords(radius(a, c), sweep(a, b, c, ccw), tol);
     divide(a, b, c, ccw, n)
 }
@@ -103,7 +103,7 @@ pub fn flatten(a: Vec2, b: Vec2, c: Vec2, ccw: bool, tol: f64) -> Vec<Vec2> {
 /// The points where the arc of radius `r` about `c`, starting at angle `a0` and
 /// turning through `sweep`, crosses the quadrant angles (0, 90°, 180°, 270°):
 /// with its ends they bound it.
-pub fn extremes(c: Vec2, r: f64, a0: f64, sweep: f64, ccw: bool) -> Vec<Vec2> {
+pub(crate) fn extremes(c: Vec2, r: f64, a0: f64, sweep: f64, ccw: bool) -> Vec<Vec2> {
     (0..4)
         .filter_map(|k| {
             let a = k as f64 * FRAC_PI_2;

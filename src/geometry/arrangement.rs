@@ -17,69 +17,69 @@ use super::Vec2;
 const GRID: f64 = (1u64 << 30) as f64;
 
 /// At most this many edges go in.
-pub const MAX_EDGES: usize = 1_000_000;
+pub(crate) const MAX_EDGES: usize = 1_000_000;
 
 /// At most this many pieces come out (edges plus split points): a few long
 /// edges crossing each other n² times cannot fill the memory.
-pub const MAX_PIECES: usize = 4_000_000;
+pub(crate) const MAX_PIECES: usize = 4_000_000;
 
 /// At most this many pairs of edges whose x-ranges overlap are tested for a
 /// crossing (about a second): thousands of long edges side by side would
 /// otherwise take hours.
-pub const MAX_PAIR_TESTS: u64 = 400_000_000;
+pub(crate) const MAX_PAIR_TESTS: u64 = 400_000_000;
 
 /// A point on the grid.
-pub type P = [i64; 2];
+pub(crate) type P = [i64; 2];
 
 /// One edge of the graph, from point `a` to point `b`, drawn `mult` times in that
 /// direction (net: a piece drawn once each way has `mult` 0 and is dropped).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Edge {
+pub(crate) struct Edge {
     /// start (index into `points`)
-    pub a: usize,
+    pub(crate) a: usize,
     /// end
-    pub b: usize,
+    pub(crate) b: usize,
     /// net count of input edges along a → b
-    pub mult: i32,
+    pub(crate) mult: i32,
 }
 
 /// The planar graph of some closed polygons.
 #[derive(Clone, Debug, Default)]
-pub struct Arrangement {
+pub(crate) struct Arrangement {
     /// Grid point (i, j) is `origin + unit · (i, j)`.
-    pub origin: Vec2,
+    pub(crate) origin: Vec2,
     /// Size of a grid step.
-    pub unit: f64,
+    pub(crate) unit: f64,
     /// The vertices.
-    pub points: Vec<P>,
+    pub(crate) points: Vec<P>,
     /// The edges; no two share both ends, none crosses another.
-    pub edges: Vec<Edge>,
+    pub(crate) edges: Vec<Edge>,
     /// Whether any two input edges crossed or touched other than end to end,
     /// or more than two edges meet at a point.
-    pub crossed: bool,
+    pub(crate) crossed: bool,
 }
 
 /// Too many edges, pieces or tests (see [`MAX_EDGES`], [`MAX_PIECES`],
 /// [`MAX_PAIR_TESTS`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct TooComplex;
+pub(crate) struct TooComplex;
 
 impl Arrangement {
     /// A grid point in the input's coordinates.
-    pub fn at(&self, p: P) -> Vec2 {
+    pub(crate) fn at(&self, p: P) -> Vec2 {
         self.origin + Vec2::new(p[0] as f64, p[1] as f64) * self.unit
     }
 }
 
 /// Twice the signed area of the triangle a, b, c: > 0 when c is left of a → b.
-pub fn orient(a: P, b: P, c: P) -> i128 {
+pub(crate) fn orient(a: P, b: P, c: P) -> i128 {
     let (abx, aby) = ((b[0] - a[0]) as i128, (b[1] - a[1]) as i128);
     let (acx, acy) = ((c[0] - a[0]) as i128, (c[1] - a[1]) as i128);
     abx * acy - aby * acx
 }
 
 /// The graph of `polys`, each a closed polygon (the last point joins the first).
-pub fn arrange(polys: &[Vec<Vec2>]) -> Result<Arrangement, TooComplex> {
+pub(crate) fn arrange(polys: &[Vec<Vec2>]) -> Result<Arrangement, TooComplex> {
     let n_in: usize = polys.iter().map(Vec::len).sum();
     if n_in > MAX_EDGES {
         return Err(TooComplex);

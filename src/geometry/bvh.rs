@@ -22,7 +22,7 @@ struct Node {
 
 /// The hierarchy: nodes (root at 0) over segment indices.
 #[derive(Clone, Debug, Default)]
-pub struct Bvh {
+pub(crate) struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
 }
@@ -48,7 +48,7 @@ fn box_dist2(p: Vec2, lo: Vec2, hi: Vec2) -> f64 {
 impl Bvh {
     /// Build over the segments by median splits along the wider axis of the
     /// segment midpoints.
-    pub fn new(edges: &[(Vec2, Vec2)]) -> Bvh {
+    pub(crate) fn new(edges: &[(Vec2, Vec2)]) -> Bvh {
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * edges.len() / LEAF + 1),
             order: (0..edges.len() as u32).collect(),
@@ -114,7 +114,7 @@ impl Bvh {
     /// segment index), or None with no segments. `hint`, the index of a segment
     /// likely to be near (the previous query's answer, for a walk along the
     /// part), only seeds the bound the search prunes with.
-    pub fn nearest(
+    pub(crate) fn nearest(
         &self,
         edges: &[(Vec2, Vec2)],
         p: Vec2,
@@ -179,7 +179,7 @@ impl Bvh {
     /// distance `reach2` of `p` (boxes further away are skipped; `hit` decides
     /// for each segment reached). `hint` is tried first: for a walk along the
     /// part the last answer usually decides at once.
-    pub fn any_near(
+    pub(crate) fn any_near(
         &self,
         edges: &[(Vec2, Vec2)],
         p: Vec2,

@@ -12,12 +12,12 @@ pub struct Cause<E>(Arc<E>);
 
 impl<E> Cause<E> {
     /// Keeps `e`.
-    pub fn new(e: E) -> Self {
+    pub(crate) fn new(e: E) -> Self {
         Cause(Arc::new(e))
     }
 
     /// The error itself.
-    pub fn get(&self) -> &E {
+    pub(crate) fn get(&self) -> &E {
         &self.0
     }
 }

@@ -3,7 +3,7 @@
 use super::{GeometryError, Segment, Vec2};
 
 /// Gap (in the contour's units) below which consecutive segments count as joined.
-pub const JOIN_EPS: f64 = 1e-9;
+pub(crate) const JOIN_EPS: f64 = 1e-9;
 
 /// A closed curve: the end of each segment is the start of the next, and the end
 /// of the last is the start of the first.
@@ -15,30 +15,30 @@ pub struct Contour {
 
 /// A point where the tangent turns abruptly (a corner of the outline).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Corner {
+pub(crate) struct Corner {
     /// Index of the segment that starts at the corner.
-    pub segment: usize,
+    pub(crate) segment: usize,
     /// The corner point.
-    pub p: Vec2,
+    pub(crate) p: Vec2,
     /// Arc length from the contour's start to the corner.
-    pub s: f64,
+    pub(crate) s: f64,
     /// Unit tangent arriving at the corner.
-    pub t_in: Vec2,
+    pub(crate) t_in: Vec2,
     /// Unit tangent leaving the corner.
-    pub t_out: Vec2,
+    pub(crate) t_out: Vec2,
     /// Signed turning angle in radians, in (−π, π]: positive turns left.
-    pub turn: f64,
+    pub(crate) turn: f64,
 }
 
 /// A point on the contour with its unit tangent and arc-length position.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample {
+pub(crate) struct Sample {
     /// The point.
-    pub p: Vec2,
+    pub(crate) p: Vec2,
     /// Unit tangent in the contour's direction.
-    pub t: Vec2,
+    pub(crate) t: Vec2,
     /// Arc length from the contour's start.
-    pub s: f64,
+    pub(crate) s: f64,
 }
 
 impl Contour {
@@ -113,7 +113,7 @@ impl Contour {
     }
 
     /// True when the contour runs counter-clockwise.
-    pub fn is_ccw(&self) -> bool {
+    pub(crate) fn is_ccw(&self) -> bool {
         self.signed_area() > 0.0
     }
 
@@ -159,7 +159,7 @@ impl Contour {
     }
 
     /// Cumulative arc length at the start of every segment, plus the total at the end.
-    pub fn cumulative_lengths(&self) -> Vec<f64> {
+    pub(crate) fn cumulative_lengths(&self) -> Vec<f64> {
         let mut acc = Vec::with_capacity(self.segments.len() + 1);
         let mut s = 0.0;
         acc.push(0.0);
@@ -172,7 +172,7 @@ impl Contour {
 
     /// The point at arc length `s` (taken modulo the length); `cum` is
     /// [`Contour::cumulative_lengths`] of this contour.
-    pub fn sample_at(&self, cum: &[f64], s: f64) -> Sample {
+    pub(crate) fn sample_at(&self, cum: &[f64], s: f64) -> Sample {
         let total = *cum.last().unwrap_or(&0.0);
         if self.segments.is_empty() || cum.len() != self.segments.len() + 1 {
             // No curve (only reachable by building a Contour without `new`).
@@ -203,7 +203,7 @@ impl Contour {
     }
 
     /// `n` points equally spaced in arc length, the first at arc length `offset`.
-    pub fn sample_uniform(&self, n: usize, offset: f64) -> Vec<Sample> {
+    pub(crate) fn sample_uniform(&self, n: usize, offset: f64) -> Vec<Sample> {
         let cum = self.cumulative_lengths();
         let total = *cum.last().unwrap_or(&0.0);
         (0..n)
@@ -213,7 +213,7 @@ impl Contour {
 
     /// The corners: joins between segments where the tangent turns by more than
     /// `min_turn` radians.
-    pub fn corners(&self, min_turn: f64) -> Vec<Corner> {
+    pub(crate) fn corners(&self, min_turn: f64) -> Vec<Corner> {
         let n = self.segments.len();
         let cum = self.cumulative_lengths();
         let degenerate = |s: &Segment| match *s {
@@ -255,7 +255,8 @@ impl Contour {
     /// counter-clockwise contour, −1 inside a clockwise one, 0 outside.
     /// This flattens the contour on every call: to test many points, flatten once
     /// and call [`polygon_winding_number`](super::polygon_winding_number).
-    pub fn winding_number(&self, p: Vec2, tol: f64) -> i32 {
+    #[cfg(test)]
+    pub(crate) fn winding_number(&self, p: Vec2, tol: f64) -> i32 {
         super::polygon_winding_number(&self.flatten(tol), p)
     }
 }

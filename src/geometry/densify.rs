@@ -6,13 +6,13 @@ use super::Vec2;
 /// evenly between them so that none is farther than `step` from the next.
 /// `closed`: the chord from the last point back to the first is included and
 /// the first is not repeated at the end; open, the last point ends the list.
-pub fn densify(pts: &[Vec2], step: f64, closed: bool) -> Vec<Vec2> {
+pub(crate) fn densify(pts: &[Vec2], step: f64, closed: bool) -> Vec<Vec2> {
     spread(pts, pts, step, closed, |a, b, t| a.lerp(b, t))
 }
 
 /// Values `vals` given at the points `pts`, spread over [`densify`]'s
 /// points (the same steps, linear along each chord).
-pub fn densify_values(pts: &[Vec2], vals: &[f64], step: f64, closed: bool) -> Vec<f64> {
+pub(crate) fn densify_values(pts: &[Vec2], vals: &[f64], step: f64, closed: bool) -> Vec<f64> {
     spread(pts, vals, step, closed, |a, b, t| a + (b - a) * t)
 }
 

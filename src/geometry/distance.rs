@@ -142,19 +142,20 @@ impl Buckets {
 
 impl DistanceIndex {
     /// Number of edges indexed.
-    pub fn edge_count(&self) -> usize {
+    #[cfg(test)]
+    pub(crate) fn edge_count(&self) -> usize {
         self.edges.len()
     }
 
     /// Total length of the indexed edges.
-    pub fn perimeter(&self) -> f64 {
+    pub(crate) fn perimeter(&self) -> f64 {
         self.edges.iter().map(|(a, b)| a.dist(*b)).sum()
     }
 
     /// Distance from `p` to the nearest edge and the nearest point on it.
     /// A point that is not finite is at distance NaN, never a number that
     /// could pass for a measure.
-    pub fn nearest(&self, p: Vec2) -> (f64, Vec2) {
+    pub(crate) fn nearest(&self, p: Vec2) -> (f64, Vec2) {
         let (d, q, _) = self.nearest_from(p, None);
         (d, q)
     }
@@ -162,7 +163,7 @@ impl DistanceIndex {
     /// [`nearest`](Self::nearest) for a walk of nearby queries: `hint` holds
     /// the edge that answered the last one, which seeds the search's bound
     /// (most of the tree is then pruned at once), and is updated.
-    pub fn nearest_hinted(&self, p: Vec2, hint: &std::cell::Cell<u32>) -> (f64, Vec2) {
+    pub(crate) fn nearest_hinted(&self, p: Vec2, hint: &std::cell::Cell<u32>) -> (f64, Vec2) {
         let (d, q, e) = self.nearest_from(p, Some(hint.get()));
         if let Some(e) = e {
             hint.set(e);
@@ -188,7 +189,7 @@ impl DistanceIndex {
     /// that minimum by rounding where two edges tie) is below `r`. The search
     /// stops at the first such edge. `hint` is
     /// tried first and updated, as in [`nearest_hinted`](Self::nearest_hinted).
-    pub fn closer_than(&self, p: Vec2, r: f64, hint: &std::cell::Cell<u32>) -> bool {
+    pub(crate) fn closer_than(&self, p: Vec2, r: f64, hint: &std::cell::Cell<u32>) -> bool {
         crate::count::query();
         // Boxes are pruned with a relative margin far above the rounding of
         // their bound, so no edge that passes the exact test is skipped.
@@ -212,7 +213,8 @@ impl DistanceIndex {
     }
 
     /// Distance by scanning every edge (for tests of the grid search).
-    pub fn distance_brute(&self, p: Vec2) -> f64 {
+    #[cfg(test)]
+    pub(crate) fn distance_brute(&self, p: Vec2) -> f64 {
         self.edges
             .iter()
             .map(|&(a, b)| seg_dist2(p, a, b).0)
@@ -224,7 +226,7 @@ impl DistanceIndex {
     /// segment–segment distances over the edges in the cells the segment's box,
     /// grown by `reach`, overlaps; edges further than `reach` may be missed, so the
     /// result is exact whenever it is below `reach`).
-    pub fn segment_distance(&self, a: Vec2, b: Vec2, reach: f64) -> f64 {
+    pub(crate) fn segment_distance(&self, a: Vec2, b: Vec2, reach: f64) -> f64 {
         crate::count::query();
         if self.edges.is_empty() {
             return f64::INFINITY;
@@ -289,7 +291,7 @@ pub fn deepest_point(poly: &[Vec2], part: &DistanceIndex) -> (Vec2, f64) {
 }
 
 /// As `deepest_point`, for the region `inside` within the box [lo, hi].
-pub fn deepest_point_in(
+pub(crate) fn deepest_point_in(
     lo: Vec2,
     hi: Vec2,
     inside: &dyn Fn(Vec2) -> bool,

@@ -24,7 +24,7 @@ use super::{
 };
 
 /// Largest DXF file read, bytes.
-pub const MAX_DXF_BYTES: u64 = 64 << 20;
+pub(crate) const MAX_DXF_BYTES: u64 = 64 << 20;
 
 /// Curves are flattened within this fraction of `operation.tolerance`: the
 /// part then lies within a quarter of the tolerance of the drawing, and the
@@ -35,7 +35,7 @@ pub const MAX_DXF_BYTES: u64 = 64 << 20;
 pub const FLATTEN_FRACTION: f64 = 0.25;
 
 /// Most vertices of the flattened contours.
-pub const MAX_VERTICES: usize = 500_000;
+pub(crate) const MAX_VERTICES: usize = 500_000;
 
 /// A DXF drawing as a shape source (`shape.dxf_file`).
 #[derive(Clone, Debug, PartialEq)]

@@ -15,7 +15,7 @@ use super::Vec2;
 
 /// How a closed path's winding number decides what is inside.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FillRule {
+pub(crate) enum FillRule {
     /// Inside where the winding number is not zero (SVG's default).
     NonZero,
     /// Inside where the winding number is odd.
@@ -38,7 +38,10 @@ impl FillRule {
 
 /// The loops bounding what `polys` fill under `rule`: outlines counter-clockwise,
 /// holes clockwise, none crossing another.
-pub fn fill_outlines(polys: &[Vec<Vec2>], rule: FillRule) -> Result<Vec<Vec<Vec2>>, TooComplex> {
+pub(crate) fn fill_outlines(
+    polys: &[Vec<Vec2>],
+    rule: FillRule,
+) -> Result<Vec<Vec<Vec2>>, TooComplex> {
     let arr = arrange(polys)?;
     let directed = boundary_edges(&arr, rule)?;
     Ok(chain(&arr, &directed)
@@ -49,7 +52,7 @@ pub fn fill_outlines(polys: &[Vec<Vec2>], rule: FillRule) -> Result<Vec<Vec<Vec2
 
 /// Whether any edge of `polys` crosses or touches another other than at the
 /// shared end of two consecutive edges (a polygon that crosses itself).
-pub fn crosses(polys: &[Vec<Vec2>]) -> Result<bool, TooComplex> {
+pub(crate) fn crosses(polys: &[Vec<Vec2>]) -> Result<bool, TooComplex> {
     Ok(arrange(polys)?.crossed)
 }
 

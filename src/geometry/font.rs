@@ -11,7 +11,7 @@ use std::path::Path;
 /// A font file read into memory and checked to parse.
 pub struct FontFile {
     /// The path as given, for messages.
-    pub name: String,
+    pub(crate) name: String,
     data: Vec<u8>,
     /// The face's index in a collection (`.ttc`); 0 for a single font.
     index: u32,
@@ -57,7 +57,7 @@ fn font_err(name: &str, reason: FontFault) -> GeometryError {
 
 /// Largest font file read, bytes: the largest CJK fonts are about 20 MB; a
 /// larger file is refused before it is read into memory.
-pub const MAX_FONT_BYTES: u64 = 64 << 20;
+pub(crate) const MAX_FONT_BYTES: u64 = 64 << 20;
 
 impl FontFile {
     /// Reads and checks face `index` of the font at `path` (0 for a single font;
@@ -122,7 +122,7 @@ pub fn line_height(face: &ttf_parser::Face<'_>) -> Option<f64> {
 /// The outline of glyph `id` as closed contours in font units, as the font
 /// orders and orients them; none for an empty glyph (a space). `what` names
 /// the glyph in errors (the characters it stands for).
-pub fn outline(
+pub(crate) fn outline(
     face: &ttf_parser::Face<'_>,
     name: &str,
     id: u16,

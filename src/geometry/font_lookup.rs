@@ -11,21 +11,23 @@
 //! the closest), and that slope (Italic and Oblique standing in for each
 //! other when the family has only one of them).
 
-use std::path::{Path, PathBuf};
+#[cfg(test)]
+use std::path::Path;
+use std::path::PathBuf;
 use std::sync::OnceLock;
 
 /// A face found by name.
 #[derive(Clone, Debug, PartialEq)]
-pub struct FoundFace {
+pub(crate) struct FoundFace {
     /// The file that holds it.
-    pub path: PathBuf,
+    pub(crate) path: PathBuf,
     /// Its index in the file (a `.ttc` collection holds several).
-    pub index: u32,
+    pub(crate) index: u32,
 }
 
 /// Why a name found no face.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum LookupError {
+pub(crate) enum LookupError {
     /// The database is empty.
     #[error("no fonts were found on this system to look {name:?} up in; give the path of a .ttf or .otf file instead")]
     NoFonts {
@@ -89,7 +91,7 @@ fn quoted(names: &[String]) -> String {
 /// Whether a `font` value is a file path rather than a family name: it ends
 /// in `.ttf`, `.otf`, `.ttc` or `.otc` (any case), contains `/` or `\`, or
 /// is `.` or `..`.
-pub fn is_font_path(value: &str) -> bool {
+pub(crate) fn is_font_path(value: &str) -> bool {
     let lower = value.to_ascii_lowercase();
     value == "."
         || value == ".."
@@ -103,7 +105,7 @@ pub fn is_font_path(value: &str) -> bool {
 /// The system's fonts (`fontdb`'s `load_system_fonts`: fontconfig's
 /// directories on Linux, the standard font folders elsewhere), loaded the
 /// first time a job names a family.
-pub fn system_fonts() -> &'static fontdb::Database {
+pub(crate) fn system_fonts() -> &'static fontdb::Database {
     static DB: OnceLock<fontdb::Database> = OnceLock::new();
     DB.get_or_init(|| {
         let mut db = fontdb::Database::new();
@@ -113,7 +115,8 @@ pub fn system_fonts() -> &'static fontdb::Database {
 }
 
 /// The fonts in one directory (and its subdirectories), for tests.
-pub fn fonts_in(dir: &Path) -> fontdb::Database {
+#[cfg(test)]
+pub(crate) fn fonts_in(dir: &Path) -> fontdb::Database {
     let mut db = fontdb::Database::new();
     db.load_fonts_dir(dir);
     db
@@ -124,7 +127,7 @@ pub fn fonts_in(dir: &Path) -> fontdb::Database {
 /// `Hairline` Thin, `UltraLight` ExtraLight, `DemiBold` SemiBold,
 /// `UltraBold` ExtraBold and `Heavy` Black; two words written apart
 /// (`Semi Bold`) are read as one.
-pub const STYLE_WORDS: &[&str] = &[
+pub(crate) const STYLE_WORDS: &[&str] = &[
     "Thin",
     "ExtraLight",
     "Light",
@@ -301,10 +304,10 @@ fn in_family(face: &fontdb::FaceInfo, family: &str) -> bool {
 
 /// Longest name looked up, characters: the search tries every leading run of
 /// words against every face, so its work grows as the square of the words.
-pub const MAX_NAME_CHARS: usize = 200;
+pub(crate) const MAX_NAME_CHARS: usize = 200;
 
 /// The face of `db` that `name` means (see the module's rules).
-pub fn find_face(db: &fontdb::Database, name: &str) -> Result<FoundFace, LookupError> {
+pub(crate) fn find_face(db: &fontdb::Database, name: &str) -> Result<FoundFace, LookupError> {
     let chars = name.chars().count();
     if chars > MAX_NAME_CHARS {
         return Err(LookupError::TooLong { chars });
@@ -387,7 +390,7 @@ fn styles_of(faces: &[&fontdb::FaceInfo]) -> Vec<String> {
 }
 
 /// How many close family names an error lists.
-pub const CLOSE_FAMILIES: usize = 5;
+pub(crate) const CLOSE_FAMILIES: usize = 5;
 
 /// The [`CLOSE_FAMILIES`] families of `db` most like the name: each family is
 /// scored by the best Jaro–Winkler similarity (lower case) between it and a

@@ -6,27 +6,27 @@ use serde::Deserialize;
 use std::sync::OnceLock;
 
 /// The transcription of the paper's tables, kept verbatim in the crate.
-pub const PAPER_GLYPHS_TOML: &str = include_str!("data/paper-glyphs.toml");
+pub(crate) const PAPER_GLYPHS_TOML: &str = include_str!("data/paper-glyphs.toml");
 
 /// Cap height of the paper's letters, in font units.
-pub const PAPER_CAP_HEIGHT: f64 = 662.0;
+pub(crate) const PAPER_CAP_HEIGHT: f64 = 662.0;
 
 /// Gaps up to this size (font units) between consecutive printed segments are
 /// misprints and are closed by moving the next segment's start onto the previous
 /// end (letter M, two gaps of about 2.8 units at the top right).
-pub const PAPER_GAP_SNAP: f64 = 5.0;
+pub(crate) const PAPER_GAP_SNAP: f64 = 5.0;
 
 /// A glyph in font units: outlines counter-clockwise, counters clockwise.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Glyph {
     /// The character.
-    pub ch: char,
+    pub(crate) ch: char,
     /// Outer contours, counter-clockwise.
     pub outlines: Vec<Contour>,
     /// Holes, clockwise.
     pub counters: Vec<Contour>,
     /// Horizontal advance to the next glyph, font units.
-    pub advance: f64,
+    pub(crate) advance: f64,
 }
 
 #[derive(Deserialize)]

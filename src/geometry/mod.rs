@@ -1,35 +1,43 @@
 //! Shapes: lines and cubic Béziers, closed contours, regions (an outline and its
 //! counters), built-in glyphs, fonts and SVG path data. Knows nothing of fields.
 
-pub mod arc;
+pub(crate) mod arc;
 mod arrangement;
 mod bvh;
-pub mod capped;
+pub(crate) mod capped;
 mod cause;
 mod contour;
 mod densify;
 mod distance;
 pub mod dxffile;
-pub mod fill;
+pub(crate) mod fill;
 pub mod font;
-pub mod font_lookup;
+pub(crate) mod font_lookup;
 pub mod glyphs;
 mod nesting;
-pub mod ring;
+pub(crate) mod ring;
 mod segment;
 pub mod shaping;
 pub mod svgfile;
 pub mod svgpath;
-pub mod text;
+pub(crate) mod text;
 pub(crate) mod thin;
 mod vec2;
 
-pub use cause::Cause;
-pub use contour::{Contour, Corner, Sample, JOIN_EPS};
-pub use densify::{densify, densify_values};
-pub use distance::{deepest_point, deepest_point_in, seg_seg_dist, DistanceIndex};
+pub(crate) use cause::Cause;
+pub use contour::Contour;
+pub(crate) use contour::Sample;
+pub(crate) use densify::densify;
+pub(crate) use densify::densify_values;
+pub use distance::deepest_point;
+pub(crate) use distance::deepest_point_in;
+pub use distance::seg_seg_dist;
+pub use distance::DistanceIndex;
 pub use nesting::regions_from_contours;
-pub use ring::{closed_length, polygon_area, polygon_winding_number, Ring};
+pub(crate) use ring::closed_length;
+pub use ring::polygon_area;
+pub use ring::polygon_winding_number;
+pub use ring::Ring;
 pub use segment::Segment;
 pub use text::build_shape;
 pub use vec2::Vec2;
@@ -190,7 +198,7 @@ impl GeometryError {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Region {
     /// A human name for messages: the character and its position, e.g. `A (2)`.
-    pub name: String,
+    pub(crate) name: String,
     /// The outer boundary, counter-clockwise.
     pub outline: Contour,
     /// The holes, each clockwise.
@@ -237,7 +245,7 @@ impl Shape {
     }
 
     /// Every point mapped through `f`.
-    pub fn map(&self, f: impl Fn(Vec2) -> Vec2 + Copy) -> Shape {
+    pub(crate) fn map(&self, f: impl Fn(Vec2) -> Vec2 + Copy) -> Shape {
         Shape {
             regions: self
                 .regions
@@ -256,7 +264,7 @@ impl Shape {
 /// winding), row-major (index j·xs.len() + i), `xs` ascending: each row from
 /// its crossings with the polygons' edges (an edge counts where one end lies
 /// at or below the row and the other above it), rows in parallel.
-pub fn winding_rows(xs: &[f64], ys: &[f64], polys: &[Vec<Vec2>]) -> Vec<bool> {
+pub(crate) fn winding_rows(xs: &[f64], ys: &[f64], polys: &[Vec<Vec2>]) -> Vec<bool> {
     use rayon::prelude::*;
     let nx = xs.len();
     let mut inside = vec![false; nx * ys.len()];
@@ -302,7 +310,7 @@ pub fn polygons_bbox<P: AsRef<[Vec2]>>(polys: &[P]) -> Option<(Vec2, Vec2)> {
 /// The rectangle [ox, ox + X] × [oy, oy + Y] as a polygon, counter-clockwise
 /// from its corner `origin`, `size` = [X, Y] (mm); the first point is not
 /// repeated.
-pub fn rectangle(origin: Vec2, size: [f64; 2]) -> Vec<Vec2> {
+pub(crate) fn rectangle(origin: Vec2, size: [f64; 2]) -> Vec<Vec2> {
     let [x, y] = size;
     vec![
         origin,
@@ -314,7 +322,7 @@ pub fn rectangle(origin: Vec2, size: [f64; 2]) -> Vec<Vec2> {
 
 /// Where the lines p + u·d1 and r + v·d2 meet, as (u, v); `None` when they are
 /// parallel.
-pub fn line_crossing(p: Vec2, d1: Vec2, r: Vec2, d2: Vec2) -> Option<(f64, f64)> {
+pub(crate) fn line_crossing(p: Vec2, d1: Vec2, r: Vec2, d2: Vec2) -> Option<(f64, f64)> {
     let den = d1.cross(d2);
     if den.abs() < 1e-300 {
         return None;

@@ -24,7 +24,7 @@ const DEGENERATE_AREA: f64 = 1e-12;
 /// Whether a contour encloses area: |signed area| > `DEGENERATE_AREA` × d²,
 /// d its box's diagonal (a ratio, so the same at every scale). Contours that
 /// do not (a subpath drawn forth and back along a line) are no region.
-pub fn encloses_area(c: &Contour) -> bool {
+pub(crate) fn encloses_area(c: &Contour) -> bool {
     let diag = c.bbox().map(|(lo, hi)| (hi - lo).norm2()).unwrap_or(0.0);
     diag > 0.0 && c.signed_area().abs() > DEGENERATE_AREA * diag
 }

@@ -32,7 +32,7 @@ impl Ring {
     /// The ring through `pts` in order, with consecutive duplicates and a
     /// repeated closing point dropped; `None` when a coordinate is not finite
     /// or fewer than three distinct points remain.
-    pub fn new(mut pts: Vec<Vec2>) -> Option<Ring> {
+    pub(crate) fn new(mut pts: Vec<Vec2>) -> Option<Ring> {
         if !pts.iter().all(|p| p.is_finite()) {
             return None;
         }
@@ -64,7 +64,7 @@ impl Ring {
     }
 
     /// Signed area, mm²: positive counter-clockwise.
-    pub fn signed_area(&self) -> f64 {
+    pub(crate) fn signed_area(&self) -> f64 {
         polygon_area(&self.pts)
     }
 
@@ -75,7 +75,7 @@ impl Ring {
 
     /// The same ring traversed the other way: the vertices in reverse order,
     /// the last one first.
-    pub fn reversed(&self) -> Ring {
+    pub(crate) fn reversed(&self) -> Ring {
         Ring {
             pts: self.pts.iter().rev().copied().collect(),
         }
@@ -87,12 +87,13 @@ impl Ring {
     }
 
     /// The length of the closed boundary, mm.
-    pub fn perimeter(&self) -> f64 {
+    #[cfg(test)]
+    pub(crate) fn perimeter(&self) -> f64 {
         closed_length(&self.pts)
     }
 
     /// The winding number of the ring about `p`.
-    pub fn winding_number(&self, p: Vec2) -> i32 {
+    pub(crate) fn winding_number(&self, p: Vec2) -> i32 {
         polygon_winding_number(&self.pts, p)
     }
 
@@ -121,7 +122,7 @@ fn three_distinct(pts: &[Vec2]) -> bool {
 
 /// The edges of the closed polygon `p` (first point not repeated), the
 /// closing edge last.
-pub fn edges(p: &[Vec2]) -> impl ExactSizeIterator<Item = (Vec2, Vec2)> + '_ {
+pub(crate) fn edges(p: &[Vec2]) -> impl ExactSizeIterator<Item = (Vec2, Vec2)> + '_ {
     let n = p.len();
     (0..n).map(move |i| (p[i], p[(i + 1) % n]))
 }
@@ -134,7 +135,7 @@ pub fn polygon_area(p: &[Vec2]) -> f64 {
 }
 
 /// Length of a closed polygon (first point not repeated), mm.
-pub fn closed_length(p: &[Vec2]) -> f64 {
+pub(crate) fn closed_length(p: &[Vec2]) -> f64 {
     edges(p).map(|(a, b)| a.dist(b)).sum()
 }
 

@@ -41,7 +41,7 @@ const GL8: [(f64, f64); 8] = [
 
 impl Segment {
     /// A quadratic Bézier raised exactly to a cubic.
-    pub fn quad(p0: Vec2, q: Vec2, p2: Vec2) -> Segment {
+    pub(crate) fn quad(p0: Vec2, q: Vec2, p2: Vec2) -> Segment {
         Segment::Cubic {
             p0,
             p1: p0 + (q - p0) * (2.0 / 3.0),
@@ -59,7 +59,7 @@ impl Segment {
     }
 
     /// End point.
-    pub fn end(&self) -> Vec2 {
+    pub(crate) fn end(&self) -> Vec2 {
         match *self {
             Segment::Line { b, .. } => b,
             Segment::Cubic { p3, .. } => p3,
@@ -103,7 +103,7 @@ impl Segment {
 
     /// Unit tangent at `t`. Where the derivative vanishes (a control point on an end
     /// point) the direction of the nearest non-degenerate difference is used.
-    pub fn tangent(&self, t: f64) -> Vec2 {
+    pub(crate) fn tangent(&self, t: f64) -> Vec2 {
         let d = self.deriv(t);
         if d.norm2() > 1e-24 {
             return d.normalized();
@@ -208,7 +208,7 @@ impl Segment {
     }
 
     /// This segment traversed backwards.
-    pub fn reversed(&self) -> Segment {
+    pub(crate) fn reversed(&self) -> Segment {
         match *self {
             Segment::Line { a, b } => Segment::Line { a: b, b: a },
             Segment::Cubic { p0, p1, p2, p3 } => Segment::Cubic {
@@ -221,7 +221,7 @@ impl Segment {
     }
 
     /// The segment with every point mapped through `f` (an affine map keeps it exact).
-    pub fn map(&self, f: impl Fn(Vec2) -> Vec2) -> Segment {
+    pub(crate) fn map(&self, f: impl Fn(Vec2) -> Vec2) -> Segment {
         match *self {
             Segment::Line { a, b } => Segment::Line { a: f(a), b: f(b) },
             Segment::Cubic { p0, p1, p2, p3 } => Segment::Cubic {
@@ -254,7 +254,7 @@ impl Segment {
 
     /// Tight bounding box of the curve itself (not of its control points): the end
     /// points and the interior extrema, where a coordinate of the derivative vanishes.
-    pub fn tight_bbox(&self) -> (Vec2, Vec2) {
+    pub(crate) fn tight_bbox(&self) -> (Vec2, Vec2) {
         let (a, b) = (self.start(), self.end());
         let mut lo = Vec2::new(a.x.min(b.x), a.y.min(b.y));
         let mut hi = Vec2::new(a.x.max(b.x), a.y.max(b.y));

@@ -16,14 +16,14 @@ use super::{GeometryError, Vec2};
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShapedGlyph {
     /// The glyph index in the font.
-    pub id: u16,
+    pub(crate) id: u16,
     /// Index (in characters, from 0) of the first character of the glyph's
     /// cluster in the line: a ligature, and a base with its marks, share one.
-    pub cluster: usize,
+    pub(crate) cluster: usize,
     /// How far the pen moves after this glyph (0 for an attached mark).
     pub advance: f64,
     /// Where the glyph's origin is drawn relative to the pen.
-    pub offset: Vec2,
+    pub(crate) offset: Vec2,
 }
 
 /// Shapes `line` (no line breaks) with `face`. Whitespace the font has no

@@ -22,16 +22,16 @@ use super::{
 };
 
 /// Millimetres per CSS px (96 px to the inch).
-pub const MM_PER_PX: f64 = 25.4 / 96.0;
+pub(crate) const MM_PER_PX: f64 = 25.4 / 96.0;
 
 /// Largest SVG file read, bytes.
-pub const MAX_SVG_BYTES: u64 = 32 << 20;
+pub(crate) const MAX_SVG_BYTES: u64 = 32 << 20;
 
 /// Most XML nodes parsed (elements, text, attributes' nodes).
-pub const MAX_XML_NODES: u32 = 1_000_000;
+pub(crate) const MAX_XML_NODES: u32 = 1_000_000;
 
 /// Most vertices of the flattened outlines.
-pub const MAX_VERTICES: usize = 500_000;
+pub(crate) const MAX_VERTICES: usize = 500_000;
 
 /// How big the document's drawing becomes.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -25,11 +25,11 @@ const CLOSE_EPS: f64 = 1e-9;
 
 /// An elliptical arc becomes cubics within this fraction of its larger radius
 /// (kurbo's estimate; about 15 cubics a full turn).
-pub const ARC_TOL: f64 = 1e-7;
+pub(crate) const ARC_TOL: f64 = 1e-7;
 
 /// A subpath that crosses itself is flattened within this fraction of its
 /// bounding box's diagonal before it is split into loops.
-pub const UNTANGLE_TOL: f64 = 1e-5;
+pub(crate) const UNTANGLE_TOL: f64 = 1e-5;
 
 fn err(offset: usize, message: impl Into<String>) -> GeometryError {
     GeometryError::Svg {
@@ -86,7 +86,7 @@ pub fn svg_shape(d: &str, height: Option<f64>, origin: Vec2) -> Result<Shape, Ge
 
 /// The closed contours of `d` in SVG coordinates (y down), a subpath that crosses
 /// itself split into the loops it fills (nonzero).
-pub fn path_contours(d: &str) -> Result<Vec<Contour>, GeometryError> {
+pub(crate) fn path_contours(d: &str) -> Result<Vec<Contour>, GeometryError> {
     let mut out = Vec::new();
     for (k, c) in parse_path(d)?.into_iter().enumerate() {
         let loops = untangle(c).map_err(|_| {
@@ -123,7 +123,7 @@ fn untangle(c: Contour) -> Result<Vec<Contour>, super::arrangement::TooComplex> 
 
 /// Parses `d` into closed contours, in SVG coordinates (y down), one per subpath
 /// that draws something.
-pub fn parse_path(d: &str) -> Result<Vec<Contour>, GeometryError> {
+pub(crate) fn parse_path(d: &str) -> Result<Vec<Contour>, GeometryError> {
     if d.chars().all(|c| c.is_ascii_whitespace() || c == ',') {
         return Err(err(
             0,

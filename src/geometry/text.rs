@@ -10,19 +10,19 @@ use std::path::Path;
 
 /// Advance of a space in the paper font, font units (the paper gives none; 250 is
 /// the Times value).
-pub const PAPER_SPACE_ADVANCE: f64 = 250.0;
+pub(crate) const PAPER_SPACE_ADVANCE: f64 = 250.0;
 
 /// The paper font's em, font units: its letters are PostScript Times (1000
 /// units per em, cap height 662).
-pub const PAPER_EM: f64 = 1000.0;
+pub(crate) const PAPER_EM: f64 = 1000.0;
 
 /// The paper font's default line spacing, em. The paper gives no line metrics;
 /// 1.2 em is the customary 120 % leading (10 pt type on 12 pt lines).
-pub const PAPER_LINE_SPACING: f64 = 1.2;
+pub(crate) const PAPER_LINE_SPACING: f64 = 1.2;
 
 /// Line spacing, em, of a font file whose ascender − descender + line gap is
 /// not positive (a broken `hhea`): the customary 120 %.
-pub const FALLBACK_LINE_SPACING: f64 = 1.2;
+pub(crate) const FALLBACK_LINE_SPACING: f64 = 1.2;
 
 /// Build the shape a job describes, in millimetres, outlines counter-clockwise and
 /// counters clockwise.

@@ -69,7 +69,7 @@ impl Vec2 {
     }
     /// True when both coordinates are finite.
     #[inline]
-    pub fn is_finite(self) -> bool {
+    pub(crate) fn is_finite(self) -> bool {
         self.x.is_finite() && self.y.is_finite()
     }
 }

@@ -10,7 +10,7 @@ use super::{defaults, echo, field, invalid, limits, JobError, RawPart};
 use crate::geometry::{BoolOp, Composition, Part, PartSource, Vec2};
 
 /// The accepted values of `shape.part.op`.
-pub const PART_OPS: &[&str] = &["union", "intersect", "subtract", "invert"];
+pub(crate) const PART_OPS: &[&str] = &["union", "intersect", "subtract", "invert"];
 
 /// `[[shape.part]]` and `shape.result` into a composition (its `height` and
 /// `origin` are left for the caller).

@@ -10,19 +10,19 @@ use crate::geometry::dxffile::DxfFileSource;
 use crate::geometry::{ShapeSource, Vec2};
 
 /// The `[shape]` keys of a DXF file job, as written.
-pub struct RawDxfFile {
+pub(crate) struct RawDxfFile {
     /// `dxf_file`
-    pub file: String,
+    pub(crate) file: String,
     /// `layer`
-    pub layer: Option<String>,
+    pub(crate) layer: Option<String>,
     /// `join_tolerance`, mm
-    pub join_tolerance: Option<f64>,
+    pub(crate) join_tolerance: Option<f64>,
     /// Keys given that apply to other sources (`font`, `height`, ...).
-    pub others: Vec<&'static str>,
+    pub(crate) others: Vec<&'static str>,
 }
 
 /// The shape source, or an error naming the key.
-pub fn resolve(
+pub(crate) fn resolve(
     raw: RawDxfFile,
     origin: Vec2,
     tool_diameter: f64,

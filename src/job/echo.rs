@@ -5,10 +5,10 @@
 use std::borrow::Cow;
 
 /// Longest echoed value, characters.
-pub const MAX_ECHO: usize = 80;
+pub(crate) const MAX_ECHO: usize = 80;
 /// Longest run of non-blank characters in a message, characters: more than
 /// [`MAX_ECHO`] so that a long file path is still shown whole.
-pub const MAX_WORD: usize = 200;
+pub(crate) const MAX_WORD: usize = 200;
 /// Longest whole message, characters.
 pub const MAX_MESSAGE: usize = 1000;
 /// Characters kept from the start of a clipped value.
@@ -16,7 +16,7 @@ const HEAD: usize = 60;
 
 /// `value` itself when at most [`MAX_ECHO`] characters long, else its first 60
 /// characters, `…` and its length: `xxxx… (600000 characters)`.
-pub fn clip(value: &str) -> Cow<'_, str> {
+pub(crate) fn clip(value: &str) -> Cow<'_, str> {
     clip_to(value, MAX_ECHO)
 }
 

@@ -23,12 +23,14 @@ impl<'de, const N: usize> Deserialize<'de> for Exact<N> {
 }
 
 /// `Option<[f64; N]>` with exactly `N` numbers (`#[serde(default, deserialize_with)]`).
-pub fn opt<'de, D: Deserializer<'de>, const N: usize>(d: D) -> Result<Option<[f64; N]>, D::Error> {
+pub(crate) fn opt<'de, D: Deserializer<'de>, const N: usize>(
+    d: D,
+) -> Result<Option<[f64; N]>, D::Error> {
     Ok(Option::<Exact<N>>::deserialize(d)?.map(|e| e.0))
 }
 
 /// `Option<Vec<[f64; N]>>`, every element exactly `N` numbers.
-pub fn opt_vec<'de, D: Deserializer<'de>, const N: usize>(
+pub(crate) fn opt_vec<'de, D: Deserializer<'de>, const N: usize>(
     d: D,
 ) -> Result<Option<Vec<[f64; N]>>, D::Error> {
     Ok(Option::<Vec<Exact<N>>>::deserialize(d)?.map(|v| v.into_iter().map(|e| e.0).collect()))

@@ -11,7 +11,7 @@ use serde::Deserialize;
 
 /// The shape of a cutter's end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CutterShape {
+pub(crate) enum CutterShape {
     /// Flat end mill.
     Flat,
     /// Ball end mill: corner radius = radius.
@@ -22,7 +22,7 @@ pub enum CutterShape {
 
 impl CutterShape {
     /// The words of the G-code header's tool line (`ball end mill`).
-    pub fn header_words(self) -> &'static str {
+    pub(crate) fn header_words(self) -> &'static str {
         match self {
             CutterShape::Flat => "end mill",
             CutterShape::Ball => "ball end mill",
@@ -35,26 +35,26 @@ impl CutterShape {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Finish {
     /// Flat, ball or bull nose.
-    pub shape: CutterShape,
+    pub(crate) shape: CutterShape,
     /// Diameter, mm.
-    pub diameter: f64,
+    pub(crate) diameter: f64,
     /// Corner radius, mm: 0 (flat), the radius (ball), or between (bull).
-    pub corner: f64,
+    pub(crate) corner: f64,
     /// Cutting feed, mm/min.
-    pub feed: f64,
+    pub(crate) feed: f64,
     /// Plunge and ramp feed, mm/min.
-    pub plunge_feed: f64,
+    pub(crate) plunge_feed: f64,
     /// Spindle speed, rev/min.
-    pub spindle: f64,
+    pub(crate) spindle: f64,
     /// Largest scallop height the passes may leave on the surface, mm.
     pub scallop: f64,
     /// How a boss's or cavity's wall passes are laid out.
-    pub pattern: Pattern,
+    pub(crate) pattern: Pattern,
 }
 
 /// `finish.pattern`: the curves a boss's or cavity's wall passes follow.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Pattern {
+pub(crate) enum Pattern {
     /// Equipotentials Γ(s), whole, spaced for each wall's widest place.
     Equipotential,
     /// Levels of the distance on S2 from the top edge (`finish::geodesic`).
@@ -62,11 +62,11 @@ pub enum Pattern {
 }
 
 /// The accepted `finish.pattern` words.
-pub const PATTERNS: &[&str] = &["equipotential", "geodesic"];
+pub(crate) const PATTERNS: &[&str] = &["equipotential", "geodesic"];
 
 impl Finish {
     /// Radius, mm.
-    pub fn radius(&self) -> f64 {
+    pub(crate) fn radius(&self) -> f64 {
         self.diameter / 2.0
     }
 }
@@ -74,41 +74,41 @@ impl Finish {
 /// `[finish]` as written.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RawFinish {
+pub(crate) struct RawFinish {
     /// `shape`: ball, flat or bull
-    pub shape: Option<String>,
+    pub(crate) shape: Option<String>,
     /// `diameter`, mm
-    pub diameter: Option<f64>,
+    pub(crate) diameter: Option<f64>,
     /// `corner_radius`, mm (bull)
-    pub corner_radius: Option<f64>,
+    pub(crate) corner_radius: Option<f64>,
     /// `feed`, mm/min
-    pub feed: Option<f64>,
+    pub(crate) feed: Option<f64>,
     /// `plunge_feed`, mm/min
-    pub plunge_feed: Option<f64>,
+    pub(crate) plunge_feed: Option<f64>,
     /// `spindle`, rev/min
-    pub spindle: Option<f64>,
+    pub(crate) spindle: Option<f64>,
     /// `scallop`, mm
-    pub scallop: Option<f64>,
+    pub(crate) scallop: Option<f64>,
     /// `pattern`: equipotential or geodesic
-    pub pattern: Option<String>,
+    pub(crate) pattern: Option<String>,
 }
 
 /// Defaults of `[finish]`.
-pub mod defaults {
+pub(crate) mod defaults {
     /// `finish.shape`.
-    pub const SHAPE: &str = "ball";
+    pub(crate) const SHAPE: &str = "ball";
     /// `finish.scallop`, mm: below what the eye and a thermoformed sheet show.
-    pub const SCALLOP: f64 = 0.01;
+    pub(crate) const SCALLOP: f64 = 0.01;
     /// `operation.stock_to_leave` with a `[finish]` table, mm.
-    pub const STOCK_TO_LEAVE: f64 = 0.2;
+    pub(crate) const STOCK_TO_LEAVE: f64 = 0.2;
 }
 
 /// The accepted `finish.shape` words.
-pub const SHAPES: &[&str] = &["ball", "flat", "bull"];
+pub(crate) const SHAPES: &[&str] = &["ball", "flat", "bull"];
 
 impl RawFinish {
     /// Checks `[finish]`; the feeds and spindle default to `[tool]`'s.
-    pub fn resolve(self, tool: &super::Tool) -> Result<Finish, JobError> {
+    pub(crate) fn resolve(self, tool: &super::Tool) -> Result<Finish, JobError> {
         let pattern = match self.pattern.as_deref() {
             None => Pattern::Geodesic,
             Some(p) => {

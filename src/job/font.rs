@@ -43,7 +43,7 @@ pub struct Sources<'a> {
 /// The font of `text` (`font_key` is where `font` was written, `text_key` where
 /// the text was): `paper` must have every character (line breaks aside); a
 /// file path must exist; a name must find a face.
-pub fn resolve_font(
+pub(crate) fn resolve_font(
     font_key: &str,
     text_key: &str,
     font: Option<&str>,

@@ -9,7 +9,7 @@ use crate::geometry::{ShapeSource, Vec2};
 use crate::sources::harmonic_bezier::{default_form, Form, HarmonicError, PatchSpec};
 
 /// The accepted values of `shape.kind`.
-pub const SHAPE_KINDS: &[&str] = &["harmonic-bezier", "polyharmonic", super::tube::KIND];
+pub(crate) const SHAPE_KINDS: &[&str] = &["harmonic-bezier", "polyharmonic", super::tube::KIND];
 
 /// The patch keys and whether each is given.
 fn patch_keys(s: &RawShape) -> [(&'static str, bool); 5] {
@@ -211,4 +211,4 @@ pub(super) fn patch_depth(spec: &PatchSpec) -> Result<f64, JobError> {
 
 /// The shallowest patch accepted, mm: below a hundredth of a millimetre the
 /// part is a flat block, and its levels would be the tolerance apart.
-pub const MIN_PATCH_DEPTH: f64 = 0.01;
+pub(crate) const MIN_PATCH_DEPTH: f64 = 0.01;

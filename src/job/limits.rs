@@ -9,15 +9,15 @@ use super::{invalid, JobError};
 
 /// A closed or half-open interval of accepted values, with its unit.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Range {
+pub(crate) struct Range {
     /// Smallest accepted value (excluded when `lo_open`).
-    pub lo: f64,
+    pub(crate) lo: f64,
     /// Whether `lo` itself is refused (`> lo` rather than `>= lo`).
-    pub lo_open: bool,
+    pub(crate) lo_open: bool,
     /// Largest accepted value (included).
-    pub hi: f64,
+    pub(crate) hi: f64,
     /// The unit, as written in messages (`mm`, `mm/min`), or empty.
-    pub unit: &'static str,
+    pub(crate) unit: &'static str,
 }
 
 impl Range {
@@ -40,7 +40,7 @@ impl Range {
     }
 
     /// Whether `x` is in the range (NaN never is).
-    pub fn contains(&self, x: f64) -> bool {
+    pub(crate) fn contains(&self, x: f64) -> bool {
         let above = if self.lo_open {
             x > self.lo
         } else {
@@ -50,13 +50,13 @@ impl Range {
     }
 
     /// The interval as docs/job-format.md writes it: `(0, 50]`.
-    pub fn interval(&self) -> String {
+    pub(crate) fn interval(&self) -> String {
         let open = if self.lo_open { '(' } else { '[' };
         format!("{open}{}, {}]", show(self.lo), show(self.hi))
     }
 
     /// The range as messages write it: `(0, 50] mm`.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         if self.unit.is_empty() {
             self.interval()
         } else {
@@ -67,7 +67,7 @@ impl Range {
     /// `x` if it is in the range, else an error naming `key`. A range of
     /// positive numbers says so for a value ≤ 0: `must be a positive number of
     /// mm, got -3`.
-    pub fn check(&self, key: &str, x: f64) -> Result<f64, JobError> {
+    pub(crate) fn check(&self, key: &str, x: f64) -> Result<f64, JobError> {
         if self.contains(x) {
             return Ok(x);
         }
@@ -87,111 +87,112 @@ impl Range {
 }
 
 /// `tool.diameter`: from a 10 µm micro-engraving bit to a 100 mm surfacing cutter.
-pub const TOOL_DIAMETER: Range = Range::closed(0.01, 100.0, "mm");
+pub(crate) const TOOL_DIAMETER: Range = Range::closed(0.01, 100.0, "mm");
 /// `tool.feed` and `tool.plunge_feed`: no GRBL machine moves faster than 100 m/min.
-pub const FEED: Range = Range::open(0.0, 100_000.0, "mm/min");
+pub(crate) const FEED: Range = Range::open(0.0, 100_000.0, "mm/min");
 /// `tool.spindle`.
-pub const SPINDLE: Range = Range::closed(0.0, 100_000.0, "rev/min");
+pub(crate) const SPINDLE: Range = Range::closed(0.0, 100_000.0, "rev/min");
 /// `tool.stepdown`.
-pub const STEPDOWN: Range = Range::open(0.0, 50.0, "mm");
+pub(crate) const STEPDOWN: Range = Range::open(0.0, 50.0, "mm");
 /// `tool.stepover` (also at most the tool radius, checked on its own): the
 /// default, 0.4 × the smallest diameter, is inside it.
-pub const STEPOVER: Range = Range::closed(0.001, 50.0, "mm");
+pub(crate) const STEPOVER: Range = Range::closed(0.001, 50.0, "mm");
 /// `tool.ramp_angle`: below half a degree a ramp is longer than any part.
-pub const RAMP_ANGLE: Range = Range::closed(0.5, 45.0, "degrees");
+pub(crate) const RAMP_ANGLE: Range = Range::closed(0.5, 45.0, "degrees");
 /// Smallest `tool.stepover` as a fraction of `tool.diameter`: the time of a
 /// boss or cavity grows as 1/stepover (the letter I boss, 3.175 mm tool: 16 s at
 /// the default 0.4 D, 125 s at 0.05 D, `time pfcam run`); 0.05 D is finer than
 /// any finishing pass of a flat end mill.
-pub const MIN_STEPOVER_FRACTION: f64 = 0.05;
+pub(crate) const MIN_STEPOVER_FRACTION: f64 = 0.05;
 /// `stock.top`.
-pub const STOCK_TOP: Range = Range::closed(-1000.0, 1000.0, "mm");
+pub(crate) const STOCK_TOP: Range = Range::closed(-1000.0, 1000.0, "mm");
 /// `stock.safe_z`, as a height above `stock.top` (also above it, checked on its own).
-pub const SAFE_CLEARANCE: Range = Range::open(0.0, 200.0, "mm above stock.top");
+pub(crate) const SAFE_CLEARANCE: Range = Range::open(0.0, 200.0, "mm above stock.top");
 /// `stock.margin`: a boss clears the whole margin at every level, and its
 /// time grows faster than the margin: the letter I boss took 16 s at 5 mm and
 /// 160 s at 200 mm, and at 1000 mm had not finished its first level of 96 after
 /// 8.9 min (`time pfcam run`, load 3 to 6). So 200 mm, not more.
-pub const MARGIN: Range = Range::closed(0.0, 200.0, "mm");
+pub(crate) const MARGIN: Range = Range::closed(0.0, 200.0, "mm");
 /// `operation.depth`.
-pub const DEPTH: Range = Range::open(0.0, 200.0, "mm");
+pub(crate) const DEPTH: Range = Range::open(0.0, 200.0, "mm");
 /// `operation.tolerance` (also below the tool radius, checked on its own): no
 /// finer than the G-code's 3 decimals, which round every coordinate by up to
 /// 0.5 µm (0.0001 failed the gouge check of the letter I by its own size).
-pub const TOLERANCE: Range = Range::closed(0.001, 1.0, "mm");
+pub(crate) const TOLERANCE: Range = Range::closed(0.001, 1.0, "mm");
 /// `operation.max_scallop`.
-pub const MAX_SCALLOP: Range = Range::closed(0.01, 50.0, "mm");
+pub(crate) const MAX_SCALLOP: Range = Range::closed(0.01, 50.0, "mm");
 /// `shape.height`: from a 0.1 mm engraving to a sign as large as a large
 /// router's bed. The width and height of the built shape are bounded by the
 /// same 2000 mm ([`MAX_EXTENT`]).
-pub const SHAPE_HEIGHT: Range = Range::closed(0.1, 2000.0, "mm");
+pub(crate) const SHAPE_HEIGHT: Range = Range::closed(0.1, 2000.0, "mm");
 /// `shape.width` (with `shape.svg_file`): as `shape.height`.
-pub const SHAPE_WIDTH: Range = Range::closed(0.1, 2000.0, "mm");
+pub(crate) const SHAPE_WIDTH: Range = Range::closed(0.1, 2000.0, "mm");
 /// `shape.scale` (with `shape.svg_file`): the document's size times this.
-pub const SVG_SCALE: Range = Range::open(0.0, 1000.0, "");
+pub(crate) const SVG_SCALE: Range = Range::open(0.0, 1000.0, "");
 /// `shape.join_tolerance` (with `shape.dxf_file`): from a micrometre (below
 /// any drawing's rounding of interest) to 10 mm (past that, pieces that are
 /// meant apart would join).
-pub const JOIN_TOLERANCE: Range = Range::closed(0.000001, 10.0, "mm");
+pub(crate) const JOIN_TOLERANCE: Range = Range::closed(0.000001, 10.0, "mm");
 /// `shape.origin`, each coordinate.
-pub const ORIGIN: Range = Range::closed(-10_000.0, 10_000.0, "mm");
+pub(crate) const ORIGIN: Range = Range::closed(-10_000.0, 10_000.0, "mm");
 /// `shape.size` (harmonic patch), each side: as `shape.height`, from 1 mm.
-pub const PATCH_SIZE: Range = Range::closed(1.0, 2000.0, "mm");
+pub(crate) const PATCH_SIZE: Range = Range::closed(1.0, 2000.0, "mm");
 /// `shape.row0`, `shape.row1` (harmonic patch), each height: the part is at
 /// most `operation.depth`'s 200 mm deep.
-pub const PATCH_HEIGHT: Range = Range::closed(-200.0, 200.0, "mm");
+pub(crate) const PATCH_HEIGHT: Range = Range::closed(-200.0, 200.0, "mm");
 /// `shape.bottom_size`, `shape.top_size` (PDE tube), each side.
-pub const TUBE_SIZE: Range = Range::closed(1.0, 2000.0, "mm");
+pub(crate) const TUBE_SIZE: Range = Range::closed(1.0, 2000.0, "mm");
 /// `shape.bottom_exponent`, `shape.top_exponent` (PDE tube): 1 a diamond,
 /// 2 an ellipse, 4 a squircle; past 16 the curve is a rectangle whose
 /// corners K samples cannot follow.
-pub const TUBE_EXPONENT: Range = Range::closed(1.0, 16.0, "");
+pub(crate) const TUBE_EXPONENT: Range = Range::closed(1.0, 16.0, "");
 /// `shape.flare`, `shape.rise` (PDE tube), each end: Xᵤ's parts, mm per unit u.
-pub const TUBE_SLOPE: Range = Range::closed(-1000.0, 1000.0, "mm");
+pub(crate) const TUBE_SLOPE: Range = Range::closed(-1000.0, 1000.0, "mm");
 /// `shape.a` (PDE tube): the PDE's parameter; e^{−a} below rounding past 50.
-pub const TUBE_A: Range = Range::closed(0.01, 50.0, "");
+pub(crate) const TUBE_A: Range = Range::closed(0.01, 50.0, "");
 /// `shape.modes` (PDE tube): N.
-pub const TUBE_MODES: Range = Range::closed(0.0, 64.0, "");
+pub(crate) const TUBE_MODES: Range = Range::closed(0.0, 64.0, "");
 /// `shape.samples` (PDE tube): K, also at least 2·modes + 1.
-pub const TUBE_SAMPLES: Range = Range::closed(16.0, 1024.0, "");
+pub(crate) const TUBE_SAMPLES: Range = Range::closed(16.0, 1024.0, "");
 /// `shape.letter_spacing`.
-pub const LETTER_SPACING: Range = Range::closed(-1000.0, 1000.0, "mm");
+pub(crate) const LETTER_SPACING: Range = Range::closed(-1000.0, 1000.0, "mm");
 /// `shape.line_spacing`, baseline to baseline in em: lines may overlap (below
 /// about 1) but not coincide; 10 em is already far apart.
-pub const LINE_SPACING: Range = Range::open(0.0, 10.0, "em");
+pub(crate) const LINE_SPACING: Range = Range::open(0.0, 10.0, "em");
 /// Every polygon coordinate of a part, design units.
-pub const DESIGN: Range = Range::closed(-1e6, 1e6, "design units");
+pub(crate) const DESIGN: Range = Range::closed(-1e6, 1e6, "design units");
 /// `shape.part[i].size`, the cap height of a text part, design units.
-pub const PART_SIZE: Range = Range::open(0.0, 1e6, "design units");
+pub(crate) const PART_SIZE: Range = Range::open(0.0, 1e6, "design units");
 /// `profile.steepness`.
-pub const STEEPNESS: Range = Range::open(0.0, 10_000.0, "");
+pub(crate) const STEEPNESS: Range = Range::open(0.0, 10_000.0, "");
 /// `profile.exponent`: n in (s/s1)ⁿ; past 1e6 the whole wall sits within
 /// rounding of s1.
-pub const EXPONENT: Range = Range::open(0.0, 1e6, "");
+pub(crate) const EXPONENT: Range = Range::open(0.0, 1e6, "");
 /// `field.pseudo_boundary`.
-pub const PSEUDO_BOUNDARY: Range = Range::open(0.0, 10_000.0, "mm");
+pub(crate) const PSEUDO_BOUNDARY: Range = Range::open(0.0, 10_000.0, "mm");
 /// `machine.rapid_rate`.
-pub const RAPID_RATE: Range = Range::open(0.0, 100_000.0, "mm/min");
+pub(crate) const RAPID_RATE: Range = Range::open(0.0, 100_000.0, "mm/min");
 /// `machine.spindle_dwell`.
-pub const SPINDLE_DWELL: Range = Range::closed(0.0, 600.0, "s");
+pub(crate) const SPINDLE_DWELL: Range = Range::closed(0.0, 600.0, "s");
 /// `machine.travel`, each axis.
-pub const TRAVEL: Range = Range::open(0.0, 10_000.0, "mm");
+pub(crate) const TRAVEL: Range = Range::open(0.0, 10_000.0, "mm");
 /// `machine.work_offset`, each axis.
-pub const WORK_OFFSET: Range = Range::closed(-10_000.0, 10_000.0, "mm");
+pub(crate) const WORK_OFFSET: Range = Range::closed(-10_000.0, 10_000.0, "mm");
 /// `machine.max_hours`: six weeks of machining at most.
-pub const MAX_HOURS: Range = Range::open(0.0, 1000.0, "h");
+pub(crate) const MAX_HOURS: Range = Range::open(0.0, 1000.0, "h");
 /// `machine.max_file_mb`: 10 GB, far beyond what GRBL streams in a day.
-pub const MAX_FILE_MB: Range = Range::open(0.0, 10_000.0, "MB");
+pub(crate) const MAX_FILE_MB: Range = Range::open(0.0, 10_000.0, "MB");
 /// `output.max_arc_radius`.
-pub const MAX_ARC_RADIUS: Range = Range::open(0.0, 100_000.0, "mm");
+pub(crate) const MAX_ARC_RADIUS: Range = Range::open(0.0, 100_000.0, "mm");
 /// `operation.stock_to_leave`, mm: a roughing allowance, never a part's size.
-pub const STOCK_TO_LEAVE: Range = Range::closed(0.0, 5.0, "mm");
+pub(crate) const STOCK_TO_LEAVE: Range = Range::closed(0.0, 5.0, "mm");
 /// `finish.scallop`, mm: a thousandth of a millimetre is below any machine's
 /// repeatability; a millimetre is no finish.
-pub const SCALLOP: Range = Range::closed(0.001, 1.0, "mm");
+pub(crate) const SCALLOP: Range = Range::closed(0.001, 1.0, "mm");
 
 /// Every numeric key with its range, for the docs test and for `pfcam validate`.
-pub const KEYS: &[(&str, Range)] = &[
+#[cfg(test)]
+pub(crate) const KEYS: &[(&str, Range)] = &[
     ("tool.diameter", TOOL_DIAMETER),
     ("tool.feed", FEED),
     ("tool.plunge_feed", FEED),
@@ -246,7 +247,7 @@ pub const KEYS: &[(&str, Range)] = &[
 
 /// Largest job file read, bytes: a job is a few kilobytes; this leaves room for
 /// long SVG path data and polygons while refusing `/dev/zero` or a stray log.
-pub const MAX_JOB_BYTES: u64 = 1 << 20;
+pub(crate) const MAX_JOB_BYTES: u64 = 1 << 20;
 /// Largest number of singularities of one MFS solve (`field.singularities`,
 /// `shape.part[i].singularities`, `pfcam convergence --n`): the dense system is
 /// about 3N × N numbers, 1.5 GB at this N.
@@ -257,35 +258,35 @@ pub const MAX_STUDY_COUNTS: usize = 50;
 pub const MAX_PREVIEW_LEVELS: usize = 1000;
 /// Largest number of characters of `shape.text`, of all of `shape.lines`
 /// together (line breaks not counted), or of a text part.
-pub const MAX_TEXT_CHARS: usize = 200;
+pub(crate) const MAX_TEXT_CHARS: usize = 200;
 /// Largest number of `shape.lines`.
-pub const MAX_TEXT_LINES: usize = 50;
+pub(crate) const MAX_TEXT_LINES: usize = 50;
 /// Largest number of `[[shape.part]]` tables: each may need a field solve.
-pub const MAX_PARTS: usize = 100;
+pub(crate) const MAX_PARTS: usize = 100;
 /// Largest number of points of one polygon part.
-pub const MAX_POLYGON_POINTS: usize = 10_000;
+pub(crate) const MAX_POLYGON_POINTS: usize = 10_000;
 /// Largest number of `profile.points`.
-pub const MAX_PROFILE_POINTS: usize = 1000;
+pub(crate) const MAX_PROFILE_POINTS: usize = 1000;
 /// Largest number of passes or stepdown levels, `operation.depth / tool.stepdown`.
-pub const MAX_PASSES: f64 = 1000.0;
+pub(crate) const MAX_PASSES: f64 = 1000.0;
 /// Most clearing rings across a boss's `stock.margin` (margin / stepover): the
 /// 160 s measured for the largest margin (200 mm at the 3.175 mm tool's 1.27 mm
 /// stepover, see [`MARGIN`]); a fine stepover or a small tool lowers the margin.
-pub const MAX_MARGIN_RINGS: f64 = 160.0;
+pub(crate) const MAX_MARGIN_RINGS: f64 = 160.0;
 /// Most z-levels of a boss or cavity, the stepdown's and those added for
 /// `operation.max_scallop` together: each is a field solve and a trace (the
 /// mfs-sign job has 31), and each added one a contour comparison first.
-pub const MAX_LEVELS: usize = 400;
+pub(crate) const MAX_LEVELS: usize = 400;
 /// Largest ratio of the shape's height to the tool diameter: beyond it the tool
 /// path runs to kilometres (issue-sized letters with an engraving bit).
-pub const MAX_HEIGHT_PER_DIAMETER: f64 = 2000.0;
+pub(crate) const MAX_HEIGHT_PER_DIAMETER: f64 = 2000.0;
 /// Largest width or height of the built shape, mm (`shape.height`'s upper end),
 /// checked once the shape is built: a composition, an SVG path without
 /// `shape.height`, or a long text can be larger than its height says.
-pub const MAX_EXTENT: f64 = 2000.0;
+pub(crate) const MAX_EXTENT: f64 = 2000.0;
 
 /// `n` if it is a count in [1, limit], else an error naming `key`.
-pub fn count(key: &str, n: i64, limit: usize, what: &str) -> Result<usize, JobError> {
+pub(crate) fn count(key: &str, n: i64, limit: usize, what: &str) -> Result<usize, JobError> {
     match usize::try_from(n) {
         Ok(u) if (1..=limit).contains(&u) => Ok(u),
         _ => Err(invalid(

@@ -15,9 +15,9 @@ pub struct Machine {
     pub rapid_rate: f64,
     /// Dwell after `M3` so the spindle reaches speed before the first cut, seconds
     /// (0 writes no `G4`).
-    pub spindle_dwell: f64,
+    pub(crate) spindle_dwell: f64,
     /// Flood coolant: `M8` after the spindle starts, `M9` before it stops.
-    pub coolant: bool,
+    pub(crate) coolant: bool,
     /// Travel of X, Y, Z in mm (GRBL's `$130`–`$132`): after homing, machine
     /// coordinates run from 0 down to −travel. Read only by `pfcam check`.
     pub travel: Option<[f64; 3]>,
@@ -27,10 +27,10 @@ pub struct Machine {
     pub work_offset: Option<[f64; 3]>,
     /// Longest estimated machining time of a program, hours: a job whose lower
     /// bound or whose program's estimate passes it stops with an error.
-    pub max_hours: f64,
+    pub(crate) max_hours: f64,
     /// Largest G-code file, MB (10⁶ bytes): a program that would be larger is
     /// not written.
-    pub max_file_mb: f64,
+    pub(crate) max_file_mb: f64,
 }
 
 impl Default for Machine {
@@ -50,28 +50,28 @@ impl Default for Machine {
 /// `[machine]`
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RawMachine {
+pub(crate) struct RawMachine {
     /// `rapid_rate`, mm/min
-    pub rapid_rate: Option<f64>,
+    pub(crate) rapid_rate: Option<f64>,
     /// `spindle_dwell`, s
-    pub spindle_dwell: Option<f64>,
+    pub(crate) spindle_dwell: Option<f64>,
     /// `coolant`
-    pub coolant: Option<bool>,
+    pub(crate) coolant: Option<bool>,
     /// `travel`, mm: [x, y, z]
     #[serde(default, deserialize_with = "exact::opt")]
-    pub travel: Option<[f64; 3]>,
+    pub(crate) travel: Option<[f64; 3]>,
     /// `work_offset`, mm: [x, y, z]
     #[serde(default, deserialize_with = "exact::opt")]
-    pub work_offset: Option<[f64; 3]>,
+    pub(crate) work_offset: Option<[f64; 3]>,
     /// `max_hours`, h
-    pub max_hours: Option<f64>,
+    pub(crate) max_hours: Option<f64>,
     /// `max_file_mb`, MB
-    pub max_file_mb: Option<f64>,
+    pub(crate) max_file_mb: Option<f64>,
 }
 
 impl RawMachine {
     /// Checks `[machine]` and applies its defaults.
-    pub fn resolve(self) -> Result<Machine, JobError> {
+    pub(crate) fn resolve(self) -> Result<Machine, JobError> {
         let m = self;
         let travel = match m.travel {
             None => None,

@@ -11,10 +11,10 @@ use crate::profile::DepthProfile;
 
 /// The resolved `[operation]` and the tables it governs.
 pub(super) struct Resolved {
-    pub operation: Operation,
+    pub(crate) operation: Operation,
     /// `Some` exactly for a boss or cavity.
-    pub profile: Option<DepthProfile>,
-    pub finish: Option<Finish>,
+    pub(crate) profile: Option<DepthProfile>,
+    pub(crate) finish: Option<Finish>,
 }
 
 /// `[operation]`, `[profile]` and `[finish]` against the resolved tool and

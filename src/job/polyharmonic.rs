@@ -16,10 +16,10 @@ use std::path::Path;
 
 /// Most elements per box edge a job may ask for (N = 6·12² = 864 elements,
 /// a solve of about 2 s).
-pub const MAX_ELEMENTS: i64 = 12;
+pub(crate) const MAX_ELEMENTS: i64 = 12;
 
 /// Most bytes of a points file.
-pub const MAX_FILE_BYTES: u64 = 4_000_000;
+pub(crate) const MAX_FILE_BYTES: u64 = 4_000_000;
 
 /// The polyharmonic keys and whether each is given.
 pub(super) fn poly_keys(s: &RawShape) -> [(&'static str, bool); 9] {

@@ -1,16 +1,15 @@
-//! Resolution: [`RawJob::resolve`] applies the defaults and checks every
+//! Resolution: [`RawJob::resolve_with`] applies the defaults and checks every
 //! value, one resolver per table (`tool.rs`, `shape.rs`, `stock.rs`,
 //! `operation.rs`, `field.rs`, `machine.rs`), and the small checkers they
 //! share (`finite`, `one_of`, `at_most_one`, `show`, ...).
 
-use super::font::{Fonts, Sources};
+use super::font::Sources;
 use super::{
     defaults, echo, field, harmonic, invalid, limits, operation, polyharmonic, shape, stock, tool,
     tube, Job, JobError, Output, RawJob, RawOutput,
 };
 use crate::geometry::svgfile::SvgSize;
 use crate::geometry::ShapeSource;
-use std::path::Path;
 
 /// Of `keys`, each with whether the job gives it, at most one: the error
 /// names the first two given (keyed on the first) and says `rule`; else the
@@ -91,22 +90,12 @@ fn check_name(key: &str, name: &str) -> Result<(), JobError> {
 }
 
 impl RawJob {
-    /// Apply defaults and check every value; see `docs/job-format.md`. Font
-    /// names are looked up among the system's fonts.
-    pub fn resolve(self, name_hint: &str, base_dir: &Path) -> Result<Job, JobError> {
-        let src = Sources {
-            base_dir,
-            fonts: Fonts::System,
-        };
-        self.resolve_with(name_hint, &src)
-    }
-
-    /// As [`resolve`](RawJob::resolve), with files and font names found
-    /// through `src`. The tables in the order their checks run: the tool
+    /// Apply defaults and check every value (see `docs/job-format.md`), with
+    /// files and font names found through `src`. The tables in the order their checks run: the tool
     /// first (the letter spacing defaults to its diameter), then the shape,
     /// the stock, the operation with `[profile]` and `[finish]`, the field,
     /// the machine and the output.
-    pub fn resolve_with(self, name_hint: &str, src: &Sources<'_>) -> Result<Job, JobError> {
+    pub(crate) fn resolve_with(self, name_hint: &str, src: &Sources<'_>) -> Result<Job, JobError> {
         let name = resolve_job_name(self.job.and_then(|j| j.name), name_hint)?;
         let tool = tool::resolve(self.tool.unwrap_or_default())?;
         let mut shape = shape::resolve(self.shape.unwrap_or_default(), tool.diameter, src)?;

@@ -10,25 +10,25 @@ use crate::geometry::svgfile::{SvgFileSource, SvgSize};
 use crate::geometry::{ShapeSource, Vec2};
 
 /// The `[shape]` keys of an SVG file job, as written.
-pub struct RawSvgFile {
+pub(crate) struct RawSvgFile {
     /// `svg_file`
-    pub file: String,
+    pub(crate) file: String,
     /// `id`
-    pub id: Option<String>,
+    pub(crate) id: Option<String>,
     /// `scale`
-    pub scale: Option<f64>,
+    pub(crate) scale: Option<f64>,
     /// `width`, mm
-    pub width: Option<f64>,
+    pub(crate) width: Option<f64>,
     /// `height`, mm (already range-checked)
-    pub height: Option<f64>,
+    pub(crate) height: Option<f64>,
     /// whether `font` was given (it does not apply)
-    pub font: bool,
+    pub(crate) font: bool,
     /// whether `letter_spacing` was given (it does not apply)
-    pub letter_spacing: bool,
+    pub(crate) letter_spacing: bool,
 }
 
 /// The shape source, or an error naming the key.
-pub fn resolve(
+pub(crate) fn resolve(
     raw: RawSvgFile,
     origin: Vec2,
     tool_diameter: f64,

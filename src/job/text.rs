@@ -11,21 +11,21 @@ use super::{defaults, invalid, limits, JobError};
 use crate::geometry::{Align, ShapeSource, Vec2};
 
 /// The text keys of `[shape]` as written.
-pub struct RawText {
-    pub text: Option<String>,
-    pub lines: Option<Vec<String>>,
-    pub font: Option<String>,
-    pub letter_spacing: Option<f64>,
-    pub line_spacing: Option<f64>,
-    pub align: Option<String>,
+pub(crate) struct RawText {
+    pub(crate) text: Option<String>,
+    pub(crate) lines: Option<Vec<String>>,
+    pub(crate) font: Option<String>,
+    pub(crate) letter_spacing: Option<f64>,
+    pub(crate) line_spacing: Option<f64>,
+    pub(crate) align: Option<String>,
 }
 
 /// The accepted values of `shape.align`.
-pub const ALIGNS: &[&str] = &["left", "centre", "center", "right"];
+pub(crate) const ALIGNS: &[&str] = &["left", "centre", "center", "right"];
 
 /// The text source: `height` (already checked) defaults to
 /// `defaults::TEXT_HEIGHT`, `letter_spacing` to the tool's diameter.
-pub fn resolve(
+pub(crate) fn resolve(
     t: RawText,
     height: Option<f64>,
     origin: Vec2,
@@ -117,7 +117,7 @@ fn join_lines(lines: &[String]) -> Result<String, JobError> {
 }
 
 /// One line: no line break (`\n`, `\r`, U+2028, U+2029).
-pub fn check_line(key: &str, line: &str, advice: &str) -> Result<(), JobError> {
+pub(crate) fn check_line(key: &str, line: &str, advice: &str) -> Result<(), JobError> {
     match line
         .chars()
         .find(|c| matches!(c, '\n' | '\r' | '\u{2028}' | '\u{2029}'))
@@ -128,7 +128,7 @@ pub fn check_line(key: &str, line: &str, advice: &str) -> Result<(), JobError> {
 }
 
 /// Text to lay out: not blank, and at most `limits::MAX_TEXT_CHARS` characters.
-pub fn check_text(key: &str, text: &str) -> Result<(), JobError> {
+pub(crate) fn check_text(key: &str, text: &str) -> Result<(), JobError> {
     if text.trim().is_empty() {
         return Err(invalid(key, "must not be empty"));
     }

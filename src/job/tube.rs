@@ -15,7 +15,7 @@ use crate::sources::pde_tube::spec::{TubeEnd, TubeSpec};
 use crate::sources::pde_tube::{TubeError, TubeKind};
 
 /// `shape.kind` of a PDE tube.
-pub const KIND: &str = "pde-tube";
+pub(crate) const KIND: &str = "pde-tube";
 
 /// Defaults: a = 1 and N = 8 with K = 128 give the vase to 1e-14 mm
 /// at the samples (docs/method.md §15).

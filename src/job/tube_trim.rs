@@ -12,11 +12,11 @@ use crate::sources::pde_tube::spec::TrimRect;
 
 /// Most trims of a tube: two trims meeting one section would leave pie
 /// pieces touching only at the spine (a solid joined along a line).
-pub const MAX_TRIMS: usize = 1;
+pub(crate) const MAX_TRIMS: usize = 1;
 
 /// The widest trim, degrees: a wider one makes the spine an outside corner of
 /// the kept pie, round which the finishing rings do not turn.
-pub const MAX_TRIM_DEGREES: f64 = 180.0;
+pub(crate) const MAX_TRIM_DEGREES: f64 = 180.0;
 
 /// The key of trim `i` (0-based) and field `f`, as TOML errors name it.
 fn key(i: usize, f: &str) -> String {

@@ -28,7 +28,7 @@ use crate::geometry::Vec2;
 use crate::sources::harmonic_bezier::{HarmonicError, HarmonicPatch, HeightRange, PatchSpec};
 
 /// A height field over a rectangle, (x, y) from its lower-left corner, mm.
-pub trait Height: Send + Sync {
+pub(crate) trait Height: Send + Sync {
     /// h(x, y), mm.
     fn height(&self, x: f64, y: f64) -> f64;
     /// ∇h = (∂h/∂x, ∂h/∂y) at (x, y).
@@ -65,17 +65,17 @@ impl Height for HarmonicPatch {
 /// this is not seen (h is a polynomial of low degree, so its level sets have
 /// few components, each born at the border where h has a local maximum
 /// along it).
-pub const SPACING: f64 = 0.2;
+pub(crate) const SPACING: f64 = 0.2;
 
 /// Most grid points sampled (the spacing grows past [`SPACING`] for
 /// rectangles larger than 400 × 400 mm to stay within it).
-pub const MAX_POINTS: usize = 4_000_000;
+pub(crate) const MAX_POINTS: usize = 4_000_000;
 
 /// Halvings of a chord at most in the refinement.
 const REFINE_DEPTH: usize = 4;
 
 /// A height field's sections (module doc).
-pub struct HeightFieldSections {
+pub(crate) struct HeightFieldSections {
     field: Box<dyn Height>,
     origin: Vec2,
     size: [f64; 2],
@@ -99,7 +99,7 @@ impl HeightFieldSections {
     /// The sections of `spec`'s patch, chords within `CHORD_FRACTION` ×
     /// `tol` (mm) of the level curves. Errors only for a spec that does not
     /// build a patch.
-    pub fn new(spec: &PatchSpec, tol: f64) -> Result<HeightFieldSections, HarmonicError> {
+    pub(crate) fn new(spec: &PatchSpec, tol: f64) -> Result<HeightFieldSections, HarmonicError> {
         let patch = spec.patch()?;
         let range = patch.height_range();
         Ok(Self::of_height(
@@ -114,7 +114,7 @@ impl HeightFieldSections {
     /// The sections of any height field over the rectangle `origin`, `size`
     /// whose max and min heights (and where the max is, relative to the
     /// origin) are `range`; chords within `CHORD_FRACTION` × `tol` (mm).
-    pub fn of_height(
+    pub(crate) fn of_height(
         field: Box<dyn Height>,
         origin: Vec2,
         size: [f64; 2],
@@ -148,34 +148,23 @@ impl HeightFieldSections {
     }
 
     /// h at a point in job coordinates, mm (patch heights).
-    pub fn height(&self, p: Vec2) -> f64 {
+    pub(crate) fn height(&self, p: Vec2) -> f64 {
         self.field.height(p.x - self.origin.x, p.y - self.origin.y)
     }
 
     /// max h, mm: the part's top, placed at the stock top.
-    pub fn top_height(&self) -> f64 {
+    pub(crate) fn top_height(&self) -> f64 {
         self.top
     }
 
-    /// min h, mm: the part's foot.
-    pub fn bottom_height(&self) -> f64 {
-        self.bottom
-    }
-
-    /// h on the sampling grid: (points in x, points in y, spacing in x, in y,
-    /// values row by row from the origin).
-    pub fn samples(&self) -> (usize, usize, f64, f64, &[f64]) {
-        (self.nx, self.ny, self.hx, self.hy, &self.values)
-    }
-
     /// The rectangle's lower-left corner and its size (job coordinates, mm).
-    pub fn rectangle_box(&self) -> (Vec2, Vec2) {
+    pub(crate) fn rectangle_box(&self) -> (Vec2, Vec2) {
         (self.origin, Vec2::new(self.size[0], self.size[1]))
     }
 
     /// The largest |∂h/∂y| on the sampling grid (central differences of the
     /// exact gradient are not needed: ∇h is evaluated at every grid point).
-    pub fn max_slope_y(&self) -> f64 {
+    pub(crate) fn max_slope_y(&self) -> f64 {
         use rayon::prelude::*;
         (0..self.nx * self.ny)
             .into_par_iter()
@@ -299,7 +288,7 @@ impl HeightFieldSections {
     }
 
     /// The section at patch height `level`, mm.
-    pub fn section_at_height(&self, level: f64) -> Vec<Vec<Vec2>> {
+    pub(crate) fn section_at_height(&self, level: f64) -> Vec<Vec<Vec2>> {
         if level <= self.bottom {
             return vec![self.rectangle()];
         }

@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::sync::Mutex;
 
 /// A shape's field, its glyphs and φ(s), with the grid of u its curves come from.
-pub struct MfsSections {
+pub(crate) struct MfsSections {
     field: Field,
     glyphs: Vec<Vec<Vec2>>,
     profile: DepthProfile,
@@ -28,27 +28,27 @@ pub struct MfsSections {
 }
 
 /// What [`MfsSections::new`] needs.
-pub struct MfsInput {
+pub(crate) struct MfsInput {
     /// The shape's field (generating boundary: the glyphs).
-    pub field: Field,
+    pub(crate) field: Field,
     /// The glyphs, flattened, material on the left, mm.
-    pub glyphs: Vec<Vec<Vec2>>,
+    pub(crate) glyphs: Vec<Vec<Vec2>>,
     /// φ(s).
-    pub profile: DepthProfile,
+    pub(crate) profile: DepthProfile,
     /// True for a cavity (the mould: material outside Γ(s)).
-    pub cavity: bool,
+    pub(crate) cavity: bool,
     /// The job's tolerance, mm: the curves' chords are refined to
     /// `field::level::CHORD_FRACTION` of it.
-    pub tol: f64,
+    pub(crate) tol: f64,
     /// The shape field's figures, reported for the boss levels that use it.
-    pub figures: FieldFigures,
+    pub(crate) figures: FieldFigures,
 }
 
 impl MfsSections {
     /// Sample u on one grid (spacing [`GRID_SPACING`], or finer for a shape
     /// over 800 mm across), grown until Γ(s_bottom) closes inside it; an
     /// error if it does not within five growths.
-    pub fn new(input: MfsInput) -> Result<MfsSections, PlanError> {
+    pub(crate) fn new(input: MfsInput) -> Result<MfsSections, PlanError> {
         let (grid, h) = job_grid(&input.field, &input.glyphs, &input.profile)?;
         Ok(MfsSections {
             field: input.field,
@@ -64,18 +64,18 @@ impl MfsSections {
     }
 
     /// The shape's field.
-    pub fn field(&self) -> &Field {
+    pub(crate) fn field(&self) -> &Field {
         &self.field
     }
 
     /// The glyphs, flattened.
-    pub fn glyphs(&self) -> &[Vec<Vec2>] {
+    pub(crate) fn glyphs(&self) -> &[Vec<Vec2>] {
         &self.glyphs
     }
 
     /// s at the level of `zrel` (relative to the stock top): from the profile,
     /// mirrored for a cavity.
-    pub fn s_of(&self, zrel: f64) -> f64 {
+    pub(crate) fn s_of(&self, zrel: f64) -> f64 {
         let p = &self.profile;
         if self.cavity {
             p.s_at(-p.depth() - zrel)
@@ -87,7 +87,7 @@ impl MfsSections {
     /// Γ(s) (`field::level::curves`), each s extracted once (the schedule, the
     /// stock, the bound and the levels ask for the same curves); loops
     /// around the material counter-clockwise.
-    pub fn curves(&self, s: f64) -> Vec<Ring> {
+    pub(crate) fn curves(&self, s: f64) -> Vec<Ring> {
         if let Some(c) = self
             .cache
             .lock()

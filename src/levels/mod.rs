@@ -3,14 +3,14 @@
 //! sources. The depth profile φ(s) they follow is [`DepthProfile`] (from the
 //! crate's `profile` module, re-exported here).
 
-pub mod height_field;
-pub mod mfs_sections;
-pub mod plan;
-pub mod prism;
-pub mod section_view;
+pub(crate) mod height_field;
+pub(crate) mod mfs_sections;
+pub(crate) mod plan;
+pub(crate) mod prism;
+pub(crate) mod section_view;
 pub mod sections;
 
-pub use crate::profile::{DepthProfile, ProfileError};
+pub(crate) use crate::profile::DepthProfile;
 
 /// The z-levels (relative to the stock top) from the top down: 0 first, then
 /// equal steps of at most `stepdown`, the last exactly at −depth; then, wherever
@@ -20,7 +20,7 @@ pub use crate::profile::{DepthProfile, ProfileError};
 /// takes more than `max_levels` levels: each costs a gap measurement here and a
 /// solve and a trace later, and `min_dz` alone allows depth / min_dz of them
 /// (10 000 for 200 mm at 0.02 mm).
-pub fn schedule(
+pub(crate) fn schedule(
     depth: f64,
     stepdown: f64,
     max_scallop: f64,
@@ -63,7 +63,7 @@ pub fn schedule(
 /// finished before the next stepdown level: where a stepdown level's disk
 /// could not reach (a narrow gap's mouth), the levels above it have cut what
 /// they could first, which keeps the next one's cut near a stepdown deep.
-pub fn cutting_order(rough: &[bool]) -> Vec<usize> {
+pub(crate) fn cutting_order(rough: &[bool]) -> Vec<usize> {
     let mut order = Vec::with_capacity(rough.len());
     let mut slab = Vec::new();
     for (i, &r) in rough.iter().enumerate() {

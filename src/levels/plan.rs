@@ -15,7 +15,7 @@ use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
 /// Grid spacing for sampling u, mm: fine enough that marching squares finds every
 /// component of Γ(s) of the letters; vertices are exact and chords are then refined
 /// to the tolerance by `field::level::refine`.
-pub const GRID_SPACING: f64 = 0.4;
+pub(crate) const GRID_SPACING: f64 = 0.4;
 
 /// What the level planner reports for one level.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,7 +31,7 @@ pub struct LevelInfo {
     /// Max boundary error of the level's solve.
     pub max_error: f64,
     /// Pseudo-boundary distance chosen for the level's solve, mm.
-    pub distance: f64,
+    pub(crate) distance: f64,
     /// Cavity: the uncut share of the reachable area (measured on a grid).
     pub uncut: Option<f64>,
     /// Smallest clearance of the level's moves from the gouge check against
@@ -44,50 +44,50 @@ pub struct LevelInfo {
 }
 
 /// Inputs of the level planner.
-pub struct LevelJob<'a> {
+pub(crate) struct LevelJob<'a> {
     /// The part: its z range, its sections, the level's parameter and,
     /// when it knows one, the level's field ([`Sections`]).
-    pub source: &'a dyn Sections,
+    pub(crate) source: &'a dyn Sections,
     /// True for a cavity (the mould), false for a boss.
-    pub cavity: bool,
+    pub(crate) cavity: bool,
     /// Stock top, mm.
-    pub top: f64,
+    pub(crate) top: f64,
     /// Largest depth per level.
-    pub stepdown: f64,
+    pub(crate) stepdown: f64,
     /// Largest horizontal step between neighbouring levels.
-    pub max_scallop: f64,
+    pub(crate) max_scallop: f64,
     /// Stock margin around the largest level, mm.
-    pub margin: f64,
+    pub(crate) margin: f64,
     /// Outer radius for the level problems.
-    pub outer_radius: f64,
+    pub(crate) outer_radius: f64,
     /// Chord tolerance, mm: a section's solve flattens within it.
-    pub tol: f64,
+    pub(crate) tol: f64,
     /// The tool's radius, its stepover and its cutting feed (mm, mm, mm/min),
     /// for the lower bound of the machining time.
-    pub tool: ToolFigures,
+    pub(crate) tool: ToolFigures,
     /// `machine.max_hours`: the job stops before any level is traced when its
     /// lower bound ([`crate::estimate::levels_bound`]) passes it.
-    pub max_hours: f64,
+    pub(crate) max_hours: f64,
 }
 
 /// What the time bound needs of the tool.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ToolFigures {
+pub(crate) struct ToolFigures {
     /// Tool radius, mm.
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// Largest distance between neighbouring clearing rings, mm.
-    pub stepover: f64,
+    pub(crate) stepover: f64,
     /// Cutting feed, mm/min.
-    pub feed: f64,
+    pub(crate) feed: f64,
 }
 
 /// The largest error a level's field may have: a hundredth of 1 − s (issue
 /// 12), so that the field places Γ(s) where s says.
-pub fn level_error_bound(s: f64) -> f64 {
+pub(crate) fn level_error_bound(s: f64) -> f64 {
     (1.0 - s) / 100.0
 }
 
-pub use crate::field::level::CHORD_FRACTION;
+pub(crate) use crate::field::level::CHORD_FRACTION;
 
 /// The box of nothing: every point extends it.
 pub(super) const EMPTY_BOX: (Vec2, Vec2) = (
@@ -104,64 +104,64 @@ pub(super) const EMPTY_BOX: (Vec2, Vec2) = (
 /// The levels to plan, known before any is: the z schedule, the cutting
 /// order, the stock rectangle and the time bound.
 #[derive(Clone, Debug)]
-pub struct Schedule {
+pub(crate) struct Schedule {
     /// Every level below the top, top down.
-    pub levels: Vec<Level>,
+    pub(crate) levels: Vec<Level>,
     /// The order in which the levels are cut, as indices into `levels`
     /// ([`super::cutting_order`]).
-    pub order: Vec<usize>,
+    pub(crate) order: Vec<usize>,
     /// The stock rectangle (lower-left, upper-right): the largest level (a
     /// boss's base, a cavity's rim) plus the margin, mm.
-    pub stock: (Vec2, Vec2),
+    pub(crate) stock: (Vec2, Vec2),
     /// Seconds spent extracting contours and choosing the z schedule (wall
     /// clock).
-    pub t_schedule: f64,
+    pub(crate) t_schedule: f64,
     /// The lower bound of the machining time, from the levels' contours.
-    pub bound: LowerBound,
+    pub(crate) bound: LowerBound,
 }
 
 /// One level of the schedule.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Level {
+pub(crate) struct Level {
     /// Its number, from 1 below the top.
-    pub k: usize,
+    pub(crate) k: usize,
     /// Its z, relative to the stock top (negative).
-    pub z: f64,
+    pub(crate) z: f64,
     /// The level below, when this one was added for the scallop bound: it
     /// then clears only the band out to that level's contour, which is cut
     /// first. `None` for a level of the plain stepdown schedule.
-    pub z_below: Option<f64>,
+    pub(crate) z_below: Option<f64>,
 }
 
 /// One level planned: what its paths are traced from.
-pub struct PlannedLevel {
+pub(crate) struct PlannedLevel {
     /// Z (absolute).
-    pub z: f64,
+    pub(crate) z: f64,
     /// Equipotential value (the source's level value).
-    pub s: f64,
+    pub(crate) s: f64,
     /// The level's name in paths and messages, `level k (z …)`.
-    pub label: String,
+    pub(crate) label: String,
     /// The section as the source gives it: the part's material on the left
     /// (a cavity's: the mould's), what the paths are traced along.
-    pub section: Vec<Vec<Vec2>>,
+    pub(crate) section: Vec<Vec<Vec2>>,
     /// Γ(s_k) with a boss's material on the left (a cavity's section
     /// reversed): what the gouge check measures against.
-    pub part: Vec<Vec<Vec2>>,
+    pub(crate) part: Vec<Vec<Vec2>>,
     /// The level's own field and its figures.
-    pub field: LevelField,
+    pub(crate) field: LevelField,
     /// A level added for the scallop bound: the width of the band it clears,
     /// mm (the gap to the level below).
-    pub reach: Option<f64>,
+    pub(crate) reach: Option<f64>,
     /// Warnings about this level.
-    pub warnings: Vec<String>,
+    pub(crate) warnings: Vec<String>,
     /// Seconds spent on the level's field (wall clock, for benchmarks).
-    pub t_solve: f64,
+    pub(crate) t_solve: f64,
 }
 
 impl PlannedLevel {
     /// What the planner reports for the level, once its paths are traced
     /// (`uncut`: a cavity's uncut share; `t_paths`: the seconds they took).
-    pub fn info(&self, uncut: Option<f64>, t_paths: f64) -> LevelInfo {
+    pub(crate) fn info(&self, uncut: Option<f64>, t_paths: f64) -> LevelInfo {
         LevelInfo {
             z: self.z,
             s: self.s,
@@ -179,7 +179,7 @@ impl PlannedLevel {
 
 /// The z schedule of `job`, its cutting order, the stock rectangle and the
 /// time bound; refused when the bound passes `machine.max_hours`.
-pub fn plan_schedule(job: &LevelJob) -> Result<Schedule, PlanError> {
+pub(crate) fn plan_schedule(job: &LevelJob) -> Result<Schedule, PlanError> {
     let t_start = std::time::Instant::now();
     let c = LevelCurves { job };
     let depth = c.depth();
@@ -323,7 +323,7 @@ fn stock_rectangle(job: &LevelJob, c: &LevelCurves) -> (Vec2, Vec2) {
 
 /// Level `level` of `job`: its section, its own field ([`level_field`]) and,
 /// when it was added for the scallop bound, the band it clears.
-pub fn plan_level(job: &LevelJob, level: &Level) -> Result<PlannedLevel, PlanError> {
+pub(crate) fn plan_level(job: &LevelJob, level: &Level) -> Result<PlannedLevel, PlanError> {
     use crate::count::{set_stage, Stage};
     let c = LevelCurves { job };
     let (k, z) = (level.k, level.z);

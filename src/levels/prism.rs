@@ -6,7 +6,7 @@ use super::sections::{LevelField, Sections};
 use crate::geometry::Vec2;
 
 /// The shape's contours, flattened (material on the left), over a depth.
-pub struct PrismSections {
+pub(crate) struct PrismSections {
     contours: Vec<Vec<Vec2>>,
     depth: f64,
 }
@@ -14,7 +14,7 @@ pub struct PrismSections {
 impl PrismSections {
     /// The prism of `contours` (mm, material on the left) from z = −`depth`
     /// to 0.
-    pub fn new(contours: Vec<Vec<Vec2>>, depth: f64) -> PrismSections {
+    pub(crate) fn new(contours: Vec<Vec<Vec2>>, depth: f64) -> PrismSections {
         PrismSections { contours, depth }
     }
 }

@@ -8,15 +8,15 @@ use super::sections::{net_area, SectionRing, Sections};
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SectionView {
     /// `pfcam <version>`.
-    pub generator: String,
+    pub(crate) generator: String,
     /// The job's name.
-    pub job: String,
+    pub(crate) job: String,
     /// The height asked for, machine z (mm).
-    pub z: f64,
+    pub(crate) z: f64,
     /// The part's heights (bottom, top), machine z (mm).
     pub z_range: [f64; 2],
     /// The source's parameter of the level (the MFS: s(z)).
-    pub level_value: f64,
+    pub(crate) level_value: f64,
     /// Net area, mm²: outlines minus holes.
     pub area: f64,
     /// The rings, material on the left (holes clockwise).
@@ -26,7 +26,7 @@ pub struct SectionView {
 impl SectionView {
     /// The section of `source` at machine height `z`, the part's top at
     /// `top` (the stock top).
-    pub fn new(job: &str, source: &dyn Sections, z: f64, top: f64) -> SectionView {
+    pub(crate) fn new(job: &str, source: &dyn Sections, z: f64, top: f64) -> SectionView {
         let (lo, hi) = source.z_range();
         let polys = source.section(z - top);
         SectionView {

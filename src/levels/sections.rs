@@ -45,11 +45,11 @@ pub trait Sections: Sync {
 /// more than the level may (the planner adds the level's name in front).
 pub struct LevelField {
     /// The field: 1 on the level's section, decreasing away from the material.
-    pub field: Field,
+    pub(crate) field: Field,
     /// Its solve's figures.
-    pub figures: crate::field::FieldFigures,
+    pub(crate) figures: crate::field::FieldFigures,
     /// Why its accuracy is a concern, if it is.
-    pub warning: Option<String>,
+    pub(crate) warning: Option<String>,
 }
 
 /// One ring of a section, described.
@@ -65,7 +65,7 @@ pub struct SectionRing {
 
 impl SectionRing {
     /// The ring of polygon `p` (material on its left).
-    pub fn of(p: &[Vec2]) -> SectionRing {
+    pub(crate) fn of(p: &[Vec2]) -> SectionRing {
         let area = polygon_area(p);
         SectionRing {
             points: p.iter().map(|q| [q.x, q.y]).collect(),
@@ -83,7 +83,7 @@ pub fn net_area(section: &[Vec<Vec2>]) -> f64 {
 }
 
 /// Why a height is not in the part.
-pub fn check_z(z: f64, range: (f64, f64), top: f64) -> Result<(), OutsidePart> {
+pub(crate) fn check_z(z: f64, range: (f64, f64), top: f64) -> Result<(), OutsidePart> {
     let (lo, hi) = (top + range.0, top + range.1);
     if z.is_finite() && z >= lo - 1e-9 && z <= hi + 1e-9 {
         return Ok(());
@@ -96,13 +96,13 @@ pub fn check_z(z: f64, range: (f64, f64), top: f64) -> Result<(), OutsidePart> {
 #[error("--z {z}: the part spans z {lo:.3} to {hi:.3} mm (machine z, stock.top = {top})")]
 pub struct OutsidePart {
     /// The height asked for.
-    pub z: f64,
+    pub(crate) z: f64,
     /// The part's lowest machine z.
-    pub lo: f64,
+    pub(crate) lo: f64,
     /// Its highest.
-    pub hi: f64,
+    pub(crate) hi: f64,
     /// `stock.top`.
-    pub top: f64,
+    pub(crate) top: f64,
 }
 
 #[cfg(test)]

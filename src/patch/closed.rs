@@ -12,7 +12,7 @@ use crate::surface::{Mesh, Surface, SurfaceError};
 
 /// The closed solid's mesh at `resolution` mm (a grid of that spacing over
 /// the region round the points), or None for a relief.
-pub fn closed_surface(
+pub(crate) fn closed_surface(
     job: &Job,
     spec: &PolySpec,
     resolution: f64,

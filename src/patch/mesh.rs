@@ -20,21 +20,21 @@ use crate::surface::{Mesh, Surface, BASE_THICKNESS};
 /// The part's heights, machine z (mm): the top of the surface at `top` (the
 /// stock top), its lowest point `depth` below it.
 #[derive(Clone, Copy, Debug)]
-pub struct Placement {
+pub(crate) struct Placement {
     /// stock.top, mm: where max h goes.
-    pub top: f64,
+    pub(crate) top: f64,
     /// max h − min h, mm.
-    pub depth: f64,
+    pub(crate) depth: f64,
 }
 
 impl Placement {
     /// z of the bottom face, mm.
-    pub fn z_bottom(&self) -> f64 {
+    pub(crate) fn z_bottom(&self) -> f64 {
         self.top - self.depth - BASE_THICKNESS
     }
 
     /// z of the floor around the part (its lowest point), mm.
-    pub fn z_floor(&self) -> f64 {
+    pub(crate) fn z_floor(&self) -> f64 {
         self.top - self.depth
     }
 }
@@ -47,7 +47,7 @@ fn points_along(length: f64, resolution: f64) -> usize {
 /// The closed mesh of the patch block (module doc), its grid at most
 /// `resolution` mm apart (at least 2 points a side). `stock` is the stock
 /// rectangle (lower-left, upper-right).
-pub fn patch_mesh(
+pub(crate) fn patch_mesh(
     sections: &HeightFieldSections,
     place: Placement,
     resolution: f64,
@@ -118,7 +118,11 @@ fn border_ccw(nx: usize, ny: usize) -> Vec<(usize, usize)> {
 
 /// The floor around the patch, inside the stock rectangle, at `z` (mm): four
 /// trapezoids, two up-facing triangles each (none where the margin is 0).
-pub fn floor_triangles(rect: (Vec2, Vec2), stock: (Vec2, Vec2), z: f64) -> Vec<[[f64; 3]; 3]> {
+pub(crate) fn floor_triangles(
+    rect: (Vec2, Vec2),
+    stock: (Vec2, Vec2),
+    z: f64,
+) -> Vec<[[f64; 3]; 3]> {
     let (r0, r1) = rect;
     let (s0, s1) = stock;
     let r = [

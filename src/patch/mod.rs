@@ -6,9 +6,9 @@
 //! level against its section), as a boss's. The stock top is max h; the
 //! part's foot, min h, is `operation.depth` below it.
 
-pub mod closed;
-pub mod mesh;
-pub mod raster;
+pub(crate) mod closed;
+pub(crate) mod mesh;
+pub(crate) mod raster;
 
 use crate::count::{set_stage, Stage};
 use crate::geometry::ShapeSource;
@@ -23,7 +23,7 @@ use crate::sources::polyharmonic::{PolySpec, Solid};
 
 /// A shape source that is a height field over a rectangle.
 #[derive(Clone, Copy, Debug)]
-pub enum HeightSource<'a> {
+pub(crate) enum HeightSource<'a> {
     /// A harmonic Bézier patch.
     Bezier(&'a PatchSpec),
     /// A polyharmonic solid's top envelope.
@@ -43,7 +43,7 @@ impl ShapeSource {
 
 impl HeightSource<'_> {
     /// The rectangle's lower-left corner, mm.
-    pub fn origin(&self) -> Vec2 {
+    pub(crate) fn origin(&self) -> Vec2 {
         match self {
             HeightSource::Bezier(s) => s.origin,
             HeightSource::Poly(s) => Vec2::new(s.origin[0], s.origin[1]),
@@ -53,7 +53,7 @@ impl HeightSource<'_> {
     /// What the run summary calls the part (`glyphs: ...`, the preview's
     /// solve): `patch`, `polyharmonic relief` or `polyharmonic solid`
     /// (`shape.solid = "closed"`).
-    pub fn label(&self) -> &'static str {
+    pub(crate) fn label(&self) -> &'static str {
         match self {
             HeightSource::Bezier(_) => "patch",
             HeightSource::Poly(s) if s.solid == Solid::Closed => "polyharmonic solid",
@@ -62,7 +62,7 @@ impl HeightSource<'_> {
     }
 
     /// The rectangle's size [X, Y], mm.
-    pub fn size(&self) -> [f64; 2] {
+    pub(crate) fn size(&self) -> [f64; 2] {
         match self {
             HeightSource::Bezier(s) => s.size,
             HeightSource::Poly(s) => s.size,
@@ -70,7 +70,7 @@ impl HeightSource<'_> {
     }
 
     /// Its sections, chords within `CHORD_FRACTION` × `tol` (mm).
-    pub fn sections(&self, tol: f64) -> Result<HeightFieldSections, HarmonicError> {
+    pub(crate) fn sections(&self, tol: f64) -> Result<HeightFieldSections, HarmonicError> {
         match self {
             HeightSource::Bezier(s) => HeightFieldSections::new(s, tol),
             HeightSource::Poly(s) => Ok(HeightFieldSections::of_height(
@@ -85,7 +85,7 @@ impl HeightSource<'_> {
 }
 
 /// The height field's sections for a job (chords within the job's tolerance).
-pub fn patch_sections(
+pub(crate) fn patch_sections(
     job: &Job,
     spec: HeightSource<'_>,
 ) -> Result<HeightFieldSections, PipelineError> {
@@ -95,7 +95,7 @@ pub fn patch_sections(
 }
 
 /// Rough a patch by levels (and finish it, with `[finish]`).
-pub fn run_patch(
+pub(crate) fn run_patch(
     job: &Job,
     spec: HeightSource<'_>,
     progress: &mut dyn FnMut(Progress),
@@ -156,7 +156,7 @@ fn finish_patch(
 /// The stock rectangle of a patch job: the rectangle grown by `stock.margin`
 /// (what the level planner computes from the bottom section, which is the
 /// rectangle).
-pub fn patch_stock(job: &Job, spec: HeightSource<'_>) -> (Vec2, Vec2) {
+pub(crate) fn patch_stock(job: &Job, spec: HeightSource<'_>) -> (Vec2, Vec2) {
     let m = Vec2::new(job.stock.margin, job.stock.margin);
     let size = Vec2::new(spec.size()[0], spec.size()[1]);
     (spec.origin() - m, spec.origin() + size + m)
@@ -164,7 +164,7 @@ pub fn patch_stock(job: &Job, spec: HeightSource<'_>) -> (Vec2, Vec2) {
 
 /// Where the part's heights go: max h at `stock.top`, `operation.depth`
 /// (max h − min h) deep.
-pub fn placement(job: &Job) -> mesh::Placement {
+pub(crate) fn placement(job: &Job) -> mesh::Placement {
     mesh::Placement {
         top: job.stock.top,
         depth: job.operation.depth,
@@ -172,7 +172,7 @@ pub fn placement(job: &Job) -> mesh::Placement {
 }
 
 /// The patch block as a closed mesh at `resolution` mm (`pfcam surface`).
-pub fn patch_surface(
+pub(crate) fn patch_surface(
     job: &Job,
     spec: HeightSource<'_>,
     resolution: f64,
@@ -190,7 +190,7 @@ pub fn patch_surface(
 /// The part for `simulate` and the finisher: the block's up-facing
 /// triangles (its top surface) and the floor around it at min h, over the
 /// stock rectangle.
-pub fn patch_part_triangles(
+pub(crate) fn patch_part_triangles(
     job: &Job,
     spec: HeightSource<'_>,
     resolution: f64,

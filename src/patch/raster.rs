@@ -27,32 +27,32 @@ use crate::toolpath::dropcutter::MeshIndex;
 use crate::toolpath::{Move, Section, Toolpath, Vec3};
 
 /// Most passes of a raster.
-pub const MAX_PASSES: usize = 20_000;
+pub(crate) const MAX_PASSES: usize = 20_000;
 
 /// Most samples of all passes together (each is a G-code line).
-pub const MAX_SAMPLES: usize = 4_000_000;
+pub(crate) const MAX_SAMPLES: usize = 4_000_000;
 
 /// What the raster needs of the part.
-pub struct RasterPart<'a> {
+pub(crate) struct RasterPart<'a> {
     /// The rectangle's lower-left corner and size, mm.
-    pub rect: (Vec2, Vec2),
+    pub(crate) rect: (Vec2, Vec2),
     /// The largest |∂h/∂y| over the rectangle.
-    pub max_slope_y: f64,
+    pub(crate) max_slope_y: f64,
     /// The part's mesh (top surface and floor), for the drop-cutter.
-    pub mesh: &'a MeshIndex,
+    pub(crate) mesh: &'a MeshIndex,
     /// z of the floor, mm: where the mesh has nothing under the cutter.
-    pub z_floor: f64,
+    pub(crate) z_floor: f64,
     /// Area of the top surface, mm² (for the time's lower bound).
-    pub area: f64,
+    pub(crate) area: f64,
     /// Whether the part has concave kinks (a relief meeting its flat base):
     /// a chord across the offset's kink there stands above the drop and
     /// leaves material, so steps are also halved while the drop at the
     /// midpoint lies more than tol below the chord.
-    pub valleys: bool,
+    pub(crate) valleys: bool,
 }
 
 /// The raster's spacing: (Δy across the passes, δ along them), mm.
-pub fn spacing(f: &Finish, max_slope_y: f64, tol: f64) -> Result<(f64, f64), FinishError> {
+pub(crate) fn spacing(f: &Finish, max_slope_y: f64, tol: f64) -> Result<(f64, f64), FinishError> {
     if f.shape == CutterShape::Flat || f.corner <= 0.0 {
         return Err(FinishError::FlatOnSurface);
     }
@@ -73,7 +73,7 @@ fn stations(a: f64, b: f64, step: f64) -> Vec<f64> {
 /// below the chord between two passes' centres by about (d/2) sin(θ/2) (d
 /// the passes' distance, θ the bend): 0.039 mm over the ball's reach at the
 /// full spacing on jobs/polyharmonic-face.toml, 0.021 at half.
-pub const VALLEY_PASSES: f64 = 3.0;
+pub(crate) const VALLEY_PASSES: f64 = 3.0;
 
 /// Halvings of a step at most where its chord strays below the drop.
 const REFINE_DEPTH: usize = 8;
@@ -217,7 +217,11 @@ impl Dropper<'_> {
 }
 
 /// The finishing program of a patch job.
-pub fn raster_finish(job: &Job, f: &Finish, part: &RasterPart) -> Result<Finished, FinishError> {
+pub(crate) fn raster_finish(
+    job: &Job,
+    f: &Finish,
+    part: &RasterPart,
+) -> Result<Finished, FinishError> {
     use rayon::prelude::*;
     let tol = job.operation.tolerance;
     let (dy, ds) = spacing(f, part.max_slope_y, tol)?;

@@ -8,7 +8,7 @@ use svg::node::element::Path;
 
 /// At most this many tracks of the deepest level get direction arrows (the
 /// longest ones): a clearing level has many.
-pub const ARROW_TRACKS: usize = 8;
+pub(crate) const ARROW_TRACKS: usize = 8;
 
 /// Direction arrows along the longest [`ARROW_TRACKS`] of the deepest level's
 /// tracks: arrows of size a = min(size / 35, 0.7 fs), one per fifth of the

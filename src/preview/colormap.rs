@@ -46,7 +46,7 @@ const PAPER_YELLOW_FROM: f64 = 0.9999;
 impl ColourMap {
     /// The colour of u (RGB in [0, 1]) at a point outside the material; u is
     /// clamped to [0, 1], a non-finite u is taken as 0.
-    pub fn colour(self, u: f64) -> [f64; 3] {
+    pub(crate) fn colour(self, u: f64) -> [f64; 3] {
         let u = if u.is_finite() {
             u.clamp(0.0, 1.0)
         } else {
@@ -70,7 +70,7 @@ impl ColourMap {
     }
 
     /// The colour of the material (u = 1 on its boundary).
-    pub fn material(self) -> [f64; 3] {
+    pub(crate) fn material(self) -> [f64; 3] {
         match self {
             ColourMap::Paper | ColourMap::RedCyan(_) => [1.0, 1.0, 0.0],
             ColourMap::Grey(_) => [1.0, 1.0, 1.0],
@@ -80,12 +80,12 @@ impl ColourMap {
 
 /// Red at this level: [`auto_exponent`] makes R = uⁿ fall to it at the smallest
 /// u in the picture, so the colours span the whole rectangle.
-pub const AUTO_FLOOR: f64 = 0.02;
+pub(crate) const AUTO_FLOOR: f64 = 0.02;
 
 /// The exponent n with u_minⁿ = [`AUTO_FLOOR`], u_min the smallest u in (0, 1) on
 /// the rectangle's border and corners (u falls away from the part, so its minimum
 /// over the rectangle is on the border), clamped to [1, 500].
-pub fn auto_exponent(field: &Field, lo: Vec2, hi: Vec2) -> f64 {
+pub(crate) fn auto_exponent(field: &Field, lo: Vec2, hi: Vec2) -> f64 {
     let mut u_min: f64 = 1.0;
     let k = 64;
     for i in 0..=k {
@@ -109,7 +109,7 @@ pub fn auto_exponent(field: &Field, lo: Vec2, hi: Vec2) -> f64 {
 }
 
 /// The paper's exponent n for level u (Section 3.2, found experimentally there).
-pub fn paper_exponent(u: f64) -> f64 {
+pub(crate) fn paper_exponent(u: f64) -> f64 {
     if u > 0.995 {
         500.0
     } else if u > 0.99 {
@@ -123,21 +123,21 @@ pub fn paper_exponent(u: f64) -> f64 {
 
 /// What to draw.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FieldImageSpec {
+pub(crate) struct FieldImageSpec {
     /// Lower-left corner of the pictured rectangle, mm.
-    pub lo: Vec2,
+    pub(crate) lo: Vec2,
     /// Upper-right corner, mm.
-    pub hi: Vec2,
+    pub(crate) hi: Vec2,
     /// Resolution, pixels per mm.
-    pub px_per_mm: f64,
+    pub(crate) px_per_mm: f64,
     /// Grid vertices every this many pixels (u is evaluated there only; ≥ 1).
-    pub step_px: usize,
+    pub(crate) step_px: usize,
     /// The colour map.
-    pub map: ColourMap,
+    pub(crate) map: ColourMap,
 }
 
 /// The largest image [`field_image`] makes, in pixels (a 8000 × 8000 picture).
-pub const MAX_PIXELS: u64 = 64_000_000;
+pub(crate) const MAX_PIXELS: u64 = 64_000_000;
 
 /// A field image [`field_image`] refuses to draw.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -181,7 +181,7 @@ pub struct Rgb8 {
 
 /// Render the field over `spec` (see the module docs). `polys` are the part's
 /// flattened contours (material on the left), used as the mask.
-pub fn field_image(
+pub(crate) fn field_image(
     field: &Field,
     polys: &[Vec<Vec2>],
     spec: &FieldImageSpec,
@@ -264,7 +264,7 @@ pub fn field_image(
 
 /// The text pfcam puts in every PNG it writes, as its `Software` chunk; that is
 /// how pfcam recognises its own PNG files (see `output`).
-pub fn png_software() -> String {
+pub(crate) fn png_software() -> String {
     crate::report::generator()
 }
 
@@ -296,7 +296,7 @@ pub fn encode_png(img: &Rgb8, title: &str) -> Result<Vec<u8>, PngError> {
 }
 
 /// Standard base64 (RFC 4648, with padding), for a PNG embedded in an SVG.
-pub fn base64(bytes: &[u8]) -> String {
+pub(crate) fn base64(bytes: &[u8]) -> String {
     const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
     for ch in bytes.chunks(3) {

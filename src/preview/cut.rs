@@ -10,7 +10,7 @@ use svg::node::element::{Group, Path};
 
 /// Up to this many levels each get a band width and a legend entry of their own;
 /// more (a boss or cavity has dozens) are drawn in one width with a colour bar.
-pub const BAND_LEVELS: usize = 6;
+pub(crate) const BAND_LEVELS: usize = 6;
 
 /// Stroke width of the level `above` levels above the deepest of `n` levels:
 /// with few levels each shallower one is wider by three base widths, so passes
@@ -33,16 +33,16 @@ pub(super) fn band_width(lw: f64, above: usize, n: usize, d: f64) -> f64 {
 /// The run's levels, shallowest first, and their depth range.
 pub(super) struct Depths {
     /// The levels' feed moves.
-    pub levels: Vec<LevelMoves>,
+    pub(crate) levels: Vec<LevelMoves>,
     /// The shallowest level's z, mm (0 without levels).
-    pub zmax: f64,
+    pub(crate) zmax: f64,
     /// The deepest level's z, mm (0 without levels).
-    pub zmin: f64,
+    pub(crate) zmin: f64,
 }
 
 impl Depths {
     /// The depth range of `levels` (shallowest first).
-    pub fn new(levels: Vec<LevelMoves>) -> Depths {
+    pub(crate) fn new(levels: Vec<LevelMoves>) -> Depths {
         let (zmax, zmin) = (
             levels.first().map_or(0.0, |l| l.z),
             levels.last().map_or(0.0, |l| l.z),
@@ -51,13 +51,13 @@ impl Depths {
     }
 
     /// How many levels.
-    pub fn count(&self) -> usize {
+    pub(crate) fn count(&self) -> usize {
         self.levels.len()
     }
 
     /// Where `z` lies in the range: 0 the shallowest, 1 the deepest (1 when
     /// all levels share one z).
-    pub fn fraction(&self, z: f64) -> f64 {
+    pub(crate) fn fraction(&self, z: f64) -> f64 {
         if self.zmax - self.zmin > 1e-9 {
             (self.zmax - z) / (self.zmax - self.zmin)
         } else {
@@ -67,7 +67,7 @@ impl Depths {
 
     /// The stroke colour and width of level `k` with base width `lw` and tool
     /// diameter `d`.
-    pub fn style(&self, k: usize, lw: f64, d: f64) -> (String, f64) {
+    pub(crate) fn style(&self, k: usize, lw: f64, d: f64) -> (String, f64) {
         let n = self.count();
         (
             depth_colour(self.fraction(self.levels[k].z)),

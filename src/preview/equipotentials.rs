@@ -15,11 +15,11 @@ use svg::node::element::{Group, Path};
 /// curve inside the drawing (for the legend).
 pub(super) struct Equipotentials {
     /// One path per level, farthest first.
-    pub curves: Group,
+    pub(crate) curves: Group,
     /// The value labels, haloed in white.
-    pub labels: Group,
+    pub(crate) labels: Group,
     /// The levels with at least one curve piece.
-    pub shown: Vec<f64>,
+    pub(crate) shown: Vec<f64>,
 }
 
 /// The curves Γ(s) for each of `levels` (sorted, farthest first), traced on a

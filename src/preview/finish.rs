@@ -11,7 +11,7 @@ use crate::toolpath::Toolpath;
 use svg::node::element::Path;
 
 /// The colour of the finishing passes and of the header's line about them.
-pub const FINISH_COLOUR: &str = "#e66a00";
+pub(crate) const FINISH_COLOUR: &str = "#e66a00";
 
 /// The finishing program's feed moves as one thin path (arcs flattened and
 /// the tracks thinned within the drawing's tolerance `frame.tol_draw`), or

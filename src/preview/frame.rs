@@ -8,7 +8,7 @@ use crate::pipeline::RunOutput;
 /// The rectangle the preview (and `pfcam field`) pictures: the part, the tool
 /// path (rapids included) and the program's start point, with a margin of
 /// 5 % of the diagonal but at least two tool diameters and 3 mm.
-pub fn drawing_area(job: &Job, out: &RunOutput) -> (Vec2, Vec2) {
+pub(crate) fn drawing_area(job: &Job, out: &RunOutput) -> (Vec2, Vec2) {
     let mut lo = Vec2::new(f64::MAX, f64::MAX);
     let mut hi = Vec2::new(f64::MIN, f64::MIN);
     let mut add = |p: Vec2| {
@@ -39,27 +39,27 @@ pub fn drawing_area(job: &Job, out: &RunOutput) -> (Vec2, Vec2) {
 /// derived from it.
 pub(super) struct Frame {
     /// Lower-left corner of the drawing area (part coordinates, y up).
-    pub lo: Vec2,
+    pub(crate) lo: Vec2,
     /// Upper-right corner of the drawing area.
-    pub hi: Vec2,
+    pub(crate) hi: Vec2,
     /// Width of the drawing area.
-    pub w: f64,
+    pub(crate) w: f64,
     /// Height of the drawing area.
-    pub h: f64,
+    pub(crate) h: f64,
     /// The longer of `w` and `h`.
-    pub size: f64,
+    pub(crate) size: f64,
     /// Type size: size / 60, within 1.5 to 6.
-    pub fs: f64,
+    pub(crate) fs: f64,
     /// Base line width: size / 900, within 0.06 to 0.3.
-    pub lw: f64,
+    pub(crate) lw: f64,
     /// Document width: the drawing's, but at least 36 type sizes for the text.
-    pub doc_w: f64,
+    pub(crate) doc_w: f64,
     /// SVG x of the document's left edge (the drawing centred in it).
-    pub x0: f64,
+    pub(crate) x0: f64,
     /// SVG y of the document's top edge, above the header.
-    pub top_y: f64,
+    pub(crate) top_y: f64,
     /// Chord tolerance for drawing curves: size / 4000, at least 0.005.
-    pub tol_draw: f64,
+    pub(crate) tol_draw: f64,
 }
 
 impl Frame {
@@ -69,7 +69,7 @@ impl Frame {
     /// enough for the longest line at type size 0.9 (DejaVu Sans averages
     /// about 0.55 em a character; a finishing program's line ran off a
     /// narrow part's page).
-    pub fn new(job: &Job, out: &RunOutput, (lines, widest): (usize, usize)) -> Frame {
+    pub(crate) fn new(job: &Job, out: &RunOutput, (lines, widest): (usize, usize)) -> Frame {
         let (lo, hi) = drawing_area(job, out);
         let (w, h) = (hi.x - lo.x, hi.y - lo.y);
         let size = w.max(h);

@@ -2,11 +2,11 @@
 //! recognises its own files by it.
 
 /// What the first line of every pfcam SVG starts with.
-pub const SVG_MARKER_PREFIX: &str = "<!-- pfcam ";
+pub(crate) const SVG_MARKER_PREFIX: &str = "<!-- pfcam ";
 
 /// The first line of a pfcam SVG for job `name` (an XML comment before the root
 /// element; `--` cannot occur inside a comment, so it is broken up).
-pub fn svg_marker(name: &str) -> String {
+pub(crate) fn svg_marker(name: &str) -> String {
     format!(
         "{SVG_MARKER_PREFIX}{} job {} -->",
         env!("CARGO_PKG_VERSION"),
@@ -15,7 +15,7 @@ pub fn svg_marker(name: &str) -> String {
 }
 
 /// Whether `first_line` is the first line of an SVG pfcam wrote.
-pub fn is_pfcam_svg(first_line: &str) -> bool {
+pub(crate) fn is_pfcam_svg(first_line: &str) -> bool {
     first_line.starts_with(SVG_MARKER_PREFIX) && first_line.trim_end().ends_with("-->")
 }
 

@@ -34,12 +34,11 @@ mod stock;
 mod svgfmt;
 mod travel;
 
-pub use arrows::ARROW_TRACKS;
 pub use colours::depth_colour;
-pub use cut::BAND_LEVELS;
-pub use finish::FINISH_COLOUR;
-pub use frame::drawing_area;
-pub use marker::{is_pfcam_svg, svg_marker, SVG_MARKER_PREFIX};
+pub(crate) use finish::FINISH_COLOUR;
+pub(crate) use frame::drawing_area;
+pub(crate) use marker::is_pfcam_svg;
+pub(crate) use marker::svg_marker;
 pub use section::section_svg;
 
 use crate::field::isolines::ContourError;
@@ -54,7 +53,7 @@ use svg::Document;
 use svgfmt::{num, path_data};
 
 /// Equipotential values drawn by default: far (0.9) to close (0.99) to the part.
-pub const DEFAULT_LEVELS: [f64; 4] = [0.9, 0.95, 0.98, 0.99];
+pub(crate) const DEFAULT_LEVELS: [f64; 4] = [0.9, 0.95, 0.98, 0.99];
 
 /// The equipotentials a job's preview draws by default: for a boss or cavity
 /// the part's own outlines, its top edge Γ(s_top) and its foot Γ(s_bottom)

@@ -17,7 +17,7 @@ type V3 = [f64; 3];
 
 /// The centre height of a ball of radius `r` over (`x`, `y`) touching
 /// triangle `t` (its face, edges or corners), or −∞ where it cannot.
-pub fn ball_on_triangle(t: &[V3; 3], x: f64, y: f64, r: f64) -> f64 {
+pub(crate) fn ball_on_triangle(t: &[V3; 3], x: f64, y: f64, r: f64) -> f64 {
     let mut z = f64::NEG_INFINITY;
     for v in t {
         let d2 = (v[0] - x).powi(2) + (v[1] - y).powi(2);

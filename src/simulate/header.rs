@@ -22,13 +22,13 @@ pub struct Header {
     /// A `tool:` line that names none of the three tools (or one that cannot
     /// be: a bull nose without its corner, a corner not below the radius):
     /// its text, for a note.
-    pub tool_unread: Option<String>,
+    pub(crate) tool_unread: Option<String>,
     /// Stock rectangle (x0, y0, x1, y1), mm.
-    pub stock_rect: Option<[f64; 4]>,
+    pub(crate) stock_rect: Option<[f64; 4]>,
     /// Stock top, mm.
-    pub stock_top: Option<f64>,
+    pub(crate) stock_top: Option<f64>,
     /// Stepdown, mm.
-    pub stepdown: Option<f64>,
+    pub(crate) stepdown: Option<f64>,
 }
 
 /// Reads the comment lines at the start of `text` (see the module docs).

@@ -27,62 +27,72 @@
 //!   tolerance are gouges ([`part`]).
 //!
 //! The library never prints; [`simulate`] returns a [`Simulation`] (the
-//! [`Report`] and the final [`HeightMap`]), and [`png::stock_png`] draws it;
+//! [`Report`] and the final [`HeightMap`]), and the tests draw it (`png::stock_png`);
 //! [`simulate_programs`] returns a [`Sequence`] (a report per program, the
 //! part compared once, the final stock), and [`png::sequence_png`] draws it.
 
-pub mod balldrop;
+pub(crate) mod balldrop;
 pub mod header;
-pub mod moves;
+pub(crate) mod moves;
 pub mod part;
 pub mod png;
 pub mod reach;
-pub mod report;
+pub(crate) mod report;
 pub mod run;
-pub mod stock;
-pub mod tool;
+pub(crate) mod stock;
+pub(crate) mod tool;
 mod verify;
-pub mod walls;
+pub(crate) mod walls;
 
 use serde::Serialize;
 
-pub use part::{job_facts, JobFacts, PartModel};
-pub use report::{Finding, Kind, PartComparison, Report, StockInfo, Worst};
-pub use stock::{Grid, HeightMap};
-pub use tool::{Tool, ToolShape};
-pub use verify::{verify_finish, verify_program, UnsafeProgram};
+pub use part::job_facts;
+pub use part::JobFacts;
+pub use part::PartModel;
+pub(crate) use report::Finding;
+pub use report::Kind;
+pub(crate) use report::PartComparison;
+pub use report::Report;
+pub(crate) use report::StockInfo;
+pub(crate) use stock::Grid;
+pub(crate) use stock::HeightMap;
+pub(crate) use tool::Tool;
+pub use tool::ToolShape;
+pub use verify::verify_finish;
+pub use verify::verify_program;
+pub use verify::UnsafeProgram;
 
 /// A rapid removing more than this (mm) touches material: far below a chip,
 /// above the rounding of 3-decimal coordinates' binary values.
-pub const RAPID_DEPTH: f64 = 0.001;
+pub(crate) const RAPID_DEPTH: f64 = 0.001;
 /// A feed move entering more material than this (mm) steeper than
 /// [`PLUNGE_ANGLE_DEG`] is a straight plunge (issue 11's 0.05 mm).
-pub const PLUNGE_DEPTH: f64 = 0.05;
+pub(crate) const PLUNGE_DEPTH: f64 = 0.05;
 /// Entry angles steeper than this (degrees from horizontal) are plunges: a
 /// ramp is a few degrees (pfcam's `tool.ramp_angle`), a straight plunge 90.
-pub const PLUNGE_ANGLE_DEG: f64 = 45.0;
+pub(crate) const PLUNGE_ANGLE_DEG: f64 = 45.0;
 /// A piece removing at most this (mm) cuts air, and such cells do not count
 /// for radial engagement.
-pub const AIR_DEPTH: f64 = 0.001;
+pub(crate) const AIR_DEPTH: f64 = 0.001;
 /// A cut whose removed cells span at least this share of the tool diameter is
 /// full width. Cell centres can lie at most r − res/2 off the axis, so a slot
 /// spans 1 − res/(2r) of it; 0.9 keeps slots at resolutions up to 0.1·d.
-pub const SLOT_SHARE: f64 = 0.9;
+pub(crate) const SLOT_SHARE: f64 = 0.9;
 /// Slack over the stepdown (mm) before a full-width cut is too deep (the
 /// stepdown is reached exactly by design).
-pub const SLOT_SLACK: f64 = 0.01;
+pub(crate) const SLOT_SLACK: f64 = 0.01;
 
 /// A full-width cut must also be deeper than the slot depth within this share
 /// of the radius from the tool's axis (a slot is deep under the middle of the
 /// tool; rim slivers are not).
-pub const SLOT_MIDDLE: f64 = 0.5;
+pub(crate) const SLOT_MIDDLE: f64 = 0.5;
 /// Chords of arcs stay within this fraction of the resolution of the arc.
 pub const CHORD_FRACTION: f64 = 0.05;
 /// Default cell side, mm.
 pub const DEFAULT_RESOLUTION: f64 = 0.1;
 /// The most cells a stock gets (8 bytes of height and 4 of line each); a
 /// larger stock is simulated on coarser cells, with a note.
-pub const MAX_CELLS: usize = 16_000_000;
+pub(crate) const MAX_CELLS: usize = 16_000_000;
 
 /// What can stop a simulation.
 #[derive(Debug, thiserror::Error)]

@@ -11,24 +11,24 @@ use crate::geometry::{arc, Vec2};
 
 /// One move of the tool tip, mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Move {
+pub(crate) struct Move {
     /// 1-based line number in the file.
-    pub line: usize,
+    pub(crate) line: usize,
     /// `G0`.
-    pub rapid: bool,
+    pub(crate) rapid: bool,
     /// Start.
-    pub from: [f64; 3],
+    pub(crate) from: [f64; 3],
     /// End.
-    pub to: [f64; 3],
+    pub(crate) to: [f64; 3],
     /// For `G2`/`G3`: the arc in its plane and the plane's axes.
-    pub arc: Option<(Arc, [usize; 2])>,
+    pub(crate) arc: Option<(Arc, [usize; 2])>,
 }
 
 impl Move {
     /// The move as straight pieces: itself for a line; for an arc, equal chords
     /// within `tol` mm of it ([`crate::geometry::arc::chords`]) with the third axis linear in the
     /// angle (a helix), the last point exactly the programmed end.
-    pub fn pieces(&self, tol: f64) -> Vec<Segment> {
+    pub(crate) fn pieces(&self, tol: f64) -> Vec<Segment> {
         let Some((arc, [a0, a1])) = self.arc else {
             return vec![Segment {
                 a: self.from,
@@ -65,18 +65,18 @@ impl Move {
 
 /// The moves of a program, and what could not be simulated.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Moves {
+pub(crate) struct Moves {
     /// Moves from a known position, in program order.
-    pub moves: Vec<Move>,
+    pub(crate) moves: Vec<Move>,
     /// Moves that start where the position is not known (the first `G0 Z`, or
     /// after `G28`/`G30`/`G53`): not simulated.
-    pub unknown_start: usize,
+    pub(crate) unknown_start: usize,
     /// Lines GRBL would reject (they do not run): (line, GRBL's message).
-    pub rejected: Vec<(usize, String)>,
+    pub(crate) rejected: Vec<(usize, String)>,
 }
 
 /// Reads a program's moves (see the module docs).
-pub fn read_moves(text: &str) -> Moves {
+pub(crate) fn read_moves(text: &str) -> Moves {
     let mut out = Moves::default();
     let mut state = ModalState::default();
     for line in Program::parse(text).blocks() {

@@ -191,11 +191,6 @@ fn slope_cos(c: &[[f64; 3]; 3]) -> f64 {
     super::walls::unit_normal(c).map_or(1.0, |n| n[2].abs())
 }
 
-/// The part's height over every cell centre (−∞ where no triangle covers it).
-pub fn part_heights(map: &HeightMap, part: &PartModel) -> Vec<f64> {
-    part_surface(map, part).0
-}
-
 /// The part's height over every cell centre (−∞ where no triangle covers it)
 /// and the cosine of its slope there (1 on flat ground and outlines).
 pub fn part_surface(map: &HeightMap, part: &PartModel) -> (Vec<f64>, Vec<f64>) {
@@ -335,7 +330,7 @@ fn exact_reach(
 
 /// Compares the stock with the part; adds one [`Kind::Gouge`] finding per line
 /// whose cuts lie below the part by more than the tolerance.
-pub fn compare(
+pub(crate) fn compare(
     map: &HeightMap,
     part: &PartModel,
     job: &JobFacts,

@@ -4,14 +4,16 @@
 
 use super::report::{Finding, Kind};
 use super::stock::HeightMap;
-use super::{Sequence, SimError, Simulation};
+#[cfg(test)]
+use super::Simulation;
+use super::{Sequence, SimError};
 use crate::preview::colormap::{encode_png, Rgb8};
 
 /// The longest side of the picture, pixels: a larger stock is drawn with one
 /// pixel per block of cells (the block's lowest height).
-pub const MAX_SIDE: usize = 2000;
+pub(crate) const MAX_SIDE: usize = 2000;
 /// A small stock is drawn with blocks of pixels per cell, to at least this.
-pub const MIN_SIDE: usize = 600;
+pub(crate) const MIN_SIDE: usize = 600;
 
 /// Colour of a height: `t` = 0 at the deepest cut, 1 at the top.
 fn colour(t: f64) -> [u8; 3] {
@@ -33,7 +35,8 @@ fn colour(t: f64) -> [u8; 3] {
 }
 
 /// The picture of `sim`'s final stock as PNG bytes (pfcam's `Software` chunk).
-pub fn stock_png(sim: &Simulation, title: &str) -> Result<Vec<u8>, SimError> {
+#[cfg(test)]
+pub(crate) fn stock_png(sim: &Simulation, title: &str) -> Result<Vec<u8>, SimError> {
     draw(&sim.map, sim.report.findings.iter(), title)
 }
 

@@ -40,7 +40,7 @@ pub fn envelope(grid: &Grid, part: &[f64], tool: &Tool) -> Vec<f64> {
 
 /// The drop of `tool` over every cell on the heights `part` (drop(c) in the
 /// module docs: the lowest tip there without entering a cell's height).
-pub fn drops(grid: &Grid, part: &[f64], tool: &Tool) -> Vec<f64> {
+pub(crate) fn drops(grid: &Grid, part: &[f64], tool: &Tool) -> Vec<f64> {
     let off = offsets(grid, tool);
     let (nx, ny) = (grid.nx as i64, grid.ny as i64);
     let at = |v: &[f64], i: i64, j: i64| -> Option<f64> {
@@ -58,7 +58,7 @@ pub fn drops(grid: &Grid, part: &[f64], tool: &Tool) -> Vec<f64> {
 }
 
 /// The envelope over every cell of the tips `drop` (from [`drops`]).
-pub fn envelope_of_drops(grid: &Grid, drop: &[f64], tool: &Tool) -> Vec<f64> {
+pub(crate) fn envelope_of_drops(grid: &Grid, drop: &[f64], tool: &Tool) -> Vec<f64> {
     let off = offsets(grid, tool);
     let (nx, ny) = (grid.nx as i64, grid.ny as i64);
     let at = |i: i64, j: i64| -> Option<f64> {
@@ -103,7 +103,7 @@ fn lowest(
 /// under the part's foot and read material the programs could not remove
 /// as left (docs/simulate.md). Drops onto a subset of the part are never
 /// above the true drop, so neither is the result.
-pub fn refine(
+pub(crate) fn refine(
     grid: &Grid,
     drop: &[f64],
     tool: &Tool,

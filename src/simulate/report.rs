@@ -50,7 +50,7 @@ pub struct Worst {
 
 impl Worst {
     /// Keeps the larger of itself and (`value`, `line`); the first line wins a tie.
-    pub fn take(&mut self, value: f64, line: usize) {
+    pub(crate) fn take(&mut self, value: f64, line: usize) {
         if value > self.value {
             *self = Worst { value, line };
         }
@@ -61,33 +61,33 @@ impl Worst {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StockInfo {
     /// Lower-left corner (x, y), mm.
-    pub lo: [f64; 2],
+    pub(crate) lo: [f64; 2],
     /// Upper-right corner (x, y), mm (the grid's, whole cells).
-    pub hi: [f64; 2],
+    pub(crate) hi: [f64; 2],
     /// The uncut top, mm.
-    pub top: f64,
+    pub(crate) top: f64,
     /// Cell side, mm.
-    pub resolution: f64,
+    pub(crate) resolution: f64,
     /// Cells (columns, rows).
     pub cells: [usize; 2],
     /// Where the stock came from: `--stock`, `job`, `header` or `feed moves`.
     pub source: String,
     /// Lowest height after the program, mm.
-    pub lowest: f64,
+    pub(crate) lowest: f64,
 }
 
 /// The final stock against the part (with `--job`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PartComparison {
     /// What the part is measured from (e.g. `surface S2`).
-    pub model: String,
+    pub(crate) model: String,
     /// Cells compared (those over the part's model).
     pub cells: usize,
     /// Deepest cut below the part, mm, and the line that made it.
     pub max_gouge: Worst,
     /// When several programs were simulated: the one `max_gouge.line` is in.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_gouge_program: Option<String>,
+    pub(crate) max_gouge_program: Option<String>,
     /// Cells cut below the part by more than the tolerance.
     pub gouged_cells: usize,
     /// Most material left above the part, mm, and the line that last cut
@@ -105,7 +105,7 @@ pub struct PartComparison {
     pub max_left_reachable: Worst,
     /// When several programs were simulated: the one `max_left_reachable.line` is in.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_left_reachable_program: Option<String>,
+    pub(crate) max_left_reachable_program: Option<String>,
     /// With a ball as the last tool: the most material left along the
     /// normal on the part's walls where the ball reaches, measured in 3-D
     /// (`simulate::walls`; the height map cannot on near-vertical walls).
@@ -114,11 +114,11 @@ pub struct PartComparison {
     /// Share of the compared cells with more than `scallop + tolerance` left.
     pub left_share_over_scallop: f64,
     /// The job's tolerance, mm.
-    pub tolerance: f64,
+    pub(crate) tolerance: f64,
     /// The job's scallop bound (`operation.max_scallop`), mm.
-    pub scallop: f64,
+    pub(crate) scallop: f64,
     /// The job's stepover, mm.
-    pub stepover: f64,
+    pub(crate) stepover: f64,
 }
 
 /// Everything `pfcam simulate` reports.
@@ -142,7 +142,7 @@ pub struct Report {
     /// Moves simulated.
     pub moves: usize,
     /// Moves from an unknown position, not simulated.
-    pub unknown_start: usize,
+    pub(crate) unknown_start: usize,
     /// Rapids that removed material.
     pub rapids_into_material: usize,
     /// Deepest material removal by a rapid, mm.
@@ -238,7 +238,7 @@ impl Report {
     }
 
     /// The tool simulated.
-    pub fn tool(&self) -> Tool {
+    pub(crate) fn tool(&self) -> Tool {
         let corner = (self.tool_shape == ToolShape::Bull).then_some(self.corner_radius);
         Tool::new(self.tool_shape, self.tool_diameter, corner)
             .unwrap_or_else(|_| Tool::flat_unchecked(self.tool_diameter))

@@ -86,40 +86,40 @@ impl MoveCut {
 
 /// The walk's running figures.
 #[derive(Clone, Debug, Default)]
-pub struct Walk {
+pub(crate) struct Walk {
     /// Collisions and errors.
-    pub findings: Vec<Finding>,
+    pub(crate) findings: Vec<Finding>,
     /// Rapids that removed more than [`RAPID_DEPTH`].
-    pub rapids_into_material: usize,
+    pub(crate) rapids_into_material: usize,
     /// Deepest rapid removal.
-    pub worst_rapid: Worst,
+    pub(crate) worst_rapid: Worst,
     /// Straight plunges.
-    pub straight_plunges: usize,
+    pub(crate) straight_plunges: usize,
     /// Steepest entry, degrees.
-    pub steepest_entry: Worst,
+    pub(crate) steepest_entry: Worst,
     /// Largest axial engagement, mm.
-    pub max_axial: Worst,
+    pub(crate) max_axial: Worst,
     /// Largest radial share.
-    pub max_radial: Worst,
+    pub(crate) max_radial: Worst,
     /// Full-width cuts deeper than the stepdown.
-    pub deep_slots: usize,
+    pub(crate) deep_slots: usize,
     /// Feed length, mm.
-    pub feed_length: f64,
+    pub(crate) feed_length: f64,
     /// Feed length in air, mm.
-    pub air_length: f64,
+    pub(crate) air_length: f64,
 }
 
 /// At most this many bands of rows are cut at once (rayon, one per thread),
 /// each band running every move over its own rows: cells are independent and
 /// ties are broken by program and scan order, so the result is the same as
 /// one pass in program order, on any number of threads.
-pub const MAX_BANDS: usize = 8;
+pub(crate) const MAX_BANDS: usize = 8;
 
 /// Runs `moves` over `map` with `tool`; arcs are cut into chords within
 /// `chord_tol` mm; `stepdown` (mm) enables the slot check (not for a ball);
 /// a cell lowered by line L records `line_base + L` as its last cut (the
 /// lines of the programs simulated before on the same stock come first).
-pub fn walk(
+pub(crate) fn walk(
     map: &mut HeightMap,
     moves: &[Move],
     tool: &Tool,
@@ -499,7 +499,7 @@ pub const Z_ROUNDING: f64 = 0.001;
 /// ramp's 9 µm step, rounded to 1 µm in Z, would otherwise read as 6°
 /// (mfs-mould.rough.nc) whatever the ramp's angle; a real plunge, vertical
 /// or steep over more than a few µm, reads as before.
-pub fn entry_angle_deg(mv: &Move) -> f64 {
+pub(crate) fn entry_angle_deg(mv: &Move) -> f64 {
     let dz = mv.from[2] - mv.to[2];
     if dz <= 0.0 {
         return 0.0;

@@ -9,11 +9,11 @@
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grid {
     /// Lower-left corner, x, mm.
-    pub x0: f64,
+    pub(crate) x0: f64,
     /// Lower-left corner, y, mm.
-    pub y0: f64,
+    pub(crate) y0: f64,
     /// Cell side, mm.
-    pub res: f64,
+    pub(crate) res: f64,
     /// Columns.
     pub nx: usize,
     /// Rows.
@@ -25,7 +25,7 @@ impl Grid {
     /// least `res` and at most `max_cells` cells: when `res` would need more,
     /// the side grows to √(area / max_cells) (rounded up to 1 µm). Returns the
     /// grid; its `res` says whether it was coarsened.
-    pub fn covering(lo: [f64; 2], hi: [f64; 2], res: f64, max_cells: usize) -> Grid {
+    pub(crate) fn covering(lo: [f64; 2], hi: [f64; 2], res: f64, max_cells: usize) -> Grid {
         let (w, h) = ((hi[0] - lo[0]).max(0.0), (hi[1] - lo[1]).max(0.0));
         let cells = |r: f64| ((w / r).ceil().max(1.0), (h / r).ceil().max(1.0));
         let mut r = res;
@@ -70,7 +70,8 @@ impl Grid {
     }
 
     /// The cell whose square holds (x, y), if inside the grid.
-    pub fn cell_at(&self, x: f64, y: f64) -> Option<(usize, usize)> {
+    #[cfg(test)]
+    pub(crate) fn cell_at(&self, x: f64, y: f64) -> Option<(usize, usize)> {
         let i = ((x - self.x0) / self.res).floor();
         let j = ((y - self.y0) / self.res).floor();
         (i >= 0.0 && j >= 0.0 && i < self.nx as f64 && j < self.ny as f64)
@@ -78,7 +79,7 @@ impl Grid {
     }
 
     /// Upper-right corner, mm.
-    pub fn hi(&self) -> [f64; 2] {
+    pub(crate) fn hi(&self) -> [f64; 2] {
         [
             self.x0 + self.nx as f64 * self.res,
             self.y0 + self.ny as f64 * self.res,
@@ -118,16 +119,16 @@ pub struct HeightMap {
     /// The cells.
     pub grid: Grid,
     /// The uncut stock's top, mm.
-    pub top: f64,
+    pub(crate) top: f64,
     /// Height of each cell's centre, mm, row by row from the bottom.
     pub h: Vec<f64>,
     /// The line of the move that last lowered each cell (0: never cut).
-    pub last_cut: Vec<u32>,
+    pub(crate) last_cut: Vec<u32>,
 }
 
 impl HeightMap {
     /// Uncut stock: every cell at `top`.
-    pub fn new(grid: Grid, top: f64) -> HeightMap {
+    pub(crate) fn new(grid: Grid, top: f64) -> HeightMap {
         let n = grid.nx * grid.ny;
         HeightMap {
             grid,

@@ -49,10 +49,10 @@ use serde::Serialize;
 
 /// A bull nose's lowest surface is within this (mm) of the exact minimum:
 /// far below a cell's height figures (3 decimals) and the brief's 1e-6 mm.
-pub const BULL_TOL: f64 = 1e-7;
+pub(crate) const BULL_TOL: f64 = 1e-7;
 /// The most halvings of the bull nose's bracket: 2⁻⁶⁴ of [0, 1] is below the
 /// spacing of doubles near 1, so more cannot narrow it.
-pub const MAX_BISECTIONS: usize = 64;
+pub(crate) const MAX_BISECTIONS: usize = 64;
 
 /// The shape of an end mill's end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -68,7 +68,7 @@ pub enum ToolShape {
 
 impl ToolShape {
     /// `flat`, `ball` or `bull` (the CLI's `--tool-shape` values).
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             ToolShape::Flat => "flat",
             ToolShape::Ball => "ball",
@@ -90,7 +90,7 @@ impl Tool {
     /// A tool of `diameter` mm (positive, finite) and `shape`; `corner_radius`
     /// (mm) is needed for a bull nose (0 < rc < r) and may be given for the
     /// others only as their own (0 for flat, r for ball).
-    pub fn new(
+    pub(crate) fn new(
         shape: ToolShape,
         diameter: f64,
         corner_radius: Option<f64>,
@@ -135,27 +135,27 @@ impl Tool {
     }
 
     /// Diameter, mm.
-    pub fn diameter(&self) -> f64 {
+    pub(crate) fn diameter(&self) -> f64 {
         self.diameter
     }
 
     /// Radius r, mm.
-    pub fn radius(&self) -> f64 {
+    pub(crate) fn radius(&self) -> f64 {
         self.diameter / 2.0
     }
 
     /// The shape.
-    pub fn shape(&self) -> ToolShape {
+    pub(crate) fn shape(&self) -> ToolShape {
         self.shape
     }
 
     /// Corner radius rc, mm (0 flat, r ball).
-    pub fn corner_radius(&self) -> f64 {
+    pub(crate) fn corner_radius(&self) -> f64 {
         self.corner
     }
 
     /// Radius of the flat part of the end, r − rc, mm (r flat, 0 ball).
-    pub fn flat_radius(&self) -> f64 {
+    pub(crate) fn flat_radius(&self) -> f64 {
         match self.shape {
             ToolShape::Flat => self.radius(),
             ToolShape::Ball => 0.0,
@@ -165,7 +165,7 @@ impl Tool {
 
     /// p(ρ): how far above the tip the lower surface stands at `rho` mm from
     /// the axis; `None` beyond the radius.
-    pub fn lift(&self, rho: f64) -> Option<f64> {
+    pub(crate) fn lift(&self, rho: f64) -> Option<f64> {
         let r = self.radius();
         (rho <= r).then(|| match self.shape {
             ToolShape::Flat => 0.0,
@@ -176,7 +176,7 @@ impl Tool {
 
     /// The report's words for it: `3.175 mm flat end mill`,
     /// `3.175 mm ball end mill`, `6 mm bull nose end mill, corner 1.5 mm`.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         match self.shape {
             ToolShape::Flat => format!("{} mm flat end mill", self.diameter),
             ToolShape::Ball => format!("{} mm ball end mill", self.diameter),
@@ -200,11 +200,11 @@ fn corner_lift(rho: f64, r0: f64, rc: f64) -> f64 {
 
 /// A straight move of the tool's tip (the lowest point of its axis), mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Segment {
+pub(crate) struct Segment {
     /// Start (x, y, z).
-    pub a: [f64; 3],
+    pub(crate) a: [f64; 3],
     /// End (x, y, z).
-    pub b: [f64; 3],
+    pub(crate) b: [f64; 3],
 }
 
 /// Where a cell centre is under the tool along a segment.
@@ -270,20 +270,14 @@ impl Segment {
         (self.a[0] + t * dx - x).hypot(self.a[1] + t * dy - y)
     }
 
-    /// The XY length, mm.
-    pub fn xy_len(&self) -> f64 {
-        let (dx, dy) = (self.b[0] - self.a[0], self.b[1] - self.a[1]);
-        (dx * dx + dy * dy).sqrt()
-    }
-
     /// The 3-D length, mm.
-    pub fn len(&self) -> f64 {
+    pub(crate) fn len(&self) -> f64 {
         let d = [0, 1, 2].map(|k| self.b[k] - self.a[k]);
         (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
     }
 
     /// The lower of the two end heights, mm.
-    pub fn z_min(&self) -> f64 {
+    pub(crate) fn z_min(&self) -> f64 {
         self.a[2].min(self.b[2])
     }
 
@@ -296,7 +290,7 @@ impl Segment {
     /// segment (the capsule: the segment's disk sweep), or `None`. The capsule
     /// is convex, so its cut by a line is an interval, bounded by the end disks'
     /// circles or the two sides offset by ±r along the normal.
-    pub fn span_at(&self, y: f64, r: f64) -> Option<(f64, f64)> {
+    pub(crate) fn span_at(&self, y: f64, r: f64) -> Option<(f64, f64)> {
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
         for p in [self.a, self.b] {
@@ -366,7 +360,7 @@ impl Segment {
     /// The lowest surface of `tool` over the point (cx, cy) along the segment
     /// (see the module docs), or `None` if the point is never within the
     /// tool's radius of its axis.
-    pub fn surface_over(&self, cx: f64, cy: f64, tool: &Tool) -> Option<f64> {
+    pub(crate) fn surface_over(&self, cx: f64, cy: f64, tool: &Tool) -> Option<f64> {
         match tool.shape {
             ToolShape::Flat => self.bottom_over(cx, cy, tool.radius()),
             ToolShape::Ball => self.ball_over(cx, cy, tool.radius()),
@@ -377,7 +371,7 @@ impl Segment {
     /// The lowest tool-bottom z over the point (cx, cy) for a flat end mill
     /// of radius `r` (see the module docs), or `None` if the point is never
     /// within `r` of the axis.
-    pub fn bottom_over(&self, cx: f64, cy: f64, r: f64) -> Option<f64> {
+    pub(crate) fn bottom_over(&self, cx: f64, cy: f64, r: f64) -> Option<f64> {
         match self.under(cx, cy, r) {
             Under::Never => None,
             Under::Still { .. } => Some(self.z_min()),
@@ -389,7 +383,7 @@ impl Segment {
     /// whose tip follows the segment: the capsule's lowest point over it
     /// (see the module docs), or `None` if the point is never within `r` of
     /// the axis.
-    pub fn ball_over(&self, cx: f64, cy: f64, r: f64) -> Option<f64> {
+    pub(crate) fn ball_over(&self, cx: f64, cy: f64, r: f64) -> Option<f64> {
         let span = match self.under(cx, cy, r) {
             Under::Never => return None,
             Under::Still { rho2 } => {
@@ -417,7 +411,7 @@ impl Segment {
     /// and corner radius `rc` whose tip follows the segment, within
     /// [`BULL_TOL`] (see the module docs), or `None` if the point is never
     /// within `r` of the axis.
-    pub fn bull_over(&self, cx: f64, cy: f64, r: f64, rc: f64) -> Option<f64> {
+    pub(crate) fn bull_over(&self, cx: f64, cy: f64, r: f64, rc: f64) -> Option<f64> {
         let r0 = r - rc;
         let span = match self.under(cx, cy, r) {
             Under::Never => return None,

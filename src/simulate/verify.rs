@@ -17,9 +17,9 @@ use super::{simulate, simulate_programs, Finding, SimError, SimOptions};
 )]
 pub struct UnsafeProgram {
     /// Number of findings.
-    pub count: usize,
+    pub(crate) count: usize,
     /// The first finding, by line.
-    pub first: Finding,
+    pub(crate) first: Finding,
 }
 
 /// Simulates `text` with a flat end mill of `tool_diameter` mm and the slot

@@ -32,16 +32,16 @@ use serde::Serialize;
 
 /// A triangle is a wall where its normal leans more than this from
 /// vertical (cos of 0.5°).
-pub const WALL_TILT: f64 = 0.999_961_923_064_171_4;
+pub(crate) const WALL_TILT: f64 = 0.999_961_923_064_171_4;
 /// How far (mm) a ball touching P may enter the part's triangles and still
 /// count as reaching P: on a concave wall the flat facets stand off the
 /// curved surface by their sag, under a µm at 0.1 mm triangles.
-pub const ENTER: f64 = 0.002;
+pub(crate) const ENTER: f64 = 0.002;
 /// Bins of the moves and triangles, mm.
 const BIN: f64 = 0.5;
 /// Most material (mm) measured past the ball's radius: a point farther
 /// than this from every ball position reads as this.
-pub const FAR: f64 = 1.0;
+pub(crate) const FAR: f64 = 1.0;
 
 /// The largest material left along the normal on the walls where the ball
 /// reaches (value and line of the nearest move), and how many wall points
@@ -52,11 +52,11 @@ pub struct WallLeft {
     pub left: Worst,
     /// When several programs were simulated: the one `left.line` is in.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub program: Option<String>,
+    pub(crate) program: Option<String>,
     /// Where (x, y, z of the wall point).
-    pub at: [f64; 3],
+    pub(crate) at: [f64; 3],
     /// Wall points measured.
-    pub points: usize,
+    pub(crate) points: usize,
 }
 
 type V3 = [f64; 3];
@@ -79,7 +79,7 @@ fn segment_distance(p: V3, a: V3, b: V3) -> f64 {
 
 /// Distance from `p` to the triangle (the closest point by its region:
 /// inside, on an edge or at a corner).
-pub fn triangle_distance(q: V3, t: &[V3; 3]) -> f64 {
+pub(crate) fn triangle_distance(q: V3, t: &[V3; 3]) -> f64 {
     let (p, c) = (v(q), t.map(v));
     let n = (c[1] - c[0]).cross(&(c[2] - c[0]));
     let nn = n.norm_squared();
@@ -103,7 +103,7 @@ pub fn triangle_distance(q: V3, t: &[V3; 3]) -> f64 {
 
 /// The unit normal of triangle `t` (its corners' order: counter-clockwise
 /// seen from where it points), `None` for a degenerate one.
-pub fn unit_normal(t: &[V3; 3]) -> Option<V3> {
+pub(crate) fn unit_normal(t: &[V3; 3]) -> Option<V3> {
     let c = t.map(v);
     (c[1] - c[0])
         .cross(&(c[2] - c[0]))
@@ -113,7 +113,7 @@ pub fn unit_normal(t: &[V3; 3]) -> Option<V3> {
 
 /// The centroid and unit normal of every wall triangle (tilted more than
 /// [`WALL_TILT`], facing up).
-pub fn wall_centroids(triangles: &[[V3; 3]]) -> Vec<(V3, V3)> {
+pub(crate) fn wall_centroids(triangles: &[[V3; 3]]) -> Vec<(V3, V3)> {
     triangles
         .iter()
         .filter_map(|t| {
@@ -138,7 +138,7 @@ const MOVE_LIMIT: f64 = 0.2;
 /// On a near-vertical wall a 0.1 mm mesh's facets stand up to a few
 /// hundredths of a millimetre off the surface in plan (0.026 mm at
 /// mfs-sign's M): measuring from them would count that as material left.
-pub fn project_walls(
+pub(crate) fn project_walls(
     triangles: &[[V3; 3]],
     height: &(dyn Fn(f64, f64) -> (f64, [f64; 2]) + Sync),
 ) -> Vec<(V3, V3)> {
@@ -237,7 +237,12 @@ fn centre_segments(moves: &[Move], r: f64, tol: f64) -> Vec<(V3, V3, usize)> {
 /// See the module docs: the walls of `part` against the feed moves of
 /// `moves` cut with a ball of radius `r` (chords of arcs within `tol`).
 /// `None` when the part has no wall triangle.
-pub fn ball_left_on_walls(part: &PartModel, moves: &[Move], r: f64, tol: f64) -> Option<WallLeft> {
+pub(crate) fn ball_left_on_walls(
+    part: &PartModel,
+    moves: &[Move],
+    r: f64,
+    tol: f64,
+) -> Option<WallLeft> {
     let walls: Vec<(V3, V3)> = if part.wall_points.is_empty() {
         wall_centroids(&part.triangles)
     } else {

@@ -38,7 +38,7 @@ use nalgebra::{Matrix4, Matrix4x3, RowVector3, Vector4};
 
 /// Largest number of samples per curve: the Fourier analysis is a direct
 /// O(K · K/2) sum, and K = 4096 already resolves any curve a job can mill.
-pub const MAX_SAMPLES: usize = 4096;
+pub(crate) const MAX_SAMPLES: usize = 4096;
 
 /// Bad input to [`PdeSurface::solve`]; `key` names the field at fault.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -53,7 +53,7 @@ pub enum PdeError {
         reason: PdeFault,
     },
     /// A mode system of the four-curve conditions (002) amplifies its data
-    /// beyond [`GAIN_LIMIT`]: the surface between the curves would
+    /// beyond `four_curves::GAIN_LIMIT`: the surface between the curves would
     /// be dominated by rounding.
     #[error("{key}: the mode-{mode} system (λ = {lambda}) amplifies its data {gain:.1e}-fold between the curves (limit {limit:.0e}); lower a or modes, or space the curves more evenly")]
     IllConditioned {
@@ -65,7 +65,7 @@ pub enum PdeError {
         lambda: f64,
         /// max over u ∈ [0, 1] of |φ(λ, u)ᵀ M⁻¹ eᵢ| over the unit data eᵢ.
         gain: f64,
-        /// [`GAIN_LIMIT`].
+        /// `four_curves::GAIN_LIMIT`.
         limit: f64,
     },
     /// A 4 × 4 mode system could not be solved to finite coefficients.
@@ -98,13 +98,13 @@ pub struct BoundaryCurves {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Spine {
     /// Position at u = 0 (mm).
-    pub p1: [f64; 3],
+    pub(crate) p1: [f64; 3],
     /// Position at u = 1 (mm).
-    pub p2: [f64; 3],
+    pub(crate) p2: [f64; 3],
     /// Derivative at u = 0 (mm per unit u).
-    pub v1: [f64; 3],
+    pub(crate) v1: [f64; 3],
     /// Derivative at u = 1 (mm per unit u).
-    pub v2: [f64; 3],
+    pub(crate) v2: [f64; 3],
 }
 
 impl Spine {
@@ -139,7 +139,7 @@ impl Spine {
     }
 
     /// H′(u).
-    pub fn derivative(&self, u: f64) -> [f64; 3] {
+    pub(crate) fn derivative(&self, u: f64) -> [f64; 3] {
         self.combine(Self::weights(u).1)
     }
 }
@@ -366,16 +366,12 @@ impl PdeSurface {
 
     /// The surface with its spine replaced (004 §3): every point moves by
     /// H_new(u) − A₀(u); the periodic part is unchanged.
-    pub fn with_spine(&self, spine: Spine) -> Self {
+    #[cfg(test)]
+    pub(crate) fn with_spine(&self, spine: Spine) -> Self {
         Self {
             spine,
             ..self.clone()
         }
-    }
-
-    /// Number of Fourier modes N in F.
-    pub fn modes(&self) -> usize {
-        self.modes
     }
 
     /// Sums the periodic terms Σ φ(λ, u) · (cosₙ cos nv + sinₙ sin nv), with φ
@@ -402,7 +398,7 @@ impl PdeSurface {
     /// sin nvⱼ read from one table of 2πi/p (nj mod p, so exact angles). A
     /// section of a tube is one such ring; this is ~30 times faster than p
     /// calls of `point` at K = 128.
-    pub fn ring(&self, u: f64, p: usize) -> Vec<[f64; 3]> {
+    pub(crate) fn ring(&self, u: f64, p: usize) -> Vec<[f64; 3]> {
         let table: Vec<(f64, f64)> = (0..p)
             .map(|i| (std::f64::consts::TAU * i as f64 / p as f64).sin_cos())
             .collect();
@@ -438,7 +434,7 @@ impl PdeSurface {
     }
 
     /// ∂X/∂v (mm per radian).
-    pub fn dv(&self, u: f64, v: f64) -> [f64; 3] {
+    pub(crate) fn dv(&self, u: f64, v: f64) -> [f64; 3] {
         self.periodic(u, v, false, true)
     }
 }
@@ -449,10 +445,8 @@ fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 mod fault;
 mod four_curves;
-pub use fault::PdeFault;
-pub use four_curves::{
-    conditioning as four_curve_conditioning, FourCurves, ModeConditioning, GAIN_LIMIT,
-};
+pub(crate) use fault::PdeFault;
+pub use four_curves::conditioning as four_curve_conditioning;
 
 #[cfg(test)]
 mod tests;

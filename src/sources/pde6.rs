@@ -123,7 +123,8 @@ impl PdeSurface6 {
     }
 
     /// The spine A₀(u) (004 eq. (13)).
-    pub fn spine(&self, u: f64) -> [f64; 3] {
+    #[cfg(test)]
+    pub(crate) fn spine(&self, u: f64) -> [f64; 3] {
         let x = basis(0.0, u)[0] * self.terms[0].2;
         [x[0], x[1], x[2]]
     }

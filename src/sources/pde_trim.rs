@@ -35,7 +35,9 @@
 //! annulus is not univalent for every pair of curves, so [`TrimMap::solve`]
 //! samples the Jacobian and refuses a fold.
 
-use super::pde::{check_curves, fourier_curve, PdeError, PdeFault, PdeSurface};
+#[cfg(test)]
+use super::pde::PdeSurface;
+use super::pde::{check_curves, fourier_curve, PdeError, PdeFault};
 use nalgebra::{Matrix2, Vector2};
 use std::f64::consts::TAU;
 
@@ -169,7 +171,7 @@ impl TrimMap {
     }
 
     /// (∂M/∂ξ, ∂M/∂η), each (∂u, ∂v).
-    pub fn derivatives(&self, xi: f64, eta: f64) -> ([f64; 2], [f64; 2]) {
+    pub(crate) fn derivatives(&self, xi: f64, eta: f64) -> ([f64; 2], [f64; 2]) {
         let (a, b) = (
             self.sum(xi, eta, true, false),
             self.sum(xi, eta, false, true),
@@ -178,7 +180,7 @@ impl TrimMap {
     }
 
     /// det[∂M/∂ξ, ∂M/∂η] = u_ξ v_η − v_ξ u_η.
-    pub fn jacobian(&self, xi: f64, eta: f64) -> f64 {
+    pub(crate) fn jacobian(&self, xi: f64, eta: f64) -> f64 {
         let (a, b) = self.derivatives(xi, eta);
         a[0] * b[1] - a[1] * b[0]
     }
@@ -205,17 +207,19 @@ impl TrimMap {
 }
 
 /// A PDE surface trimmed by a [`TrimMap`]: Y(ξ, η) = X(M(ξ, η)).
+#[cfg(test)]
 #[derive(Debug, Clone, PartialEq)]
-pub struct TrimmedSurface {
+pub(crate) struct TrimmedSurface {
     /// The untrimmed surface X(u, v).
-    pub surface: PdeSurface,
+    pub(crate) surface: PdeSurface,
     /// The map from the annulus onto the kept region of the (u, v) plane.
-    pub map: TrimMap,
+    pub(crate) map: TrimMap,
 }
 
+#[cfg(test)]
 impl TrimmedSurface {
     /// Y(ξ, η) (mm): ξ = 0 on the trim curve, ξ = 1 on the border.
-    pub fn point(&self, xi: f64, eta: f64) -> [f64; 3] {
+    pub(crate) fn point(&self, xi: f64, eta: f64) -> [f64; 3] {
         let [u, v] = self.map.map(xi, eta);
         self.surface.point(u, v)
     }

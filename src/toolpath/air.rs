@@ -10,20 +10,20 @@
 use crate::geometry::Vec2;
 
 /// How far outside the grown rectangle a route around it keeps, mm.
-pub const AIR_MARGIN: f64 = 0.5;
+pub(crate) const AIR_MARGIN: f64 = 0.5;
 
 /// An axis-aligned rectangle the tool's axis must stay out of.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Keepout {
+pub(crate) struct Keepout {
     /// Lower-left corner.
-    pub lo: Vec2,
+    pub(crate) lo: Vec2,
     /// Upper-right corner.
-    pub hi: Vec2,
+    pub(crate) hi: Vec2,
 }
 
 impl Keepout {
     /// The stock `[lo, hi]` grown by the tool radius `r`.
-    pub fn around_stock(lo: Vec2, hi: Vec2, r: f64) -> Keepout {
+    pub(crate) fn around_stock(lo: Vec2, hi: Vec2, r: f64) -> Keepout {
         let g = Vec2::new(r, r);
         Keepout {
             lo: lo - g,
@@ -32,7 +32,7 @@ impl Keepout {
     }
 
     /// Whether `p` is strictly outside.
-    pub fn clear(&self, p: Vec2) -> bool {
+    pub(crate) fn clear(&self, p: Vec2) -> bool {
         p.x < self.lo.x || p.x > self.hi.x || p.y < self.lo.y || p.y > self.hi.y
     }
 
@@ -94,7 +94,7 @@ impl Keepout {
     /// [`AIR_MARGIN`], the shorter way: the points after `a`, ending at `b`.
     /// Every segment stays clear: from a point outside a convex set to its
     /// nearest boundary point of a larger one, then along that boundary.
-    pub fn route(&self, a: Vec2, b: Vec2) -> Vec<Vec2> {
+    pub(crate) fn route(&self, a: Vec2, b: Vec2) -> Vec<Vec2> {
         let ring = self.grown(AIR_MARGIN);
         let (qa, ta) = ring.boundary_point(a);
         let (qb, tb) = ring.boundary_point(b);
@@ -126,7 +126,7 @@ impl Keepout {
     }
 
     /// Length of [`route`](Self::route) from `a`.
-    pub fn route_length(&self, a: Vec2, b: Vec2) -> f64 {
+    pub(crate) fn route_length(&self, a: Vec2, b: Vec2) -> f64 {
         let mut at = a;
         let mut len = 0.0;
         for q in self.route(a, b) {

@@ -49,14 +49,15 @@ use crate::geometry::{arc, Vec2};
 use std::f64::consts::{PI, TAU};
 
 /// Largest sweep of one fitted arc, radians (see the module docs).
-pub const MAX_SWEEP: f64 = PI;
+pub(crate) const MAX_SWEEP: f64 = PI;
 /// Shortest chord of a fitted arc, mm (see the module docs).
 pub const MIN_ARC_CHORD: f64 = 0.05;
 /// Fewest polyline segments one arc replaces.
-pub const MIN_ARC_SEGMENTS: usize = 3;
+pub(crate) const MIN_ARC_SEGMENTS: usize = 3;
 /// Default of `output.max_arc_radius`, mm (the job's default, where the
 /// reason for it is written).
-pub const DEFAULT_MAX_RADIUS: f64 = crate::job::defaults::MAX_ARC_RADIUS;
+#[cfg(test)]
+pub(crate) const DEFAULT_MAX_RADIUS: f64 = crate::job::defaults::MAX_ARC_RADIUS;
 /// Golden-section iterations for κ: the bracket [−2/c, 2/c] shrinks by
 /// 0.618^60 ≈ 3e-13, far below any tolerance in mm.
 const GOLDEN_ITERATIONS: usize = 60;
@@ -69,13 +70,13 @@ pub struct ArcFitParams {
     /// Largest distance between an arc and the polyline it replaces, both ways.
     /// The pipeline gives half the job tolerance (the traced polyline already
     /// spends the other half).
-    pub tol: f64,
+    pub(crate) tol: f64,
     /// Arcs of larger radius are left as lines.
-    pub max_radius: f64,
+    pub(crate) max_radius: f64,
     /// Arcs with a shorter chord are left as lines.
-    pub min_chord: f64,
+    pub(crate) min_chord: f64,
     /// Fit arcs; `false` only merges collinear segments into lines.
-    pub arcs: bool,
+    pub(crate) arcs: bool,
 }
 
 impl ArcFitParams {
@@ -101,22 +102,22 @@ impl ArcFitParams {
 
 /// A fitted circular arc in the XY plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Arc2 {
+pub(crate) struct Arc2 {
     /// Centre.
-    pub centre: Vec2,
+    pub(crate) centre: Vec2,
     /// Radius.
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// Counter-clockwise (G3) or clockwise (G2).
-    pub ccw: bool,
+    pub(crate) ccw: bool,
     /// Angle swept, radians, in (0, π].
-    pub sweep: f64,
+    pub(crate) sweep: f64,
     /// Largest deviation from the polyline it replaces (both ways), mm.
-    pub deviation: f64,
+    pub(crate) deviation: f64,
 }
 
 /// One piece of a fitted polyline: a line or an arc to the vertex `end`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Piece {
+pub(crate) enum Piece {
     /// Straight to `end`.
     Line {
         /// end point (a vertex of the polyline)
@@ -177,7 +178,7 @@ fn max_radial(pts: &[Vec2], k: f64) -> f64 {
 
 /// The arc through the ends of `pts` that stays within `p.tol` of the polyline
 /// `pts` (both ways, see the module docs), or `None`.
-pub fn fit_arc(pts: &[Vec2], p: &ArcFitParams) -> Option<Arc2> {
+pub(crate) fn fit_arc(pts: &[Vec2], p: &ArcFitParams) -> Option<Arc2> {
     if pts.len() < 3 {
         return None;
     }
@@ -258,7 +259,7 @@ fn arc_through(pts: &[Vec2], k: f64, tol: f64) -> Option<Arc2> {
 /// line, and the vertices' projections on it increase strictly from the start to
 /// the end (then every point of either lies within `tol` of the other, as for
 /// arcs in the module docs).
-pub fn fits_line(pts: &[Vec2], tol: f64) -> bool {
+pub(crate) fn fits_line(pts: &[Vec2], tol: f64) -> bool {
     let (a, b) = (pts[0], pts[pts.len() - 1]);
     let c = a.dist(b);
     if c.is_nan() || c <= 0.0 {
@@ -316,7 +317,7 @@ fn gallop<T>(first: usize, n: usize, fit: impl Fn(usize) -> Option<T>) -> Option
 /// longest arc ([`fit_arc`], at least [`MIN_ARC_SEGMENTS`] segments) and the
 /// longest straight line ([`fits_line`], merging collinear segments) wins, a line
 /// on a tie; with neither, the polyline's own segment.
-pub fn fit_polyline(pts: &[Vec2], p: &ArcFitParams) -> Vec<Piece> {
+pub(crate) fn fit_polyline(pts: &[Vec2], p: &ArcFitParams) -> Vec<Piece> {
     let n = pts.len().saturating_sub(1);
     let mut out = Vec::new();
     let mut i = 0;
@@ -432,13 +433,13 @@ fn fit_section(s: &Section, mut at: Vec3, p: &ArcFitParams) -> Section {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ArcLimits {
     /// Write arcs at all (`output.arcs`).
-    pub arcs: bool,
+    pub(crate) arcs: bool,
     /// Largest radius written as an arc, mm (`output.max_arc_radius`).
-    pub max_radius: f64,
+    pub(crate) max_radius: f64,
     /// Arcs shorter than this (length along the arc) become lines, mm.
-    pub min_length: f64,
+    pub(crate) min_length: f64,
     /// Chord tolerance of arcs replaced by lines, mm.
-    pub tol: f64,
+    pub(crate) tol: f64,
 }
 
 /// The tool path as the writer may emit it: with `!limits.arcs`, or for an arc

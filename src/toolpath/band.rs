@@ -20,7 +20,7 @@ use crate::geometry::{polygons_bbox, DistanceIndex, Vec2};
 
 /// Widest band (in stepovers) cut by offset rings; a wider one is cleared by
 /// the inverse problem's rings, as a stepdown level is.
-pub const MAX_BAND_STEPOVERS: f64 = 4.0;
+pub(crate) const MAX_BAND_STEPOVERS: f64 = 4.0;
 
 /// At most this many loops per ring radius (every loop of the offset curve is
 /// traced; with more the band is left to the inverse problem's rings).
@@ -132,7 +132,7 @@ fn without_crumbs(points: Vec<Vec2>, eps: f64) -> Vec<Vec2> {
 /// The rings that cut a cavity level's band `band` wide next to the wall,
 /// innermost first, without the wall loops themselves (at r, traced by the
 /// caller). `None` when a radius has more than `MAX_LOOPS` loops.
-pub fn band_rings(
+pub(crate) fn band_rings(
     part: &[Vec<Vec2>],
     index: &DistanceIndex,
     p: &LevelParams,

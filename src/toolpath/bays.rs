@@ -16,7 +16,7 @@ use crate::geometry::{DistanceIndex, Vec2};
 
 /// At most this many bays (or single spots) are cleared on one level; what is
 /// left after them is reported.
-pub const MAX_BAYS: usize = 200;
+pub(crate) const MAX_BAYS: usize = 200;
 
 /// A path as a closed polygon with no chord of its own: an open run is walked
 /// there and back, so that a distance index over it measures distance to the
@@ -37,7 +37,7 @@ fn as_loop(c: &CutPath) -> Vec<Vec2> {
 /// than `r` from every path: the stock the paths leave that the tool can reach
 /// from inside. As (distance to the part, point), deepest first.
 #[allow(clippy::too_many_arguments)]
-pub fn uncut_spots(
+pub(crate) fn uncut_spots(
     part: &[Vec<Vec2>],
     index: &DistanceIndex,
     paths: &[CutPath],
@@ -119,7 +119,7 @@ fn bay_rings<N: Navigator>(
 /// (see the module's comment): rings around each bay, or, where no ring of its
 /// own fits, a small loop at the spot. `Err` only for a non-finite figure; a
 /// level with stock still left after [`MAX_BAYS`] gets a warning.
-pub fn clear_bays<N: Navigator>(
+pub(crate) fn clear_bays<N: Navigator>(
     part: &[Vec<Vec2>],
     index: &DistanceIndex,
     nav: &N,

@@ -38,18 +38,18 @@ pub struct TooComplex;
 
 /// What loop j is cut around.
 #[derive(Clone, Copy, Debug)]
-pub struct Frame {
+pub(crate) struct Frame {
     /// Lower-left corner of the stock rectangle.
-    pub stock_lo: Vec2,
+    pub(crate) stock_lo: Vec2,
     /// Upper-right corner of the stock rectangle.
-    pub stock_hi: Vec2,
+    pub(crate) stock_hi: Vec2,
     /// Tool radius, mm.
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// Stepover, mm.
-    pub stepover: f64,
+    pub(crate) stepover: f64,
     /// Climb milling: the loops run with what they have cleared on their left
     /// (the material on the right, as the rings around the part run).
-    pub climb: bool,
+    pub(crate) climb: bool,
 }
 
 impl Frame {
@@ -92,7 +92,7 @@ impl Frame {
 /// found twice (a merged ring traced again from another loop's start) counts
 /// once; a ring inside another (around an island in a counter) is cut as it
 /// runs, clipped to R_j (runs that cross it are open).
-pub fn clearing_loops(
+pub(crate) fn clearing_loops(
     frame: &Frame,
     j: usize,
     rings: &[Vec<Vec2>],
@@ -168,7 +168,7 @@ fn same_ring(a: &[Vec2], b: &[Vec2], d: f64) -> bool {
 /// stock's margin is too thin for loop 1 (no loop there), R_0's side stays,
 /// its disk taking the last stepover of the edge. A loop with stretches
 /// dropped falls into open runs, each extended by one point at both ends.
-pub fn first_loop_pieces(
+pub(crate) fn first_loop_pieces(
     frame: &Frame,
     rings: &[Vec<Vec2>],
     next: &[Vec<Vec2>],

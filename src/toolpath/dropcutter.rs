@@ -162,16 +162,16 @@ use rayon::prelude::*;
 /// How far under the floor a cell's upper-plane bound must fall before the
 /// cell is skipped, mm (the bound's rounding, with coordinates of metres, is
 /// under 1e-9 mm).
-pub const CELL_PLANE_MARGIN: f64 = 1e-6;
+pub(crate) const CELL_PLANE_MARGIN: f64 = 1e-6;
 
 /// Most grid cells a [`MeshIndex`] builds; a finer requested cell is coarsened
 /// (doubled) until the grid fits. 4 million cells is 32 MB of offsets, and the
 /// finisher's cells (about the tool radius) over any stock a GRBL machine can
 /// hold stay far below it.
-pub const MAX_CELLS: usize = 4_000_000;
+pub(crate) const MAX_CELLS: usize = 4_000_000;
 
 /// Cells per side of a block ([`MeshIndex`]'s second, coarser level).
-pub const BLOCK: usize = 4;
+pub(crate) const BLOCK: usize = 4;
 
 /// Most blocks a drop judges before its cells (a footprint of up to about
 /// 7 × 7 blocks; a wider one goes cell by cell).
@@ -180,40 +180,40 @@ const BLOCKS_NEAR: usize = 64;
 /// Bucket entries allowed per triangle on average (plus [`MAX_CELLS`]) before
 /// the cell is coarsened: a cell much smaller than the triangles would store
 /// each triangle many times and gain nothing.
-pub const MAX_ENTRIES_PER_TRIANGLE: usize = 16;
+pub(crate) const MAX_ENTRIES_PER_TRIANGLE: usize = 16;
 
 /// Most triangles a [`MeshIndex`] holds (2³⁰: an index and a 2-bit rank share
 /// a u32 per bucket entry; a billion triangles would need over 130 GB:
 /// 72 bytes of corners, 24 of normal, 20 of box and the entries).
-pub const MAX_TRIANGLES: usize = 1 << 30;
+pub(crate) const MAX_TRIANGLES: usize = 1 << 30;
 
 /// Bull-nose edge test: the bisection stops once the error of the value it
 /// returns is proven ≤ this, mm (well below the 1e-7 mm the finisher needs, and
 /// above what rounding lets a bracket of width ~1e-15·r prove).
-pub const EDGE_TOL: f64 = 1e-10;
+pub(crate) const EDGE_TOL: f64 = 1e-10;
 
 /// Bull-nose edge test: most bisection steps. The bracket starts ≤ 2r wide and
 /// halves each step; 100 steps take it below 2r·1e-30, past double precision,
 /// so the cap only guards against a NaN or an unforeseen stall.
-pub const EDGE_MAX_ITER: u32 = 100;
+pub(crate) const EDGE_MAX_ITER: u32 = 100;
 
 /// Facets with n_z at least this may be skipped on their plane's bound (see
 /// `triangle_edges_facet`): there the facet contact's rounding is below
 /// 1e-16·(coordinates)/n_z, far below [`PLANE_BOUND_MARGIN`].
-pub const PLANE_BOUND_NZ: f64 = 1e-3;
+pub(crate) const PLANE_BOUND_NZ: f64 = 1e-3;
 
 /// The plane bound must fall this far below the best tip (mm) before a
 /// triangle is skipped on it.
-pub const PLANE_BOUND_MARGIN: f64 = 1e-9;
+pub(crate) const PLANE_BOUND_MARGIN: f64 = 1e-9;
 
 /// Facets whose unit normal has n_z below this are treated as vertical (no
 /// facet test, see the module notes).
-pub const NZ_MIN: f64 = 1e-12;
+pub(crate) const NZ_MIN: f64 = 1e-12;
 
 /// Relative area below which a triangle is a sliver and gets no facet test:
 /// |N| ≤ SLIVER·ℓ². 1e-8 = √(machine ε) balances the two errors (normal
 /// direction ~ε/SLIVER, distance to the longest edge ≤ SLIVER·ℓ).
-pub const SLIVER: f64 = 1e-8;
+pub(crate) const SLIVER: f64 = 1e-8;
 
 /// A cutter: radius r and corner radius rc (flat 0, ball r, bull 0 < rc < r),
 /// mm.
@@ -223,12 +223,12 @@ pub struct Cutter {
     pub radius: f64,
     /// Corner radius rc, mm: 0 for a flat end mill, r for a ball, in between for
     /// a bull nose.
-    pub corner: f64,
+    pub(crate) corner: f64,
 }
 
 /// A cutter that cannot be used.
 #[derive(Debug, thiserror::Error, Clone, Copy, PartialEq)]
-pub enum CutterError {
+pub(crate) enum CutterError {
     /// The radius is not finite and positive.
     #[error("cutter radius {0} mm must be finite and > 0")]
     Radius(f64),
@@ -244,12 +244,12 @@ pub enum CutterError {
 
 /// One contact: the tip height and the part point that sets it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Contact {
+pub(crate) struct Contact {
     /// Tool-tip z, mm.
-    pub tip: f64,
+    pub(crate) tip: f64,
     /// The touching point, mm (absolute from [`Cutter::drop_contact`]; relative
     /// to the axis in XY inside the tests of one triangle).
-    pub point: [f64; 3],
+    pub(crate) point: [f64; 3],
 }
 
 impl Contact {
@@ -265,7 +265,8 @@ impl Contact {
 
 impl Cutter {
     /// A flat end mill of radius `r`.
-    pub fn flat(r: f64) -> Cutter {
+    #[cfg(test)]
+    pub(crate) fn flat(r: f64) -> Cutter {
         Cutter {
             radius: r,
             corner: 0.0,
@@ -281,7 +282,8 @@ impl Cutter {
     }
 
     /// A bull-nose end mill of radius `r` and corner radius `rc`.
-    pub fn bull(r: f64, rc: f64) -> Cutter {
+    #[cfg(test)]
+    pub(crate) fn bull(r: f64, rc: f64) -> Cutter {
         Cutter {
             radius: r,
             corner: rc,
@@ -290,7 +292,7 @@ impl Cutter {
 
     /// Ok when r is finite and > 0 and 0 ≤ rc ≤ r. [`Cutter::drop`] returns
     /// None for a cutter that fails this; check it where the cutter is read.
-    pub fn validate(&self) -> Result<(), CutterError> {
+    pub(crate) fn validate(&self) -> Result<(), CutterError> {
         let (r, rc) = (self.radius, self.corner);
         if !(r.is_finite() && r > 0.0) {
             return Err(CutterError::Radius(r));
@@ -311,7 +313,7 @@ impl Cutter {
 
     /// Height p(ρ) of the lower surface above the tip at horizontal distance ρ
     /// from the axis, mm (see the module notes); ρ beyond r gives p(r) = rc.
-    pub fn profile(&self, rho: f64) -> f64 {
+    pub(crate) fn profile(&self, rho: f64) -> f64 {
         let rc = self.corner;
         let s = rho - self.flat_radius();
         if s <= 0.0 {
@@ -384,7 +386,7 @@ impl Cutter {
 
     /// [`Cutter::drop`] with the part point that sets the tip (one of them
     /// when several touch at once).
-    pub fn drop_contact(&self, mesh: &MeshIndex, x: f64, y: f64) -> Option<Contact> {
+    pub(crate) fn drop_contact(&self, mesh: &MeshIndex, x: f64, y: f64) -> Option<Contact> {
         self.contact_above(mesh, x, y, f64::NEG_INFINITY)
     }
 
@@ -393,14 +395,14 @@ impl Cutter {
     /// lift the cutter above `level` is skipped from the start. (Every
     /// triangle that can is tested exactly as by [`Cutter::drop`], and the
     /// drop height is their maximum.)
-    pub fn drop_above(&self, mesh: &MeshIndex, x: f64, y: f64, level: f64) -> Option<f64> {
+    pub(crate) fn drop_above(&self, mesh: &MeshIndex, x: f64, y: f64, level: f64) -> Option<f64> {
         self.contact_above(mesh, x, y, level).map(|k| k.tip)
     }
 
     /// [`Cutter::drop`], faster when `hint` is a little under the answer: a
     /// first search above `hint`, and the whole search only when nothing lies
     /// above it. The result does not depend on `hint`.
-    pub fn drop_hinted(&self, mesh: &MeshIndex, x: f64, y: f64, hint: f64) -> Option<f64> {
+    pub(crate) fn drop_hinted(&self, mesh: &MeshIndex, x: f64, y: f64, hint: f64) -> Option<f64> {
         if !hint.is_finite() {
             return self.drop(mesh, x, y);
         }
@@ -496,7 +498,11 @@ impl Cutter {
 
     /// [`Cutter::drop_above`] at every point (x, y, level), in parallel, in
     /// order.
-    pub fn drop_many_above(&self, mesh: &MeshIndex, pts: &[(f64, f64, f64)]) -> Vec<Option<f64>> {
+    pub(crate) fn drop_many_above(
+        &self,
+        mesh: &MeshIndex,
+        pts: &[(f64, f64, f64)],
+    ) -> Vec<Option<f64>> {
         pts.par_iter()
             .map(|&(x, y, level)| self.drop_above(mesh, x, y, level))
             .collect()
@@ -504,7 +510,11 @@ impl Cutter {
 
     /// [`Cutter::drop_hinted`] at every point (x, y, hint), in parallel, in
     /// order.
-    pub fn drop_many_hinted(&self, mesh: &MeshIndex, pts: &[(f64, f64, f64)]) -> Vec<Option<f64>> {
+    pub(crate) fn drop_many_hinted(
+        &self,
+        mesh: &MeshIndex,
+        pts: &[(f64, f64, f64)],
+    ) -> Vec<Option<f64>> {
         pts.par_iter()
             .map(|&(x, y, hint)| self.drop_hinted(mesh, x, y, hint))
             .collect()
@@ -1044,6 +1054,7 @@ pub struct MeshIndex {
     bnx: usize,
     blocks: Vec<Bounds>,
     block_planes: Vec<CellPlane>,
+    #[cfg(test)]
     skipped: usize,
 }
 
@@ -1055,15 +1066,15 @@ impl MeshIndex {
     /// [`MAX_ENTRIES_PER_TRIANGLE`]·n + [`MAX_CELLS`] entries. For drops a cell
     /// near the tool radius is a good choice. Triangles with a coordinate that
     /// is not finite, and any beyond the first [`MAX_TRIANGLES`], are left out
-    /// and counted in [`MeshIndex::skipped`].
+    /// (the unit tests count them).
     pub fn new(triangles: Vec<[[f64; 3]; 3]>, cell: f64) -> MeshIndex {
+        #[cfg(test)]
         let total = triangles.len();
         // In place: the caller's buffer becomes the index's corners.
         let mut tris = triangles;
         tris.retain(|t| t.iter().flatten().all(|c| c.is_finite()));
         tris.truncate(MAX_TRIANGLES);
         tris.shrink_to_fit();
-        let skipped = total - tris.len();
         let normals: Vec<[f64; 3]> = tris
             .par_iter()
             .map(|&v| Tri::new(v).packed_normal())
@@ -1085,7 +1096,8 @@ impl MeshIndex {
             bnx: 0,
             blocks: Vec::new(),
             block_planes: Vec::new(),
-            skipped,
+            #[cfg(test)]
+            skipped: total - tris.len(),
         };
         if tris.is_empty() {
             return index;
@@ -1205,22 +1217,14 @@ impl MeshIndex {
     }
 
     /// Number of triangles indexed.
-    pub fn len(&self) -> usize {
+    #[cfg(test)]
+    pub(crate) fn len(&self) -> usize {
         self.tris.len()
     }
 
-    /// True when no triangle was indexed.
-    pub fn is_empty(&self) -> bool {
-        self.tris.is_empty()
-    }
-
-    /// The cell side chosen, mm.
-    pub fn cell(&self) -> f64 {
-        self.cell
-    }
-
     /// Triangles left out because a coordinate was not finite.
-    pub fn skipped(&self) -> usize {
+    #[cfg(test)]
+    pub(crate) fn skipped(&self) -> usize {
         self.skipped
     }
 

@@ -14,7 +14,7 @@ use super::{Move, Vec3};
 use crate::geometry::Vec2;
 
 /// Height above the material left where an entry's rapid stops, mm.
-pub const CLEARANCE: f64 = 0.5;
+pub(crate) const CLEARANCE: f64 = 0.5;
 
 /// Slack for comparing heights, mm: far below any cut.
 const EPS: f64 = 1e-6;
@@ -25,19 +25,19 @@ const MAX_RAMP_STEPS: usize = 1_000_000;
 
 /// What an entry needs to know about the tool and the set-up.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Entry {
+pub(crate) struct Entry {
     /// Tool radius, mm.
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// Ramp angle, degrees.
-    pub ramp_angle: f64,
+    pub(crate) ramp_angle: f64,
     /// Feed for ramps and plunges in air, mm/min.
-    pub plunge_feed: f64,
+    pub(crate) plunge_feed: f64,
     /// Cutting feed, mm/min.
-    pub feed: f64,
+    pub(crate) feed: f64,
     /// Safe Z for rapids.
-    pub safe_z: f64,
+    pub(crate) safe_z: f64,
     /// Stock top Z.
-    pub top: f64,
+    pub(crate) top: f64,
 }
 
 impl Entry {
@@ -46,7 +46,7 @@ impl Entry {
     }
 
     /// Feed along a ramp, mm/min ([`ramp_feed`]).
-    pub fn ramp_feed(&self) -> f64 {
+    pub(crate) fn ramp_feed(&self) -> f64 {
         ramp_feed(self.feed, self.plunge_feed, self.ramp_angle)
     }
 }
@@ -55,7 +55,7 @@ impl Entry {
 /// slowed only as far as needed for the tool to go down no faster than
 /// `plunge_feed` (F·sin(angle) ≤ plunge feed). The roughing's entries and the
 /// finisher's both ramp at it.
-pub fn ramp_feed(feed: f64, plunge_feed: f64, ramp_angle: f64) -> f64 {
+pub(crate) fn ramp_feed(feed: f64, plunge_feed: f64, ramp_angle: f64) -> f64 {
     let sin = ramp_angle.to_radians().sin();
     if sin > 0.0 {
         feed.min(plunge_feed / sin)
@@ -139,7 +139,7 @@ fn ramp_trail(pts: &[Vec2], closed: bool, drop: f64, e: &Entry) -> Vec<Vec2> {
 /// Moves that enter a closed loop by ramping down along it from `z_from` to `z`
 /// at the ramp angle (several laps if the loop is short), then cut one full lap
 /// at `z` from where the ramp ended.
-pub fn ramp_loop(lp: &[Vec2], z_from: f64, z: f64, e: &Entry, out: &mut Vec<Move>) {
+pub(crate) fn ramp_loop(lp: &[Vec2], z_from: f64, z: f64, e: &Entry, out: &mut Vec<Move>) {
     let n = lp.len() - 1;
     let drop = (z_from - z).max(0.0);
     let (mut k, mut at) = (0, lp[0]);
@@ -166,7 +166,7 @@ pub fn ramp_loop(lp: &[Vec2], z_from: f64, z: f64, e: &Entry, out: &mut Vec<Move
 
 /// Moves that enter an open path by ramping from `z_from` to `z` at the ramp
 /// angle back and forth along its start, ending at its first point at `z`.
-pub fn ramp_open(pts: &[Vec2], z_from: f64, z: f64, e: &Entry, out: &mut Vec<Move>) {
+pub(crate) fn ramp_open(pts: &[Vec2], z_from: f64, z: f64, e: &Entry, out: &mut Vec<Move>) {
     let drop = (z_from - z).max(0.0);
     if drop <= 0.0 || pts.len() < 2 {
         out.push(Move::Linear {
@@ -188,7 +188,7 @@ pub fn ramp_open(pts: &[Vec2], z_from: f64, z: f64, e: &Entry, out: &mut Vec<Mov
 }
 
 /// Rotate a closed loop (last = first) so it starts at the vertex nearest to `p`.
-pub fn start_near(lp: &[Vec2], p: Vec2) -> Vec<Vec2> {
+pub(crate) fn start_near(lp: &[Vec2], p: Vec2) -> Vec<Vec2> {
     let n = lp.len() - 1;
     let k = (0..n)
         .min_by(|&a, &b| lp[a].dist(p).total_cmp(&lp[b].dist(p)))
@@ -203,7 +203,7 @@ pub fn start_near(lp: &[Vec2], p: Vec2) -> Vec<Vec2> {
 /// that height, hence the few rounds; if they do not settle, the trail of a
 /// ramp from the stock top, which covers every shorter one). `-∞` or a value
 /// ≤ `z` when the start is in air.
-pub fn ramp_start(stock: &StockMap, pts: &[Vec2], closed: bool, z: f64, e: &Entry) -> f64 {
+pub(crate) fn ramp_start(stock: &StockMap, pts: &[Vec2], closed: bool, z: f64, e: &Entry) -> f64 {
     let mut z_from = stock.top_near(pts[0], e.radius);
     if z_from <= z + EPS {
         return z_from;
@@ -225,7 +225,14 @@ pub fn ramp_start(stock: &StockMap, pts: &[Vec2], closed: bool, z: f64, e: &Entr
 /// tool, then ramp from the material top ([`ramp_start`]); where there is none,
 /// straight down through air. A closed loop is then cut one full lap; an open
 /// run is left at its first point at `z` for the caller to cut.
-pub fn enter(stock: &StockMap, pts: &[Vec2], closed: bool, z: f64, e: &Entry, out: &mut Vec<Move>) {
+pub(crate) fn enter(
+    stock: &StockMap,
+    pts: &[Vec2],
+    closed: bool,
+    z: f64,
+    e: &Entry,
+    out: &mut Vec<Move>,
+) {
     let first = pts[0];
     let z_from = ramp_start(stock, pts, closed, z, e);
     let floor = z_from.max(z);

@@ -27,7 +27,7 @@ const SLACK: f64 = 1e-9;
 /// corners alone: above a deep bay of the part (the V of an M) the stock's
 /// edge is farther from the part than any corner, and rings sized by the
 /// corners left 3 mm wedges of stock uncut there.
-pub fn farthest_stock_point(
+pub(crate) fn farthest_stock_point(
     part: &[Vec<Vec2>],
     index: &DistanceIndex,
     lo: Vec2,

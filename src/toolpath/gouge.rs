@@ -13,9 +13,9 @@ pub struct GougeReport {
     /// Smallest (distance to the part − r) over every move below the top, mm.
     pub min_clearance: f64,
     /// Where it was found (XY of the closest move's nearer end, and its Z).
-    pub at: Vec3,
+    pub(crate) at: Vec3,
     /// Number of moves checked.
-    pub moves_checked: usize,
+    pub(crate) moves_checked: usize,
 }
 
 impl GougeReport {

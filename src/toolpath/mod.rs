@@ -1,31 +1,31 @@
 //! Tool paths: the one intermediate representation that G-code, previews, time
 //! estimates and the gouge check all read (see `docs/architecture.md`).
 
-pub mod air;
+pub(crate) mod air;
 pub mod arcfit;
-pub mod band;
-pub mod bays;
-pub mod clearing;
+pub(crate) mod band;
+pub(crate) mod bays;
+pub(crate) mod clearing;
 pub mod dropcutter;
-pub mod entry;
-pub mod farthest;
+pub(crate) mod entry;
+pub(crate) mod farthest;
 pub mod gouge;
-pub mod inverse;
+pub(crate) mod inverse;
 pub mod profile;
-pub mod runs;
+pub(crate) mod runs;
 pub(crate) mod spot;
-pub mod stock;
-pub mod trace;
-pub mod zlevel;
+pub(crate) mod stock;
+pub(crate) mod trace;
+pub(crate) mod zlevel;
 
 /// How a finishing program's sections are labelled (`finish pass k s X`):
 /// the writer's header counts them as passes along the surface, not as
 /// z-levels.
-pub const FINISH_PASS: &str = "finish pass";
+pub(crate) const FINISH_PASS: &str = "finish pass";
 
 /// The label's end of a finishing pass of a raster (parallel passes along
 /// x, `patch::raster`) rather than along the surface's level curves.
-pub const RASTER_PASS: &str = "along x";
+pub(crate) const RASTER_PASS: &str = "along x";
 
 /// A point in machine coordinates, millimetres.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -44,11 +44,11 @@ impl Vec3 {
         Vec3 { x, y, z }
     }
     /// Distance to another point.
-    pub fn dist(self, o: Vec3) -> f64 {
+    pub(crate) fn dist(self, o: Vec3) -> f64 {
         ((self.x - o.x).powi(2) + (self.y - o.y).powi(2) + (self.z - o.z).powi(2)).sqrt()
     }
     /// The point's X and Y.
-    pub fn xy(self) -> crate::geometry::Vec2 {
+    pub(crate) fn xy(self) -> crate::geometry::Vec2 {
         crate::geometry::Vec2::new(self.x, self.y)
     }
 }
@@ -93,7 +93,7 @@ impl Move {
     }
 
     /// The feed rate, mm/min; `None` for a rapid.
-    pub fn feed(&self) -> Option<f64> {
+    pub(crate) fn feed(&self) -> Option<f64> {
         match *self {
             Move::Rapid { .. } => None,
             Move::Linear { feed, .. } | Move::Arc { feed, .. } => Some(feed),
@@ -102,7 +102,7 @@ impl Move {
 
     /// Length of the move from `from`, mm: straight for a rapid or a line,
     /// the helix for an arc ([`crate::geometry::arc::length`]).
-    pub fn length(&self, from: Vec3) -> f64 {
+    pub(crate) fn length(&self, from: Vec3) -> f64 {
         match *self {
             Move::Rapid { to } | Move::Linear { to, .. } => from.dist(to),
             Move::Arc {
@@ -140,14 +140,14 @@ pub struct Toolpath {
 
 /// Lengths and time of a tool path.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub struct PathStats {
+pub(crate) struct PathStats {
     /// Length of feed moves, mm.
-    pub cut_length: f64,
+    pub(crate) cut_length: f64,
     /// Length of rapid moves, mm.
-    pub rapid_length: f64,
+    pub(crate) rapid_length: f64,
     /// Estimated time in seconds: feed moves at their feed, rapids at the given
     /// rapid rate, acceleration ignored.
-    pub time_s: f64,
+    pub(crate) time_s: f64,
 }
 
 impl Toolpath {
@@ -157,7 +157,7 @@ impl Toolpath {
     }
 
     /// Every feed move in order, with where it starts (rapids skipped).
-    pub fn feed_moves(&self) -> impl Iterator<Item = (Vec3, Move)> + '_ {
+    pub(crate) fn feed_moves(&self) -> impl Iterator<Item = (Vec3, Move)> + '_ {
         self.moves()
             .scan(self.start, |at, m| {
                 let from = std::mem::replace(at, m.to());
@@ -167,7 +167,7 @@ impl Toolpath {
     }
 
     /// Lengths and estimated time, with rapids at `rapid_rate` mm/min.
-    pub fn stats(&self, rapid_rate: f64) -> PathStats {
+    pub(crate) fn stats(&self, rapid_rate: f64) -> PathStats {
         let mut st = PathStats::default();
         let mut at = self.start;
         for m in self.moves() {
@@ -187,7 +187,7 @@ impl Toolpath {
 }
 
 /// Length (mm) and time (s) of a feed move from `from`; (0, 0) for a rapid.
-pub fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
+pub(crate) fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
     match m.feed() {
         None => (0.0, 0.0),
         Some(feed) => {
@@ -200,7 +200,7 @@ pub fn feed_length_time(from: Vec3, m: &Move) -> (f64, f64) {
 /// Points along the (helical) arc from `a` (excluded) to `b` (included,
 /// exactly) about (`cx`, `cy`): equal chords within `tol` of it in XY
 /// ([`crate::geometry::arc::chords`]), z linear in the angle.
-pub fn arc_flatten(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, tol: f64) -> Vec<Vec3> {
+pub(crate) fn arc_flatten(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, tol: f64) -> Vec<Vec3> {
     use crate::geometry::arc;
     let c = crate::geometry::Vec2::new(cx, cy);
     let n = arc::chords(
@@ -214,7 +214,7 @@ pub fn arc_flatten(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, tol: f64) -> V
 /// The ends of `n` equal pieces of the (helical) arc from `a` to `b` about
 /// (`cx`, `cy`): [`crate::geometry::arc::divide`] in XY, z linear in the
 /// angle; the last exactly `b`.
-pub fn arc_points(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, n: usize) -> Vec<Vec3> {
+pub(crate) fn arc_points(a: Vec3, b: Vec3, cx: f64, cy: f64, ccw: bool, n: usize) -> Vec<Vec3> {
     let c = crate::geometry::Vec2::new(cx, cy);
     let pts = crate::geometry::arc::divide(a.xy(), b.xy(), c, ccw, n);
     pts.into_iter()

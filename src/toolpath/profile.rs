@@ -6,7 +6,7 @@ use super::entry::{enter, ramp_loop, start_near, Entry};
 use super::stock::{model_radius, StockMap};
 use super::trace::{trace, Navigator, TraceError, TraceParams};
 use super::{Move, Section, Toolpath, Vec3};
-pub use crate::geometry::deepest_point;
+pub(crate) use crate::geometry::deepest_point;
 use crate::geometry::{DistanceIndex, Shape, Vec2};
 
 /// Settings of a profile, mm and mm/min.
@@ -15,28 +15,28 @@ pub struct ProfileParams {
     /// Tool radius.
     pub radius: f64,
     /// Chord tolerance.
-    pub tol: f64,
+    pub(crate) tol: f64,
     /// Climb milling (material on the tool's right with an M3 spindle).
-    pub climb: bool,
+    pub(crate) climb: bool,
     /// Stock top Z.
     pub top: f64,
     /// Depth below the top.
-    pub depth: f64,
+    pub(crate) depth: f64,
     /// Largest depth per pass.
-    pub stepdown: f64,
+    pub(crate) stepdown: f64,
     /// Safe Z for rapids.
-    pub safe_z: f64,
+    pub(crate) safe_z: f64,
     /// Cutting feed.
-    pub feed: f64,
+    pub(crate) feed: f64,
     /// Plunge and ramp feed.
-    pub plunge_feed: f64,
+    pub(crate) plunge_feed: f64,
     /// Ramp angle for entries into material, degrees.
-    pub ramp_angle: f64,
+    pub(crate) ramp_angle: f64,
 }
 
 impl ProfileParams {
     /// The entry settings of these parameters.
-    pub fn entry(&self) -> Entry {
+    pub(crate) fn entry(&self) -> Entry {
         Entry {
             radius: self.radius,
             ramp_angle: self.ramp_angle,
@@ -56,7 +56,7 @@ pub struct Loop {
     /// Centre positions, closed (last = first).
     pub points: Vec<Vec2>,
     /// Field fallbacks (see `Traced::fallbacks`).
-    pub fallbacks: usize,
+    pub(crate) fallbacks: usize,
 }
 
 /// Why a profile failed.
@@ -100,7 +100,7 @@ pub enum ProfileError {
 }
 
 /// Z of every pass: equal steps of at most `stepdown`, the last exactly at the depth.
-pub fn pass_depths(top: f64, depth: f64, stepdown: f64) -> Vec<f64> {
+pub(crate) fn pass_depths(top: f64, depth: f64, stepdown: f64) -> Vec<f64> {
     let n = ((depth / stepdown) - 1e-9).ceil().max(1.0) as usize;
     (1..=n).map(|k| top - depth * k as f64 / n as f64).collect()
 }
@@ -108,7 +108,7 @@ pub fn pass_depths(top: f64, depth: f64, stepdown: f64) -> Vec<f64> {
 /// Trace every loop of the shape: for each region, its counters (inside first, so
 /// the part is still held while its holes are cut), then its outline.
 /// `polys[i]` is the flattening of the i-th contour of `shape.contours()`.
-pub fn trace_loops<N: Navigator + Sync>(
+pub(crate) fn trace_loops<N: Navigator + Sync>(
     shape: &Shape,
     polys: &[Vec<Vec2>],
     part: &DistanceIndex,

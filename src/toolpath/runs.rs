@@ -18,13 +18,13 @@ use std::collections::HashMap;
 
 /// One piece to order.
 #[derive(Clone, Copy, Debug)]
-pub struct Piece<'a> {
+pub(crate) struct Piece<'a> {
     /// Its ring's index (0 = the finishing ring at the wall radius).
-    pub ring: usize,
+    pub(crate) ring: usize,
     /// Its points (a closed ring's last equals its first).
-    pub points: &'a [Vec2],
+    pub(crate) points: &'a [Vec2],
     /// A closed ring, entered anywhere, or an open run, entered at its start.
-    pub closed: bool,
+    pub(crate) closed: bool,
 }
 
 /// A hash of points in square cells of side `d`: which of them lie within
@@ -82,7 +82,7 @@ fn approach(piece: &Piece, at: Vec2, keep: &Keepout) -> (Vec2, f64) {
 /// The order to cut `pieces` in (indices): each after the pieces of the ring
 /// outside it that come within `reach` of it, and otherwise the nearest to
 /// where the tool is, starting at `from`.
-pub fn order(pieces: &[Piece], reach: f64, keep: &Keepout, from: Vec2) -> Vec<usize> {
+pub(crate) fn order(pieces: &[Piece], reach: f64, keep: &Keepout, from: Vec2) -> Vec<usize> {
     let n = pieces.len();
     let pts: Vec<Vec<Vec2>> = pieces
         .iter()

@@ -22,7 +22,7 @@ use crate::geometry::Vec2;
 
 /// Most cells a map may have: at 8 bytes a cell, 128 MB. Larger stocks get
 /// coarser cells (and so more conservative answers), never more memory.
-pub const MAX_CELLS: usize = 16_000_000;
+pub(crate) const MAX_CELLS: usize = 16_000_000;
 
 /// Finest and coarsest cell side, mm, before [`MAX_CELLS`] forces coarser.
 const CELL_RANGE: (f64, f64) = (0.02, 0.1);
@@ -32,17 +32,17 @@ const CELL_RANGE: (f64, f64) = (0.02, 0.1);
 /// disk this much (plus the tolerance) narrower than the tool, so that it never
 /// counts on a cut the written program may miss by a hair: an entry next to
 /// such a rim ramps from the material there instead of plunging onto it.
-pub const ROUNDING_SLACK: f64 = 0.001;
+pub(crate) const ROUNDING_SLACK: f64 = 0.001;
 
 /// The radius the linker cuts its map with for a tool of `radius` and a job of
 /// tolerance `tol` (see [`ROUNDING_SLACK`]); never below half the tool.
-pub fn model_radius(radius: f64, tol: f64) -> f64 {
+pub(crate) fn model_radius(radius: f64, tol: f64) -> f64 {
     (radius - tol.max(0.0) - ROUNDING_SLACK).max(0.5 * radius)
 }
 
 /// A height map of the stock over a rectangle; outside it there is no material.
 #[derive(Clone, Debug, PartialEq)]
-pub struct StockMap {
+pub(crate) struct StockMap {
     lo: Vec2,
     cell: f64,
     nx: usize,
@@ -55,7 +55,7 @@ impl StockMap {
     /// enough for a tool of radius `radius` (an eighth of it, within 0.02 to
     /// 0.1 mm, coarser only when the rectangle would need more than
     /// [`MAX_CELLS`]).
-    pub fn new(lo: Vec2, hi: Vec2, top: f64, radius: f64) -> StockMap {
+    pub(crate) fn new(lo: Vec2, hi: Vec2, top: f64, radius: f64) -> StockMap {
         let (w, h) = ((hi.x - lo.x).max(0.0), (hi.y - lo.y).max(0.0));
         let mut cell = (radius / 8.0).clamp(CELL_RANGE.0, CELL_RANGE.1);
         if !(cell.is_finite() && w.is_finite() && h.is_finite()) {
@@ -83,7 +83,8 @@ impl StockMap {
     }
 
     /// Side of a cell, mm.
-    pub fn cell(&self) -> f64 {
+    #[cfg(test)]
+    pub(crate) fn cell(&self) -> f64 {
         self.cell
     }
 
@@ -149,7 +150,7 @@ impl StockMap {
 
     /// Highest material within `r` of the segment `a`–`b` (the footprint of a
     /// tool moving along it), conservatively: `-∞` where there is none.
-    pub fn top_near_segment(&self, a: Vec2, b: Vec2, r: f64) -> f64 {
+    pub(crate) fn top_near_segment(&self, a: Vec2, b: Vec2, r: f64) -> f64 {
         let reach = r + self.cell * std::f64::consts::FRAC_1_SQRT_2;
         let (_, js) = self.cells_near(a, b, reach);
         let mut top = f64::NEG_INFINITY;
@@ -165,12 +166,12 @@ impl StockMap {
     }
 
     /// Highest material under a tool disk of radius `r` centred at `p`.
-    pub fn top_near(&self, p: Vec2, r: f64) -> f64 {
+    pub(crate) fn top_near(&self, p: Vec2, r: f64) -> f64 {
         self.top_near_segment(p, p, r)
     }
 
     /// Highest material within `r` of the polyline `pts`.
-    pub fn top_near_path(&self, pts: &[Vec2], r: f64) -> f64 {
+    pub(crate) fn top_near_path(&self, pts: &[Vec2], r: f64) -> f64 {
         match pts {
             [] => f64::NEG_INFINITY,
             [p] => self.top_near(*p, r),
@@ -183,7 +184,7 @@ impl StockMap {
 
     /// Remove what a flat end mill of radius `r` cuts when its tip moves
     /// straight from `a` to `b`.
-    pub fn cut_segment(&mut self, a: Vec3, b: Vec3, r: f64) {
+    pub(crate) fn cut_segment(&mut self, a: Vec3, b: Vec3, r: f64) {
         let (pa, pb) = (Vec2::new(a.x, a.y), Vec2::new(b.x, b.y));
         let (_, js) = self.cells_near(pa, pb, r);
         let d = pb - pa;
@@ -227,7 +228,7 @@ impl StockMap {
 
     /// Remove what the feed moves of `moves` cut, starting from `from`; rapids
     /// cut nothing (the linker keeps them in air). Returns where the moves end.
-    pub fn cut_moves(&mut self, from: Vec3, moves: &[Move], r: f64) -> Vec3 {
+    pub(crate) fn cut_moves(&mut self, from: Vec3, moves: &[Move], r: f64) -> Vec3 {
         let mut at = from;
         for m in moves {
             match *m {
@@ -252,7 +253,8 @@ impl StockMap {
     }
 
     /// Height of the cell containing `p`, `None` outside the map.
-    pub fn height_at(&self, p: Vec2) -> Option<f64> {
+    #[cfg(test)]
+    pub(crate) fn height_at(&self, p: Vec2) -> Option<f64> {
         let fi = ((p.x - self.lo.x) / self.cell).floor();
         let fj = ((p.y - self.lo.y) / self.cell).floor();
         if fi < 0.0 || fj < 0.0 || fi >= self.nx as f64 || fj >= self.ny as f64 {

@@ -30,7 +30,7 @@ use crate::field::Field;
 use crate::geometry::{DistanceIndex, Vec2};
 
 /// The directions the tracer takes from a field.
-pub trait Navigator {
+pub(crate) trait Navigator {
     /// ∇u at `p`: points toward the part (u grows toward the generating boundary).
     fn grad(&self, p: Vec2) -> Vec2;
 }
@@ -44,7 +44,7 @@ impl Navigator for Field {
 /// Directions from plain geometry: toward the nearest point of the part, the
 /// gradient of the distance to it. For offset rings inside a cavity, where a
 /// level's field (solved outside Γ(s), its charges inside) points anywhere.
-pub struct NearestWall<'a>(pub &'a DistanceIndex);
+pub(crate) struct NearestWall<'a>(pub &'a DistanceIndex);
 
 impl Navigator for NearestWall<'_> {
     fn grad(&self, p: Vec2) -> Vec2 {
@@ -54,30 +54,30 @@ impl Navigator for NearestWall<'_> {
 
 /// Tracing parameters, all in mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TraceParams {
+pub(crate) struct TraceParams {
     /// Tool radius r: the centre is kept at distance r from the part.
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// Chord tolerance: every chord between two traced points stays within this
     /// distance of the exact offset (checked at ¼, ½, ¾ of the chord).
-    pub tol: f64,
+    pub(crate) tol: f64,
     /// Travel with the part on the tool's left (`true`) or right (`false`).
     /// With the part's contours oriented material-on-the-left, `true` follows
     /// the contour's own direction (conventional milling with M3), `false` runs
     /// against it (climb).
-    pub part_on_left: bool,
+    pub(crate) part_on_left: bool,
 }
 
 /// A traced closed path of the tool centre.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Traced {
+pub(crate) struct Traced {
     /// The centre positions; the last equals the first.
-    pub points: Vec<Vec2>,
+    pub(crate) points: Vec<Vec2>,
     /// Steps where ∇u did not point into the blocked directions (a saddle of u, or
     /// the field's error near a thin stroke) and the geometric normal started the
     /// compass instead.
-    pub fallbacks: usize,
+    pub(crate) fallbacks: usize,
     /// Field gradient evaluations.
-    pub grad_evals: usize,
+    pub(crate) grad_evals: usize,
 }
 
 /// Why a trace failed.
@@ -261,7 +261,7 @@ impl<'a, N: Navigator> Tracer<'a, N> {
 
 /// Trace the closed path of the tool centre around the part, starting from `start`
 /// in the void.
-pub fn trace<N: Navigator>(
+pub(crate) fn trace<N: Navigator>(
     nav: &N,
     part: &DistanceIndex,
     start: Vec2,

@@ -13,52 +13,52 @@ use crate::geometry::{polygon_area, polygon_winding_number, polygons_bbox, Dista
 
 /// Settings shared by every level, mm, mm/min and degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LevelParams {
+pub(crate) struct LevelParams {
     /// Tool radius.
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// Chord tolerance.
-    pub tol: f64,
+    pub(crate) tol: f64,
     /// Largest distance between neighbouring clearing rings.
-    pub stepover: f64,
+    pub(crate) stepover: f64,
     /// Ramp angle for entries into uncut material, degrees.
-    pub ramp_angle: f64,
+    pub(crate) ramp_angle: f64,
     /// Climb milling.
-    pub climb: bool,
+    pub(crate) climb: bool,
     /// Cutting feed.
-    pub feed: f64,
+    pub(crate) feed: f64,
     /// Plunge and ramp feed.
-    pub plunge_feed: f64,
+    pub(crate) plunge_feed: f64,
     /// Rate of rapids, mm/min (for choosing between a link at depth and a
     /// retract).
-    pub rapid_rate: f64,
+    pub(crate) rapid_rate: f64,
     /// Safe Z: where the tool path starts and ends.
-    pub safe_z: f64,
+    pub(crate) safe_z: f64,
     /// Z of the rapids between paths (`stock.retract_z`), at most `safe_z`.
-    pub retract_z: f64,
+    pub(crate) retract_z: f64,
     /// Stock top Z.
-    pub top: f64,
+    pub(crate) top: f64,
     /// Deepest cut allowed in one move (the tool's stepdown): a sideways link
     /// at depth may cross material no deeper than this.
-    pub stepdown: f64,
+    pub(crate) stepdown: f64,
     /// Material left on the walls for a finishing tool, mm
     /// (`operation.stock_to_leave`): the paths keep the wall radius
     /// [`wall`](Self::wall) from the part, and cover with the true radius.
-    pub leave: f64,
+    pub(crate) leave: f64,
     /// Lower-left corner of the stock rectangle.
-    pub stock_lo: Vec2,
+    pub(crate) stock_lo: Vec2,
     /// Upper-right corner of the stock rectangle.
-    pub stock_hi: Vec2,
+    pub(crate) stock_hi: Vec2,
 }
 
 impl LevelParams {
     /// How far the tool's axis stays from the part: its radius plus the
     /// stock to leave, mm.
-    pub fn wall(&self) -> f64 {
+    pub(crate) fn wall(&self) -> f64 {
         self.radius + self.leave
     }
 
     /// The entry settings of these parameters.
-    pub fn entry(&self) -> Entry {
+    pub(crate) fn entry(&self) -> Entry {
         Entry {
             radius: self.radius,
             ramp_angle: self.ramp_angle,
@@ -72,31 +72,31 @@ impl LevelParams {
 
 /// One path at a level.
 #[derive(Clone, Debug, PartialEq)]
-pub struct CutPath {
+pub(crate) struct CutPath {
     /// What it is, e.g. `ring 3 around the part`.
-    pub label: String,
+    pub(crate) label: String,
     /// The tool centre positions (for a closed path the last equals the first).
-    pub points: Vec<Vec2>,
+    pub(crate) points: Vec<Vec2>,
     /// Closed loop (entered by a ramp) or open run (starts and ends outside the
     /// stock, entered by a plunge in air).
-    pub closed: bool,
+    pub(crate) closed: bool,
     /// A boss's clearing ring around the part: its index j (radius r +
     /// j·stepover). The linker orders these ([`runs::order`]); every other
     /// path keeps its place after them.
-    pub ring: Option<usize>,
+    pub(crate) ring: Option<usize>,
 }
 
 /// All the paths of one level.
 #[derive(Clone, Debug, PartialEq)]
-pub struct LevelCut {
+pub(crate) struct LevelCut {
     /// Z of the level (absolute).
-    pub z: f64,
+    pub(crate) z: f64,
     /// The equipotential value s of the level.
-    pub s: f64,
+    pub(crate) s: f64,
     /// The part at this level, Γ(s), as closed polygons.
-    pub part: Vec<Vec<Vec2>>,
+    pub(crate) part: Vec<Vec<Vec2>>,
     /// The paths in cutting order.
-    pub paths: Vec<CutPath>,
+    pub(crate) paths: Vec<CutPath>,
 }
 
 /// Split a closed ring into the runs over the stock (the points `keep` does
@@ -418,7 +418,7 @@ impl<N: Navigator + Sync> Walls<'_, N> {
 /// stepdown; otherwise it retracts to safe Z, rapids over and enters the path
 /// ([`enter`]): a rapid down to a clearance above the material actually left
 /// under the tool, then a ramp from that material's top.
-pub fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
+pub(crate) fn link_levels(levels: &[&LevelCut], p: &LevelParams) -> Toolpath {
     let start = Vec3::new(0.0, 0.0, p.safe_z);
     let mut stock = StockMap::new(p.stock_lo, p.stock_hi, p.top, p.radius);
     let e = p.entry();
@@ -687,10 +687,10 @@ pub(crate) fn test_params() -> LevelParams {
 /// pocket's deepest point and room (its distance from every wall), and the
 /// part's distance index.
 pub(super) struct Pockets<'a> {
-    pub pockets: &'a [&'a Vec<Vec2>],
-    pub islands: &'a [&'a Vec<Vec2>],
-    pub deepest: &'a [(Vec2, f64)],
-    pub index: &'a DistanceIndex,
+    pub(crate) pockets: &'a [&'a Vec<Vec2>],
+    pub(crate) islands: &'a [&'a Vec<Vec2>],
+    pub(crate) deepest: &'a [(Vec2, f64)],
+    pub(crate) index: &'a DistanceIndex,
 }
 
 impl Pockets<'_> {
@@ -703,7 +703,7 @@ impl Pockets<'_> {
     /// just below its highest point, so the disk meets that wall and not an
     /// island's, which may be nearer to the deepest point (the Q's counter).
     /// Without islands, or where that point has no room, the deepest point.
-    pub fn start(&self, k: usize, radius: f64, tol: f64) -> Vec2 {
+    pub(crate) fn start(&self, k: usize, radius: f64, tol: f64) -> Vec2 {
         let (pk, deep) = (self.pockets[k], self.deepest[k].0);
         if self.islands.is_empty() {
             return deep;
@@ -750,7 +750,7 @@ pub(super) fn deepest_in_pocket(
 /// with the part's material on its left (a cavity's: the mould's), `label`
 /// names the level in paths and warnings, `band` is the width of the band a
 /// level added for the scallop bound clears.
-pub fn level_paths<N: Navigator + Sync>(
+pub(crate) fn level_paths<N: Navigator + Sync>(
     cavity: bool,
     section: &[Vec<Vec2>],
     nav: &N,

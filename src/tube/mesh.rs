@@ -75,7 +75,7 @@ fn ring_points(tube: &PdeTube, resolution: f64) -> usize {
 /// apart, `stock` the stock rectangle. A trimmed boss is meshed by
 /// `super::mesh_slot`. An error is a pfcam bug (a ring whose polar angle
 /// does not increase), or a trim the mesh cannot carry.
-pub fn tube_mesh(
+pub(crate) fn tube_mesh(
     tube: &PdeTube,
     top: f64,
     resolution: f64,

@@ -6,10 +6,10 @@
 //! The stock top is the tube's top; its depth is `shape.height`. With
 //! `[finish]` a ring of the finishing tool follows each section ([`rings`]).
 
-pub mod mesh;
+pub(crate) mod mesh;
 mod mesh_slot;
-pub mod ring_contacts;
-pub mod rings;
+pub(crate) mod ring_contacts;
+pub(crate) mod rings;
 
 use crate::count::{set_stage, Stage};
 use crate::geometry::{polygons_bbox, Vec2};
@@ -24,7 +24,7 @@ use crate::sources::pde_tube::{PdeTube, TubeKind};
 
 /// The tube's sections for a job (its spec's kind and tolerance are the
 /// job's; the job's resolve has built it once, so an error here is a bug).
-pub fn tube_sections(spec: &TubeSpec) -> Result<PdeTube, PipelineError> {
+pub(crate) fn tube_sections(spec: &TubeSpec) -> Result<PdeTube, PipelineError> {
     Ok(spec.tube().map_err(Internal::Tube)?)
 }
 
@@ -40,14 +40,14 @@ fn widest_z(tube: &PdeTube) -> f64 {
 /// The stock rectangle of a tube job: the widest section's bounding box
 /// grown by `stock.margin` (what the level planner computes, from the same
 /// section).
-pub fn tube_stock(job: &Job, tube: &PdeTube) -> (Vec2, Vec2) {
+pub(crate) fn tube_stock(job: &Job, tube: &PdeTube) -> (Vec2, Vec2) {
     let m = Vec2::new(job.stock.margin, job.stock.margin);
     let (lo, hi) = polygons_bbox(&tube.section(widest_z(tube))).unwrap_or((Vec2::ZERO, Vec2::ZERO));
     (lo - m, hi + m)
 }
 
 /// Rough a tube by levels.
-pub fn run_tube(
+pub(crate) fn run_tube(
     job: &Job,
     spec: &TubeSpec,
     progress: &mut dyn FnMut(Progress),
@@ -93,7 +93,7 @@ fn finish_tube(
 }
 
 /// The tube's part as a closed mesh at `resolution` mm (`pfcam surface`).
-pub fn tube_surface(
+pub(crate) fn tube_surface(
     job: &Job,
     spec: &TubeSpec,
     resolution: f64,
@@ -105,7 +105,7 @@ pub fn tube_surface(
 
 /// The part for `simulate`: the mesh's up-facing triangles (the tube's
 /// wall and caps, and the floor or slab top round it).
-pub fn tube_part_triangles(
+pub(crate) fn tube_part_triangles(
     job: &Job,
     spec: &TubeSpec,
     resolution: f64,

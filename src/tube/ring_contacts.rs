@@ -21,7 +21,7 @@ use std::f64::consts::TAU;
 
 /// A ring's contact.
 #[derive(Clone, Copy, Debug)]
-pub enum Contact {
+pub(crate) enum Contact {
     /// On the wall, at X(u, v).
     Wall(f64),
     /// At a point (x, y, z in the curves' frame) with the unit normal into
@@ -54,9 +54,9 @@ const V_MARGIN: f64 = 1e-2;
 const SIDE_CLEARANCE: f64 = 2e-3;
 
 /// The ring's geometry that does not change with u.
-pub struct Rings {
+pub(crate) struct Rings {
     /// Samples of the whole curve.
-    pub p: usize,
+    pub(crate) p: usize,
     /// The slot's angles, contacts per side, and its floor's u.
     slot: Option<(f64, f64, usize, f64)>,
     /// The cutter's radius, mm.
@@ -66,7 +66,7 @@ pub struct Rings {
 impl Rings {
     /// The rings of `tube` with `p` samples, for a cutter of radius `r`
     /// (mm): an error when the tube has trims other than one slot.
-    pub fn new(tube: &PdeTube, p: usize, r: f64) -> Result<Rings, FinishError> {
+    pub(crate) fn new(tube: &PdeTube, p: usize, r: f64) -> Result<Rings, FinishError> {
         let Some(t) = tube.trims().first() else {
             return Ok(Rings { p, slot: None, r });
         };
@@ -93,7 +93,7 @@ impl Rings {
     /// Heights (relative to the top) the rings must include: just under a
     /// slot's floor, the last full ring, whose contacts in the slot's
     /// angles reach the wall's edge there.
-    pub fn extra_heights(&self, tube: &PdeTube) -> Vec<f64> {
+    pub(crate) fn extra_heights(&self, tube: &PdeTube) -> Vec<f64> {
         match self.slot {
             Some((_, _, _, u0)) => {
                 vec![tube.surface().spine().point(u0)[2] - tube.top_z() - 1e-6]
@@ -103,14 +103,14 @@ impl Rings {
     }
 
     /// Whether the rings go round a slot.
-    pub fn has_slot(&self) -> bool {
+    pub(crate) fn has_slot(&self) -> bool {
         self.slot.is_some()
     }
 
     /// The contacts of the ring at u with their keys, in cutting order
     /// (`reverse`: clockwise from above); an error where the kept curve is
     /// not one pie piece.
-    pub fn contacts(
+    pub(crate) fn contacts(
         &self,
         tube: &PdeTube,
         u: f64,

@@ -35,10 +35,10 @@ use crate::toolpath::dropcutter::{Cutter, MeshIndex};
 use crate::toolpath::{Move, Section, Toolpath, Vec3};
 
 /// Most rings of a finish.
-pub const MAX_RINGS: usize = 20_000;
+pub(crate) const MAX_RINGS: usize = 20_000;
 
 /// Most samples of all rings together (each is a G-code line).
-pub const MAX_SAMPLES: usize = 4_000_000;
+pub(crate) const MAX_SAMPLES: usize = 4_000_000;
 
 /// Halvings of a chord at most where it strays below the drop.
 const REFINE_DEPTH: usize = 8;
@@ -58,17 +58,17 @@ const BISECTIONS: usize = 40;
 
 /// The finish's part: the tube, its mesh and the wall's area (mm², for the
 /// time's lower bound).
-pub struct RingPart<'a> {
+pub(crate) struct RingPart<'a> {
     /// The tube.
-    pub tube: &'a PdeTube,
+    pub(crate) tube: &'a PdeTube,
     /// The part's mesh, for the drop-cutter.
-    pub mesh: &'a MeshIndex,
+    pub(crate) mesh: &'a MeshIndex,
     /// The wall's area, mm².
-    pub area: f64,
+    pub(crate) area: f64,
     /// Machine z of the tube's top (the stock top), mm.
-    pub top: f64,
+    pub(crate) top: f64,
     /// Where the rings touch ([`Rings`]).
-    pub rings: &'a Rings,
+    pub(crate) rings: &'a Rings,
 }
 
 /// The ring heights z (relative to the top), from −H up to 0, neighbours'
@@ -369,7 +369,7 @@ fn limit_descent(tips: &mut [Vec3]) {
 }
 
 /// The finishing program of a tube job (module doc).
-pub fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, FinishError> {
+pub(crate) fn ring_finish(job: &Job, f: &Finish, part: &RingPart) -> Result<Finished, FinishError> {
     use rayon::prelude::*;
     if f.shape == CutterShape::Flat || f.corner <= 0.0 {
         return Err(FinishError::FlatOnWall);

@@ -12,18 +12,18 @@ use super::super::Vec2;
 
 /// A chain that did not close: where it starts and where it ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct OpenChain {
+pub(crate) struct OpenChain {
     /// its first point
-    pub start: Vec2,
+    pub(crate) start: Vec2,
     /// its last point
-    pub end: Vec2,
+    pub(crate) end: Vec2,
 }
 
 /// The closed loops the pieces make (each without its repeated last point),
 /// and the chains that stay open, each grown from both its ends. Where several
 /// ends lie within `tol` of a chain's end, closing the chain comes first, then
 /// the nearest end.
-pub fn chain(pieces: Vec<Vec<Vec2>>, tol: f64) -> (Vec<Vec<Vec2>>, Vec<OpenChain>) {
+pub(crate) fn chain(pieces: Vec<Vec<Vec2>>, tol: f64) -> (Vec<Vec<Vec2>>, Vec<OpenChain>) {
     let mut grid = Grid::new(tol);
     let mut loops = Vec::new();
     let mut open = Vec::new();

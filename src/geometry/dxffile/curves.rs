@@ -7,25 +7,25 @@
 use super::super::Vec2;
 
 /// A 3-D point or direction, as DXF gives them.
-pub type P3 = [f64; 3];
+pub(crate) type P3 = [f64; 3];
 
 /// An affine map of space, x ↦ M x + t, stored as the rows of [M | t].
 /// Block inserts and object coordinate systems compose as these; a curve is
 /// placed in the plane by mapping its defining points and dropping z (the
 /// drawing seen from above).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Affine3(pub [[f64; 4]; 3]);
+pub(crate) struct Affine3(pub [[f64; 4]; 3]);
 
 impl Affine3 {
     /// x ↦ x.
-    pub const IDENTITY: Affine3 = Affine3([
+    pub(crate) const IDENTITY: Affine3 = Affine3([
         [1.0, 0.0, 0.0, 0.0],
         [0.0, 1.0, 0.0, 0.0],
         [0.0, 0.0, 1.0, 0.0],
     ]);
 
     /// x ↦ x + t.
-    pub fn translate(t: P3) -> Affine3 {
+    pub(crate) fn translate(t: P3) -> Affine3 {
         let mut m = Self::IDENTITY;
         for (row, ti) in m.0.iter_mut().zip(t) {
             row[3] = ti;
@@ -34,7 +34,7 @@ impl Affine3 {
     }
 
     /// Scale by s along the axes.
-    pub fn scale(s: P3) -> Affine3 {
+    pub(crate) fn scale(s: P3) -> Affine3 {
         let mut m = Self::IDENTITY;
         for (i, si) in s.into_iter().enumerate() {
             m.0[i][i] = si;
@@ -43,13 +43,13 @@ impl Affine3 {
     }
 
     /// Turn by `angle` radians about z (counter-clockwise seen from +z).
-    pub fn rotate_z(angle: f64) -> Affine3 {
+    pub(crate) fn rotate_z(angle: f64) -> Affine3 {
         let (s, c) = angle.sin_cos();
         Affine3([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]])
     }
 
     /// The map whose columns are the axes `x`, `y`, `z` (a change of frame).
-    pub fn axes(x: P3, y: P3, z: P3) -> Affine3 {
+    pub(crate) fn axes(x: P3, y: P3, z: P3) -> Affine3 {
         Affine3([
             [x[0], y[0], z[0], 0.0],
             [x[1], y[1], z[1], 0.0],
@@ -58,7 +58,7 @@ impl Affine3 {
     }
 
     /// `self` after `o`: x ↦ self(o(x)).
-    pub fn after(&self, o: &Affine3) -> Affine3 {
+    pub(crate) fn after(&self, o: &Affine3) -> Affine3 {
         let (a, b) = (&self.0, &o.0);
         let mut m = [[0.0; 4]; 3];
         for (i, row) in m.iter_mut().enumerate() {
@@ -71,7 +71,7 @@ impl Affine3 {
     }
 
     /// The point `p` mapped and seen from above.
-    pub fn point(&self, p: P3) -> Vec2 {
+    pub(crate) fn point(&self, p: P3) -> Vec2 {
         let r = |i: usize| {
             let m = &self.0[i];
             m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]
@@ -80,7 +80,7 @@ impl Affine3 {
     }
 
     /// The direction `v` mapped (no translation) and seen from above.
-    pub fn vector(&self, v: P3) -> Vec2 {
+    pub(crate) fn vector(&self, v: P3) -> Vec2 {
         let r = |i: usize| {
             let m = &self.0[i];
             m[0] * v[0] + m[1] * v[1] + m[2] * v[2]
@@ -89,27 +89,27 @@ impl Affine3 {
     }
 
     /// Whether every entry is finite.
-    pub fn is_finite(&self) -> bool {
+    pub(crate) fn is_finite(&self) -> bool {
         self.0.iter().flatten().all(|v| v.is_finite())
     }
 }
 
 /// A non-uniform rational B-spline in the plane.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Nurbs {
+pub(crate) struct Nurbs {
     /// Degree p ≥ 1.
-    pub degree: usize,
+    pub(crate) degree: usize,
     /// Knots U, nondecreasing, n + p + 1 of them.
-    pub knots: Vec<f64>,
+    pub(crate) knots: Vec<f64>,
     /// Control points, n of them (n > p).
-    pub points: Vec<Vec2>,
+    pub(crate) points: Vec<Vec2>,
     /// Weights, n of them, all > 0 (1 for a non-rational spline).
-    pub weights: Vec<f64>,
+    pub(crate) weights: Vec<f64>,
 }
 
 /// One piece of a path.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Piece {
+pub(crate) enum Piece {
     /// A straight line from a to b.
     Line(Vec2, Vec2),
     /// c + u cos t + v sin t for t from `t0` to `t1` (either way): a circle
@@ -133,15 +133,15 @@ pub enum Piece {
 /// A chain of pieces, each starting where the one before ends; `closed` when
 /// the last one ends where the first starts.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Path {
+pub(crate) struct Path {
     /// The pieces, in order.
-    pub pieces: Vec<Piece>,
+    pub(crate) pieces: Vec<Piece>,
     /// Whether the path is a closed contour.
-    pub closed: bool,
+    pub(crate) closed: bool,
 }
 
 /// How many more vertices may be made; `Err(())` once it runs out.
-pub struct Budget(pub usize);
+pub(crate) struct Budget(pub usize);
 
 impl Budget {
     fn take(&mut self, n: usize) -> Result<(), ()> {
@@ -156,7 +156,7 @@ const MAX_DEPTH: u32 = 20;
 
 impl Piece {
     /// Where the piece starts.
-    pub fn start(&self) -> Vec2 {
+    pub(crate) fn start(&self) -> Vec2 {
         match self {
             Piece::Line(a, _) => *a,
             Piece::Conic { c, u, v, t0, .. } => conic_at(*c, *u, *v, *t0),
@@ -167,7 +167,7 @@ impl Piece {
     /// The chord vertices after the start, the end included, appended to
     /// `out`: every point of the curve lies within `tol` of its chord (for a
     /// spline: checked at three points inside each chord).
-    pub fn flatten_into(
+    pub(crate) fn flatten_into(
         &self,
         tol: f64,
         out: &mut Vec<Vec2>,
@@ -195,7 +195,7 @@ impl Piece {
 }
 
 /// c + u cos t + v sin t.
-pub fn conic_at(c: Vec2, u: Vec2, v: Vec2, t: f64) -> Vec2 {
+pub(crate) fn conic_at(c: Vec2, u: Vec2, v: Vec2, t: f64) -> Vec2 {
     let (s, co) = t.sin_cos();
     c + u * co + v * s
 }
@@ -227,7 +227,7 @@ impl Nurbs {
     /// The point at parameter t in [U_p, U_n], by de Boor's algorithm on the
     /// homogeneous points (w x, w y, w) (Piegl & Tiller, The NURBS Book,
     /// A2.1 and A4.1).
-    pub fn at(&self, t: f64) -> Vec2 {
+    pub(crate) fn at(&self, t: f64) -> Vec2 {
         let p = self.degree;
         let n = self.points.len();
         // The span k with U_k ≤ t < U_{k+1}, p ≤ k < n (the last non-empty one at t = U_n).
@@ -322,7 +322,7 @@ fn seg_dist(x: Vec2, a: Vec2, b: Vec2) -> f64 {
 
 impl Path {
     /// The path as a polyline within `tol`: its start, then every chord's end.
-    pub fn flatten(&self, tol: f64, budget: &mut Budget) -> Result<Vec<Vec2>, ()> {
+    pub(crate) fn flatten(&self, tol: f64, budget: &mut Budget) -> Result<Vec<Vec2>, ()> {
         let Some(first) = self.pieces.first() else {
             return Ok(Vec::new());
         };

@@ -20,25 +20,25 @@ use super::super::Vec2;
 use super::curves::{Affine3, Nurbs, Path, Piece, P3};
 
 /// Deepest nesting of INSERTs (a block that inserts itself stops here).
-pub const MAX_DEPTH: usize = 16;
+pub(crate) const MAX_DEPTH: usize = 16;
 
 /// Most entities visited, block copies included: each is at least one vertex
 /// (the outlines' bound is 500 000), so more is refused before the work.
-pub const MAX_ENTITIES: usize = 500_000;
+pub(crate) const MAX_ENTITIES: usize = 500_000;
 
 /// What the drawing gives on the chosen layer.
-pub struct Read {
+pub(crate) struct Read {
     /// The paths, in drawing units.
-    pub paths: Vec<Path>,
+    pub(crate) paths: Vec<Path>,
     /// Every layer that has an entity pfcam reads (as written in the file).
-    pub layers: BTreeSet<String>,
+    pub(crate) layers: BTreeSet<String>,
 }
 
 /// The paths of every entity pfcam reads on `layer` (every layer when `None`;
 /// names compare without case, as CAD programs do). Entities inside a block on
 /// layer `0` take the layer of their INSERT. Paper space and invisible
 /// entities are left out.
-pub fn read(drawing: &Drawing, layer: Option<&str>) -> Result<Read, String> {
+pub(crate) fn read(drawing: &Drawing, layer: Option<&str>) -> Result<Read, String> {
     let mut w = Walker {
         blocks: drawing
             .blocks()
@@ -196,7 +196,7 @@ fn unit(a: P3) -> Option<P3> {
 /// The object coordinate system of extrusion direction `n` (the DXF
 /// reference's arbitrary axis algorithm): Ax = Wy × N when N is within 1/64 of
 /// the z axis in x and y, else Wz × N; Ay = N × Ax. `None` for a zero `n`.
-pub fn ocs(n: P3) -> Option<Affine3> {
+pub(crate) fn ocs(n: P3) -> Option<Affine3> {
     let n = unit(n)?;
     let ax = if n[0].abs() < 1.0 / 64.0 && n[1].abs() < 1.0 / 64.0 {
         cross([0.0, 1.0, 0.0], n)

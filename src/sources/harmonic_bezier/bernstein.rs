@@ -4,7 +4,7 @@
 
 /// The binomial coefficient C(n, k) as f64 (exact for the degrees used here:
 /// C(30, 15) < 2⁵³).
-pub fn binomial(n: usize, k: usize) -> f64 {
+pub(crate) fn binomial(n: usize, k: usize) -> f64 {
     if k > n {
         return 0.0;
     }
@@ -14,7 +14,7 @@ pub fn binomial(n: usize, k: usize) -> f64 {
 
 /// Σ_i c_i B_i^n(t), n = c.len() − 1, by de Casteljau's algorithm (convex
 /// combinations only, so stable for t in [0, 1]). An empty slice is 0.
-pub fn de_casteljau(c: &[f64], t: f64) -> f64 {
+pub(crate) fn de_casteljau(c: &[f64], t: f64) -> f64 {
     let mut w = c.to_vec();
     for r in 1..w.len() {
         for i in 0..w.len() - r {
@@ -26,7 +26,7 @@ pub fn de_casteljau(c: &[f64], t: f64) -> f64 {
 
 /// The control points of the derivative: d/dt Σ c_i B_i^n = Σ n (c_{i+1} − c_i)
 /// B_i^{n−1}. A constant (one point) gives an empty slice (the zero polynomial).
-pub fn derivative(c: &[f64]) -> Vec<f64> {
+pub(crate) fn derivative(c: &[f64]) -> Vec<f64> {
     let n = c.len().saturating_sub(1) as f64;
     c.windows(2).map(|w| n * (w[1] - w[0])).collect()
 }
@@ -34,7 +34,7 @@ pub fn derivative(c: &[f64]) -> Vec<f64> {
 /// The k-th forward difference Δᵏc_0 = Σ_j (−1)^(k−j) C(k, j) c_j of the first
 /// k + 1 points. In the power basis Σ_i c_i B_i^n(t) = Σ_k C(n, k) Δᵏc_0 tᵏ,
 /// so Δⁿc_0 is the coefficient of tⁿ.
-pub fn forward_difference(c: &[f64], k: usize) -> f64 {
+pub(crate) fn forward_difference(c: &[f64], k: usize) -> f64 {
     (0..=k.min(c.len().saturating_sub(1)))
         .map(|j| {
             let sign = if (k - j) % 2 == 0 { 1.0 } else { -1.0 };

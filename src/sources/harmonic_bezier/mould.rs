@@ -53,7 +53,7 @@ pub enum Form {
 
 impl Form {
     /// The degree across the rows (m) for row degree n.
-    pub fn across(self, degree: usize) -> usize {
+    pub(crate) fn across(self, degree: usize) -> usize {
         match self {
             Form::Square => degree,
             Form::Raised => degree + 1,
@@ -96,7 +96,7 @@ impl Mould {
     }
 
     /// Number of boundary control points, 2(n + 1).
-    pub fn columns(&self) -> usize {
+    pub(crate) fn columns(&self) -> usize {
         2 * (self.degree + 1)
     }
 
@@ -238,7 +238,7 @@ fn relative_residual(a: &Mat<f64>, x: &Mat<f64>, b: &Mat<f64>) -> f64 {
 
 /// The matrix of E_kl (rows k(n + 1) + l) on all control points (columns
 /// i(n + 1) + j), bidegree (m, n): the module doc's formula, integer entries.
-pub fn laplacian_system(m: usize, n: usize) -> Mat<f64> {
+pub(crate) fn laplacian_system(m: usize, n: usize) -> Mat<f64> {
     let w = n + 1;
     let mut a = Mat::<f64>::zeros((m + 1) * w, (m + 1) * w);
     for k in 0..=m {

@@ -6,19 +6,19 @@ use super::bernstein::de_casteljau;
 /// (m + 1) × (n + 1) control values, row-major: `p[i * (n + 1) + j]` = P_ij.
 /// A net with no rows or columns is the zero polynomial.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Net {
+pub(crate) struct Net {
     /// m + 1, the number of rows (index i, parameter u).
-    pub rows: usize,
+    pub(crate) rows: usize,
     /// n + 1, the number of columns (index j, parameter v).
-    pub cols: usize,
+    pub(crate) cols: usize,
     /// The values.
-    pub p: Vec<f64>,
+    pub(crate) p: Vec<f64>,
 }
 
 impl Net {
     /// The value at (u, v): each row's Bézier in v by de Casteljau, then the
     /// column of those in u.
-    pub fn eval(&self, u: f64, v: f64) -> f64 {
+    pub(crate) fn eval(&self, u: f64, v: f64) -> f64 {
         if self.cols == 0 {
             return 0.0;
         }
@@ -31,17 +31,17 @@ impl Net {
     }
 
     /// Row i (the Bézier in v at u = i/m's control points).
-    pub fn row(&self, i: usize) -> &[f64] {
+    pub(crate) fn row(&self, i: usize) -> &[f64] {
         &self.p[i * self.cols..(i + 1) * self.cols]
     }
 
     /// Column j.
-    pub fn column(&self, j: usize) -> Vec<f64> {
+    pub(crate) fn column(&self, j: usize) -> Vec<f64> {
         (0..self.rows).map(|i| self.p[i * self.cols + j]).collect()
     }
 
     /// ∂/∂u: m (P_{i+1,j} − P_ij), an m × (n + 1) net.
-    pub fn d_u(&self) -> Net {
+    pub(crate) fn d_u(&self) -> Net {
         let m = self.rows.saturating_sub(1);
         let p = (0..m)
             .flat_map(|i| (0..self.cols).map(move |j| (i, j)))
@@ -55,7 +55,7 @@ impl Net {
     }
 
     /// ∂/∂v: n (P_{i,j+1} − P_ij), an (m + 1) × n net.
-    pub fn d_v(&self) -> Net {
+    pub(crate) fn d_v(&self) -> Net {
         let n = self.cols.saturating_sub(1);
         let p = (0..self.rows)
             .flat_map(|i| (0..n).map(move |j| (i, j)))

@@ -38,7 +38,7 @@ pub struct ParamDerivatives {
 /// The relative tolerance of the even square patch's condition Δⁿrow0 =
 /// Δⁿrow1: |Δⁿrow0 − Δⁿrow1| ≤ 1e-9 · 2ⁿ · max(1, max |height|) (the n-th
 /// difference sums 2ⁿ weighted heights, so its rounding scales with 2ⁿ).
-pub const EVEN_DIFFERENCE_TOL: f64 = 1e-9;
+pub(crate) const EVEN_DIFFERENCE_TOL: f64 = 1e-9;
 
 /// A harmonic patch: its net and the nets of its derivatives.
 #[derive(Clone, Debug, PartialEq)]

@@ -10,7 +10,7 @@
 use super::bernstein::binomial;
 
 /// A polynomial as (power of u, power of v, coefficient) terms.
-pub type Polynomial = Vec<(usize, usize, f64)>;
+pub(crate) type Polynomial = Vec<(usize, usize, f64)>;
 
 /// Re (u + iv)ᵏ (`imaginary` false) or Im (u + iv)ᵏ: the terms
 /// C(k, b) i^b u^(k−b) v^b with b even (real) or odd (imaginary).

@@ -70,7 +70,7 @@ impl HarmonicPatch {
 }
 
 /// ((t, value) of the min, (t, value) of the max) of Σ c_i B_i(t) on [0, 1].
-pub fn curve_extremes(c: &[f64]) -> ((f64, f64), (f64, f64)) {
+pub(crate) fn curve_extremes(c: &[f64]) -> ((f64, f64), (f64, f64)) {
     let d = derivative(c);
     let k = SAMPLES_PER_DEGREE * c.len().max(2);
     let ts: Vec<f64> = (0..=k).map(|s| s as f64 / k as f64).collect();

@@ -11,17 +11,17 @@ use crate::geometry::Vec2;
 #[derive(Clone, Debug, PartialEq)]
 pub struct PatchSpec {
     /// n, the degree along the rows.
-    pub degree: usize,
+    pub(crate) degree: usize,
     /// Square (n × n) or raised ((n + 1) × n, even n).
-    pub form: Form,
+    pub(crate) form: Form,
     /// [X, Y], mm.
-    pub size: [f64; 2],
+    pub(crate) size: [f64; 2],
     /// Heights of the edge y = 0 at x = jX/n, mm.
-    pub row0: Vec<f64>,
+    pub(crate) row0: Vec<f64>,
     /// Heights of the edge y = Y, mm.
-    pub row1: Vec<f64>,
+    pub(crate) row1: Vec<f64>,
     /// Where the patch's corner (0, 0) goes, mm.
-    pub origin: Vec2,
+    pub(crate) origin: Vec2,
 }
 
 impl PatchSpec {
@@ -31,14 +31,14 @@ impl PatchSpec {
     }
 
     /// The rectangle in job coordinates, counter-clockwise from the origin.
-    pub fn rectangle(&self) -> Vec<Vec2> {
+    pub(crate) fn rectangle(&self) -> Vec<Vec2> {
         crate::geometry::rectangle(self.origin, self.size)
     }
 }
 
 /// The default form of a degree: square for odd n (unique), raised for even
 /// n (the form that takes any two rows), as `pfcam harmonic-mould` chooses.
-pub fn default_form(degree: usize) -> Form {
+pub(crate) fn default_form(degree: usize) -> Form {
     if degree % 2 == 1 {
         Form::Square
     } else {

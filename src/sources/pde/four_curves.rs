@@ -23,40 +23,45 @@
 //! The row-equilibrated matrix itself stays well conditioned (cond ≈ 12 there),
 //! so the conditions are met to rounding whatever the gain; the gain is what a
 //! user's wiggle (or rounding in the data) becomes inside. Above
-//! [`GAIN_LIMIT`] the solve is refused.
+//! `GAIN_LIMIT` (1e6) the solve is refused.
 
+use super::basis;
+#[cfg(test)]
 use super::{
-    basis, check_a, check_curves, fourier_curve, solve_mode, PdeError, PdeFault, PdeSurface, Spine,
-    Term,
+    check_a, check_curves, fourier_curve, solve_mode, PdeError, PdeFault, PdeSurface, Spine, Term,
 };
-use nalgebra::{Matrix4, Matrix4x3, Vector4};
+#[cfg(test)]
+use nalgebra::Matrix4x3;
+use nalgebra::{Matrix4, Vector4};
 
 /// Largest amplification of a unit datum by a mode system that
 /// [`PdeSurface::through_four_curves`] accepts. A gain g turns a data rounding
 /// of 1e-16 (relative) into g·1e-16 in the surface, and a 1 µm wiggle of a
 /// curve into g µm; 1e6 keeps both below what a mill can see on a part of
 /// 100 mm (1e-8 mm rounding), while the four curves are met to 1e-12 mm.
-pub const GAIN_LIMIT: f64 = 1e6;
+#[cfg(test)]
+pub(crate) const GAIN_LIMIT: f64 = 1e6;
 
 /// Points per unit u at which [`ModeConditioning::gain`] samples |φ(λ, u)ᵀc|.
 const GAIN_SAMPLES: usize = 400;
 
 /// The four position curves of 002 (2)–(5), each sampled at vₖ = 2πk/K, and the
 /// interior parameters s, t.
+#[cfg(test)]
 #[derive(Debug, Clone, PartialEq)]
-pub struct FourCurves {
+pub(crate) struct FourCurves {
     /// X(0, vₖ) (mm).
-    pub p0: Vec<[f64; 3]>,
+    pub(crate) p0: Vec<[f64; 3]>,
     /// X(s, vₖ) (mm).
-    pub p1: Vec<[f64; 3]>,
+    pub(crate) p1: Vec<[f64; 3]>,
     /// X(t, vₖ) (mm).
-    pub p2: Vec<[f64; 3]>,
+    pub(crate) p2: Vec<[f64; 3]>,
     /// X(1, vₖ) (mm).
-    pub p3: Vec<[f64; 3]>,
+    pub(crate) p3: Vec<[f64; 3]>,
     /// u of `p1`, 0 < s < t.
-    pub s: f64,
+    pub(crate) s: f64,
     /// u of `p2`, s < t < 1.
-    pub t: f64,
+    pub(crate) t: f64,
 }
 
 /// How well one mode's 4 × 4 system is posed (n = 0: the cubic A₀; n = N + 1: the
@@ -64,9 +69,9 @@ pub struct FourCurves {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ModeConditioning {
     /// The Fourier mode.
-    pub n: usize,
+    pub(crate) n: usize,
     /// Its exponent λ (0 for A₀).
-    pub lambda: f64,
+    pub(crate) lambda: f64,
     /// 2-norm condition number σ_max/σ_min of the row-equilibrated matrix.
     pub cond: f64,
     /// max over the four unit data eᵢ and u ∈ [0, 1] (sampled at
@@ -130,6 +135,7 @@ pub fn conditioning(n: usize, lambda: f64, s: f64, t: f64) -> ModeConditioning {
 
 /// The cubic through (xᵢ, yᵢ), i = 0..4, as its Hermite spine (values and
 /// derivatives at u = 0 and 1), from the Lagrange basis Lᵢ and Lᵢ′.
+#[cfg(test)]
 fn cubic_spine(y: [[f64; 3]; 4], s: f64, t: f64) -> Spine {
     let x = nodes(s, t);
     let deriv = |u: f64| -> [f64; 3] {
@@ -157,6 +163,7 @@ fn cubic_spine(y: [[f64; 3]; 4], s: f64, t: f64) -> Spine {
 
 /// Checks a, s, t and the curves (equal lengths, 2N + 1 ≤ K ≤ [`MAX_SAMPLES`](super::MAX_SAMPLES),
 /// finite).
+#[cfg(test)]
 fn check(c: &FourCurves, a: f64, modes: usize) -> Result<(), PdeError> {
     let bad = |key, reason| Err(PdeError::Invalid { key, reason });
     check_a(a)?;
@@ -177,6 +184,7 @@ fn check(c: &FourCurves, a: f64, modes: usize) -> Result<(), PdeError> {
 
 /// The mode-n coefficients of the four curves (rows P₀…P₃, columns x, y, z), each
 /// row times `scale`: (cos part, sin part).
+#[cfg(test)]
 fn data(c: &FourCurves, n: usize, scale: [f64; 4]) -> (Matrix4x3<f64>, Matrix4x3<f64>) {
     let (mut cm, mut sm) = (Matrix4x3::zeros(), Matrix4x3::zeros());
     for (i, curve) in [&c.p0, &c.p1, &c.p2, &c.p3].into_iter().enumerate() {
@@ -188,6 +196,7 @@ fn data(c: &FourCurves, n: usize, scale: [f64; 4]) -> (Matrix4x3<f64>, Matrix4x3
 }
 
 /// One mode's term at λ, after its conditioning passes [`GAIN_LIMIT`].
+#[cfg(test)]
 fn term(c: &FourCurves, n: usize, lambda: f64, key: &'static str) -> Result<Term, PdeError> {
     let (m, scale) = system(lambda, c.s, c.t);
     let lu = m.lu();
@@ -200,6 +209,7 @@ fn term(c: &FourCurves, n: usize, lambda: f64, key: &'static str) -> Result<Term
     })
 }
 
+#[cfg(test)]
 fn singular(key: &'static str, mode: usize, lambda: f64) -> PdeError {
     PdeError::IllConditioned {
         key,
@@ -211,6 +221,7 @@ fn singular(key: &'static str, mode: usize, lambda: f64) -> PdeError {
 }
 
 /// The report's entry for λ, or the error when its gain is above the limit.
+#[cfg(test)]
 fn conditioned(
     n: usize,
     lambda: f64,
@@ -230,6 +241,7 @@ fn conditioned(
     })
 }
 
+#[cfg(test)]
 impl PdeSurface {
     /// Solves 002's four-curve problem with a > 0 and N = `modes` modes in F; the
     /// remainder (λ = w = a(N + 1)) carries the samples' modes N < n ≤ K/2, so the
@@ -237,7 +249,7 @@ impl PdeSurface {
     /// surface and the conditioning of A₀, of each mode and of the remainder.
     /// Evaluation, spine edits and [`PdeSurface::without_remainder`] are those of
     /// the two-end surface.
-    pub fn through_four_curves(
+    pub(crate) fn through_four_curves(
         c: &FourCurves,
         a: f64,
         modes: usize,

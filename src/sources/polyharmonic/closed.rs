@@ -22,7 +22,7 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 /// Samples per region edge of the boundary check at resolve time.
-pub const CHECK_SAMPLES: usize = 24;
+pub(crate) const CHECK_SAMPLES: usize = 24;
 
 /// Interpolation nodes per smallest element side (as the relief's).
 const NODES_PER_ELEMENT: f64 = 5.0;
@@ -111,7 +111,7 @@ fn not_closed(r: &Region, p: Vector3<f64>, v: f64) -> PolyError {
 
 /// Coarse cells per largest region edge of the first pass of
 /// [`closed_mesh`].
-pub const COARSE_CELLS: f64 = 40.0;
+pub(crate) const COARSE_CELLS: f64 = 40.0;
 
 /// The surface T₁ = 0 over `region` on a grid at most `spacing` apart:
 /// closed, facing out, in the points' coordinates. Two passes: T₁ on a

@@ -24,7 +24,7 @@ use nalgebra::Vector3;
 
 /// Most elements per face edge: 6·20² = 2400 elements make a dense system of
 /// 4800 + M unknowns (about 190 MB), the most a job should ask of a desk.
-pub const MAX_PER_EDGE: usize = 20;
+pub(crate) const MAX_PER_EDGE: usize = 20;
 
 /// One constant element: a flat rectangle on a face of the box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,13 +34,13 @@ pub struct Element {
     /// Outward unit normal of the box face.
     pub normal: Vector3<f64>,
     /// First unit tangent.
-    pub u: Vector3<f64>,
+    pub(crate) u: Vector3<f64>,
     /// Second unit tangent.
-    pub v: Vector3<f64>,
+    pub(crate) v: Vector3<f64>,
     /// Half side along u.
     pub a: f64,
     /// Half side along v.
-    pub b: f64,
+    pub(crate) b: f64,
 }
 
 impl Element {
@@ -54,11 +54,11 @@ impl Element {
 #[derive(Debug, Clone, PartialEq)]
 pub struct BoxMesh {
     /// Lowest corner.
-    pub lo: Vector3<f64>,
+    pub(crate) lo: Vector3<f64>,
     /// Highest corner.
-    pub hi: Vector3<f64>,
+    pub(crate) hi: Vector3<f64>,
     /// Elements per face edge.
-    pub per_edge: usize,
+    pub(crate) per_edge: usize,
     /// The elements, face by face (−x, +x, −y, +y, −z, +z), row by row.
     pub elements: Vec<Element>,
 }
@@ -109,24 +109,24 @@ impl BoxMesh {
     }
 
     /// Whether `x` lies strictly inside the box.
-    pub fn contains(&self, x: Vector3<f64>) -> bool {
+    pub(crate) fn contains(&self, x: Vector3<f64>) -> bool {
         (0..3).all(|k| x[k] > self.lo[k] && x[k] < self.hi[k])
     }
 
     /// The largest edge of the box (the length scale of tolerances).
-    pub fn size(&self) -> f64 {
+    pub(crate) fn size(&self) -> f64 {
         (self.hi - self.lo).max()
     }
 }
 
 /// ∫ dA / r over [−a, a] × [−b, b] from its centre.
-pub fn self_inv_r(a: f64, b: f64) -> f64 {
+pub(crate) fn self_inv_r(a: f64, b: f64) -> f64 {
     let d = a.hypot(b);
     4.0 * (a * ((d + b) / a).ln() + b * ((d + a) / b).ln())
 }
 
 /// ∫ r dA over [−a, a] × [−b, b] from its centre.
-pub fn self_r(a: f64, b: f64) -> f64 {
+pub(crate) fn self_r(a: f64, b: f64) -> f64 {
     let d = a.hypot(b);
     4.0 * (a * b * d / 3.0
         + (a.powi(3) * ((d + b) / a).ln() + b.powi(3) * ((d + a) / b).ln()) / 6.0)

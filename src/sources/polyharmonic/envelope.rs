@@ -17,7 +17,7 @@ use nalgebra::Vector3;
 
 /// Most samples down one ray: (box height)/step is capped so one ray's work
 /// is bounded.
-pub const MAX_SAMPLES: usize = 100_000;
+pub(crate) const MAX_SAMPLES: usize = 100_000;
 
 /// The envelope's settings, in the points' length unit.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -20,15 +20,13 @@ use super::system::Solution;
 use nalgebra::Vector3;
 
 /// Most interpolation nodes (8 MB of values).
-pub const MAX_NODES: usize = 1_000_000;
+pub(crate) const MAX_NODES: usize = 1_000_000;
 
 /// T₁ with the box part interpolated over a region (module doc).
 #[derive(Debug, Clone)]
 pub struct FastField {
     sol: Solution,
     grid: LagrangeGrid,
-    lo: Vector3<f64>,
-    hi: Vector3<f64>,
 }
 
 impl FastField {
@@ -69,7 +67,7 @@ impl FastField {
             return Err(invalid("box", PolyFault::TooManyNodes { nodes }));
         }
         let grid = LagrangeGrid::sample(start, h, n, order, |x| sol.box_value(x));
-        Ok(FastField { sol, grid, lo, hi })
+        Ok(FastField { sol, grid })
     }
 
     /// T₁(x) (x meant inside the region; outside it the end stencils
@@ -86,10 +84,5 @@ impl FastField {
     /// The solved field (for the exact T₁).
     pub fn solution(&self) -> &Solution {
         &self.sol
-    }
-
-    /// The region [lo, hi] the interpolant was built for.
-    pub fn region(&self) -> (Vector3<f64>, Vector3<f64>) {
-        (self.lo, self.hi)
     }
 }

@@ -36,7 +36,7 @@ impl Solution {
 
     /// The box's part of T₁ at x: Σⱼ (g₁ V₁ⱼ − h₁ T₁ⱼ + h₂ T₂ⱼ − g₂ V₂ⱼ),
     /// smooth away from the box faces (no check that x is inside).
-    pub fn box_value(&self, x: Vector3<f64>) -> f64 {
+    pub(crate) fn box_value(&self, x: Vector3<f64>) -> f64 {
         let mut sum = 0.0;
         for (j, el) in self.mesh.elements.iter().enumerate() {
             let f = influence(el, x, &self.rule);
@@ -46,7 +46,7 @@ impl Solution {
     }
 
     /// The loads' part of T₁ at x: −Σₖ Sₖ K₂(x, qₖ).
-    pub fn load_value(&self, x: Vector3<f64>) -> f64 {
+    pub(crate) fn load_value(&self, x: Vector3<f64>) -> f64 {
         let mut sum = 0.0;
         for (q, s) in self.centres.iter().zip(&self.s) {
             sum -= s * self.loads.1.value(x - q);
@@ -55,7 +55,7 @@ impl Solution {
     }
 
     /// ∇ of [`Solution::box_value`].
-    pub fn box_gradient(&self, x: Vector3<f64>) -> Vector3<f64> {
+    pub(crate) fn box_gradient(&self, x: Vector3<f64>) -> Vector3<f64> {
         let mut sum = Vector3::zeros();
         for (j, el) in self.mesh.elements.iter().enumerate() {
             let f = influence_gradient(el, x, &self.rule);
@@ -65,7 +65,7 @@ impl Solution {
     }
 
     /// ∇ of [`Solution::load_value`].
-    pub fn load_gradient(&self, x: Vector3<f64>) -> Vector3<f64> {
+    pub(crate) fn load_gradient(&self, x: Vector3<f64>) -> Vector3<f64> {
         let mut sum = Vector3::zeros();
         for (q, s) in self.centres.iter().zip(&self.s) {
             sum -= self.loads.1.gradient(x - q) * *s;

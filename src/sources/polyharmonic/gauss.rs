@@ -9,20 +9,20 @@ use std::f64::consts::PI;
 
 /// Largest order: beyond this the Newton start values crowd and nothing in
 /// the box quadrature needs more.
-pub const MAX_ORDER: usize = 64;
+pub(crate) const MAX_ORDER: usize = 64;
 
 /// An n-point Gauss–Legendre rule: exact for polynomials of degree ≤ 2n − 1.
 #[derive(Debug, Clone, PartialEq)]
-pub struct GaussRule {
+pub(crate) struct GaussRule {
     /// Nodes in (−1, 1), ascending.
-    pub nodes: Vec<f64>,
+    pub(crate) nodes: Vec<f64>,
     /// Weights, summing to 2.
-    pub weights: Vec<f64>,
+    pub(crate) weights: Vec<f64>,
 }
 
 impl GaussRule {
     /// The rule of `n` points, 1 ≤ n ≤ `MAX_ORDER` (clamped into that range).
-    pub fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         let n = n.clamp(1, MAX_ORDER);
         let mut nodes = vec![0.0; n];
         let mut weights = vec![0.0; n];
@@ -48,7 +48,8 @@ impl GaussRule {
     }
 
     /// ∫_{lo}^{hi} f(t) dt by this rule.
-    pub fn integrate(&self, lo: f64, hi: f64, mut f: impl FnMut(f64) -> f64) -> f64 {
+    #[cfg(test)]
+    pub(crate) fn integrate(&self, lo: f64, hi: f64, mut f: impl FnMut(f64) -> f64) -> f64 {
         let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
         let mut sum = 0.0;
         for (x, w) in self.nodes.iter().zip(&self.weights) {

@@ -34,7 +34,7 @@ use std::collections::HashMap;
 pub const T_MIN: f64 = 0.02;
 
 /// Most grid nodes (64 MB of values).
-pub const MAX_NODES: usize = 8_000_000;
+pub(crate) const MAX_NODES: usize = 8_000_000;
 
 /// Regula falsi steps at most per vertex.
 const ROOT_STEPS: usize = 60;
@@ -43,11 +43,11 @@ const ROOT_STEPS: usize = 60;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grid3 {
     /// The first node, mm.
-    pub lo: Vector3<f64>,
+    pub(crate) lo: Vector3<f64>,
     /// The spacing per axis, mm.
-    pub h: Vector3<f64>,
+    pub(crate) h: Vector3<f64>,
     /// Nodes per axis (at least 2 each).
-    pub n: [usize; 3],
+    pub(crate) n: [usize; 3],
 }
 
 impl Grid3 {
@@ -70,13 +70,8 @@ impl Grid3 {
     }
 
     /// Number of nodes.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.n[0] * self.n[1] * self.n[2]
-    }
-
-    /// Always false: a grid has at least 2 nodes an axis.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 
     fn index(&self, i: usize, j: usize, k: usize) -> usize {
@@ -84,7 +79,7 @@ impl Grid3 {
     }
 
     /// Position of node `id`.
-    pub fn node(&self, id: usize) -> Vector3<f64> {
+    pub(crate) fn node(&self, id: usize) -> Vector3<f64> {
         let (i, rest) = (id % self.n[0], id / self.n[0]);
         let (j, k) = (rest % self.n[1], rest / self.n[1]);
         self.lo + Vector3::new(i as f64, j as f64, k as f64).component_mul(&self.h)

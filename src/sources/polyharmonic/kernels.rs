@@ -58,18 +58,18 @@ pub enum Kernel {
 /// d = P − Q: the value is f, ∇_P = g·d, ∂/∂n_Q = −g (d·n) and
 /// ∇_P ∂/∂n_Q = −(h (d·n) d + g n); Δf = h r² + 3g.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Radial {
+pub(crate) struct Radial {
     /// f(r).
-    pub f: f64,
+    pub(crate) f: f64,
     /// f'(r)/r.
-    pub g: f64,
+    pub(crate) g: f64,
     /// g'(r)/r.
-    pub h: f64,
+    pub(crate) h: f64,
 }
 
 impl Kernel {
     /// The kernel after checking its radius: `kernel.a` must be finite and > 0.
-    pub fn validated(self) -> Result<Self, PolyError> {
+    pub(crate) fn validated(self) -> Result<Self, PolyError> {
         match self {
             Kernel::T1A { a } | Kernel::T2A { a } if !(a.is_finite() && a > 0.0) => {
                 Err(invalid("kernel.a", PolyFault::Radius { a }))
@@ -80,7 +80,7 @@ impl Kernel {
 
     /// The radial profile at distance `r` ≥ 0 (infinite for T*₁ and T*₁'s
     /// derivatives at r = 0).
-    pub fn radial(self, r: f64) -> Radial {
+    pub(crate) fn radial(self, r: f64) -> Radial {
         let pi4 = 4.0 * PI;
         match self {
             Kernel::T1 => Radial {
@@ -104,12 +104,12 @@ impl Kernel {
     }
 
     /// T*(P, Q) for d = P − Q.
-    pub fn value(self, d: Vector3<f64>) -> f64 {
+    pub(crate) fn value(self, d: Vector3<f64>) -> f64 {
         self.radial(d.norm()).f
     }
 
     /// ∇_P T*(P, Q) for d = P − Q.
-    pub fn gradient(self, d: Vector3<f64>) -> Vector3<f64> {
+    pub(crate) fn gradient(self, d: Vector3<f64>) -> Vector3<f64> {
         d * self.radial(d.norm()).g
     }
 }

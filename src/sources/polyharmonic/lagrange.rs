@@ -17,11 +17,11 @@
 use nalgebra::Vector3;
 
 /// Most points per axis of a stencil.
-pub const MAX_ORDER: usize = 8;
+pub(crate) const MAX_ORDER: usize = 8;
 
 /// Values of a function on the nodes lo + (i, j, k)·h.
 #[derive(Debug, Clone, PartialEq)]
-pub struct LagrangeGrid {
+pub(crate) struct LagrangeGrid {
     lo: Vector3<f64>,
     h: Vector3<f64>,
     n: [usize; 3],
@@ -34,7 +34,7 @@ impl LagrangeGrid {
     /// Samples `f` on the `n[0] × n[1] × n[2]` nodes from `lo`, `h` apart
     /// (in parallel: f must be a pure function of the node). `order` is
     /// clamped to 2..=[`MAX_ORDER`] and to the smallest `n`; every n ≥ 2.
-    pub fn sample(
+    pub(crate) fn sample(
         lo: Vector3<f64>,
         h: Vector3<f64>,
         n: [usize; 3],
@@ -88,7 +88,7 @@ impl LagrangeGrid {
 
     /// The interpolated value and gradient at `x` (extrapolated by the end
     /// stencils outside the grid's box).
-    pub fn value_gradient(&self, x: Vector3<f64>) -> (f64, Vector3<f64>) {
+    pub(crate) fn value_gradient(&self, x: Vector3<f64>) -> (f64, Vector3<f64>) {
         let p = self.order;
         let (i0, wx, dx) = self.axis(0, x.x);
         let (j0, wy, dy) = self.axis(1, x.y);
@@ -113,7 +113,7 @@ impl LagrangeGrid {
     }
 
     /// The interpolated value at `x`.
-    pub fn value(&self, x: Vector3<f64>) -> f64 {
+    pub(crate) fn value(&self, x: Vector3<f64>) -> f64 {
         self.value_gradient(x).0
     }
 }

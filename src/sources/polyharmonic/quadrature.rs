@@ -6,7 +6,7 @@
 //! ```
 //!
 //! and their gradients in P (with d = P − Q, ∂T*/∂n_Q = −g(r) d·n and
-//! ∇_P ∂T*/∂n_Q = −(h(r)(d·n) d + g(r) n), see [`Radial`](super::Radial)).
+//! ∇_P ∂T*/∂n_Q = −(h(r)(d·n) d + g(r) n), see [`Radial`](super::kernels::Radial)).
 //!
 //! From the element's own centre the integrals are exact (`elements`:
 //! g₁ = ∫dA/r / 4π, g₂ = ∫r dA / 8π, h₁ = h₂ = 0). Otherwise the element is
@@ -27,7 +27,7 @@ use std::f64::consts::PI;
 
 /// Deepest subdivision allowed: 2⁻¹⁶ of an element is below any distance a
 /// job's points come to the box; it bounds the work for a point on the box.
-pub const MAX_DEPTH: u32 = 16;
+pub(crate) const MAX_DEPTH: u32 = 16;
 
 /// The quadrature's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,7 +87,12 @@ impl QuadRule {
 
     /// Calls `f(Q, w)` for every quadrature point Q on the element with its
     /// area weight w, refined towards `p` as the module doc says.
-    pub fn visit(&self, el: &Element, p: Vector3<f64>, f: &mut impl FnMut(Vector3<f64>, f64)) {
+    pub(crate) fn visit(
+        &self,
+        el: &Element,
+        p: Vector3<f64>,
+        f: &mut impl FnMut(Vector3<f64>, f64),
+    ) {
         self.piece(el, el.centre, el.a, el.b, p, 0, f);
     }
 
@@ -128,26 +133,26 @@ impl QuadRule {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Influence {
     /// ∫ T*₁ dA.
-    pub g1: f64,
+    pub(crate) g1: f64,
     /// ∫ T*₂ dA.
-    pub g2: f64,
+    pub(crate) g2: f64,
     /// ∫ ∂T*₁/∂n dA.
     pub h1: f64,
     /// ∫ ∂T*₂/∂n dA.
-    pub h2: f64,
+    pub(crate) h2: f64,
 }
 
 /// ∇_P of g₁, g₂, h₁, h₂.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InfluenceGradient {
+pub(crate) struct InfluenceGradient {
     /// ∇ ∫ T*₁ dA.
-    pub g1: Vector3<f64>,
+    pub(crate) g1: Vector3<f64>,
     /// ∇ ∫ T*₂ dA.
-    pub g2: Vector3<f64>,
+    pub(crate) g2: Vector3<f64>,
     /// ∇ ∫ ∂T*₁/∂n dA.
-    pub h1: Vector3<f64>,
+    pub(crate) h1: Vector3<f64>,
     /// ∇ ∫ ∂T*₂/∂n dA.
-    pub h2: Vector3<f64>,
+    pub(crate) h2: Vector3<f64>,
 }
 
 /// Whether `p` is the element's own centre (to rounding of the box size).
@@ -180,7 +185,7 @@ pub fn influence(el: &Element, p: Vector3<f64>, q: &QuadRule) -> Influence {
 }
 
 /// ∇_P of the element's g₁, g₂, h₁, h₂ at `p` (not on the element).
-pub fn influence_gradient(el: &Element, p: Vector3<f64>, q: &QuadRule) -> InfluenceGradient {
+pub(crate) fn influence_gradient(el: &Element, p: Vector3<f64>, q: &QuadRule) -> InfluenceGradient {
     let z = Vector3::zeros();
     let mut s = InfluenceGradient {
         g1: z,

@@ -33,7 +33,7 @@ use nalgebra::Vector3;
 const ZERO: f64 = 1e-12;
 
 /// Most coarse rays.
-pub const MAX_COARSE: usize = 1_000_000;
+pub(crate) const MAX_COARSE: usize = 1_000_000;
 
 /// The rectangle and the ray settings of a relief, mm (the points' unit).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -230,12 +230,12 @@ impl Relief {
     }
 
     /// ∇h at (x, y) (a ray, then [`Relief::gradient_at`]).
-    pub fn gradient(&self, x: f64, y: f64) -> [f64; 2] {
+    pub(crate) fn gradient(&self, x: f64, y: f64) -> [f64; 2] {
         self.gradient_at(x, y, self.height(x, y))
     }
 
     /// The coarse rays that hit: ((x, y) relative to the origin, h).
-    pub fn coarse_rays(&self) -> Vec<([f64; 2], f64)> {
+    pub(crate) fn coarse_rays(&self) -> Vec<([f64; 2], f64)> {
         (0..self.coarse.len())
             .filter_map(|k| {
                 let p = [
@@ -248,7 +248,7 @@ impl Relief {
     }
 
     /// The spec.
-    pub fn spec(&self) -> &ReliefSpec {
+    pub(crate) fn spec(&self) -> &ReliefSpec {
         &self.spec
     }
 

@@ -25,14 +25,14 @@ use nalgebra::Vector3;
 use std::sync::Arc;
 
 /// The march step along a ray, mm: the thinnest piece (in z) seen.
-pub const RAY_STEP: f64 = 0.5;
+pub(crate) const RAY_STEP: f64 = 0.5;
 
 /// The coarse rays' spacing, mm: the narrowest piece (in x, y) seen away
 /// from others.
-pub const COARSE: f64 = 1.0;
+pub(crate) const COARSE: f64 = 1.0;
 
 /// Built specs kept for reuse by [`PolySpec::build_cached`].
-pub const CACHE: usize = 4;
+pub(crate) const CACHE: usize = 4;
 
 /// Interpolation nodes per smallest element side.
 const NODES_PER_ELEMENT: f64 = 5.0;
@@ -54,7 +54,7 @@ impl std::ops::Deref for PolySpec {
 
 /// What the points describe (`shape.solid`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Solid {
+pub(crate) enum Solid {
     /// A relief: only its top envelope is meant (the face).
     Relief,
     /// A closed solid: T₁ > 0 all round it within the box (checked).
@@ -87,28 +87,28 @@ impl PartialEq for PolySpec {
 #[derive(Debug, Clone, PartialEq)]
 pub struct PolyInputs {
     /// The given points.
-    pub points: Vec<GivenPoint>,
+    pub(crate) points: Vec<GivenPoint>,
     /// The load kernel.
-    pub kernel: Kernel,
+    pub(crate) kernel: Kernel,
     /// The box.
-    pub lo: Vector3<f64>,
+    pub(crate) lo: Vector3<f64>,
     /// Upper corner.
-    pub hi: Vector3<f64>,
+    pub(crate) hi: Vector3<f64>,
     /// Elements per face edge.
-    pub per_edge: usize,
+    pub(crate) per_edge: usize,
     /// The rectangle.
-    pub origin: [f64; 2],
+    pub(crate) origin: [f64; 2],
     /// Its size.
-    pub size: [f64; 2],
+    pub(crate) size: [f64; 2],
     /// The base height.
-    pub base: f64,
+    pub(crate) base: f64,
     /// Relief or closed solid.
-    pub solid: Solid,
+    pub(crate) solid: Solid,
 }
 
 impl PolySpec {
     /// Solves and builds the relief (module doc). Errors name the job key.
-    pub fn build(i: PolyInputs) -> Result<PolySpec, PolyError> {
+    pub(crate) fn build(i: PolyInputs) -> Result<PolySpec, PolyError> {
         let model = Model {
             lo: i.lo,
             hi: i.hi,
@@ -156,7 +156,7 @@ impl PolySpec {
     /// of the last [`CACHE`] built (a job is resolved, then run, simulated
     /// and meshed from the same inputs; the build is deterministic, so a
     /// cached spec is the one a new build would make).
-    pub fn build_cached(i: PolyInputs) -> Result<PolySpec, PolyError> {
+    pub(crate) fn build_cached(i: PolyInputs) -> Result<PolySpec, PolyError> {
         use std::sync::Mutex;
         static BUILT: Mutex<Vec<PolySpec>> = Mutex::new(Vec::new());
         if let Ok(cache) = BUILT.lock() {
@@ -182,15 +182,10 @@ impl PolySpec {
     /// The closed solid's surface T₁ = 0 on a grid at most `spacing` mm
     /// apart, in the points' coordinates (`closed::closed_mesh`); None for
     /// a relief.
-    pub fn closed_mesh(&self, spacing: f64) -> Option<Result<IsoMesh, PolyError>> {
+    pub(crate) fn closed_mesh(&self, spacing: f64) -> Option<Result<IsoMesh, PolyError>> {
         let region = self.built.2?;
         let sol = self.relief().field().solution();
         Some(closed_mesh(sol, self.per_edge, region, spacing))
-    }
-
-    /// The region the closed solid is meshed over (None for a relief).
-    pub fn closed_region(&self) -> Option<Region> {
-        self.built.2
     }
 
     /// max h (and where, relative to the origin) and min h = base.

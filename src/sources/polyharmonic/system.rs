@@ -35,15 +35,15 @@ use faer::Mat;
 use nalgebra::Vector3;
 
 /// Most given points.
-pub const MAX_POINTS: usize = 4000;
+pub(crate) const MAX_POINTS: usize = 4000;
 
 /// Most unknowns 2N + M: the dense matrix is (2N + M)² doubles, held twice
 /// while it is copied into faer (5000 unknowns: 2 × 200 MB).
-pub const MAX_UNKNOWNS: usize = 5000;
+pub(crate) const MAX_UNKNOWNS: usize = 5000;
 
 /// Largest condition estimate (max |Uᵢᵢ| / min |Uᵢᵢ| of the pivoted LU)
 /// accepted: beyond it the loads carry fewer than ~3 significant digits.
-pub const MAX_CONDITION: f64 = 1e13;
+pub(crate) const MAX_CONDITION: f64 = 1e13;
 
 /// What a given point is: T₁ = 0, −1 or +1 there (eq. (47)'s right side).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -58,7 +58,7 @@ pub enum PointKind {
 
 impl PointKind {
     /// The value of T₁ asked for at a point of this kind.
-    pub fn target(self) -> f64 {
+    pub(crate) fn target(self) -> f64 {
         match self {
             PointKind::Surface => 0.0,
             PointKind::Inside => -1.0,
@@ -107,9 +107,9 @@ pub struct Solution {
     /// V₂ = ∂T₂/∂n per element.
     pub v2: Vec<f64>,
     /// The load points qₖ.
-    pub centres: Vec<Vector3<f64>>,
+    pub(crate) centres: Vec<Vector3<f64>>,
     /// The loads Sₖ.
-    pub s: Vec<f64>,
+    pub(crate) s: Vec<f64>,
     /// max |Uᵢᵢ| / min |Uᵢᵢ| of the system's fully pivoted LU.
     pub condition: f64,
 }
