@@ -1162,8 +1162,7 @@ impl MeshIndex {
             let entries: usize = bounds
                 .iter()
                 .map(|t| {
-                    let (i0, i1) = (self.cell_x(t.lo[0].into()), self.cell_x(t.hi[0].into()));
-                    let (j0, j1) = (self.cell_y(t.lo[1].into()), self.cell_y(t.hi[1].into()));
+                    let (i0, i1, j0, j1) = self.cells_of(t);
                     (i1 - i0 + 1) * (j1 - j0 + 1)
                 })
                 .sum();
@@ -1181,8 +1180,7 @@ impl MeshIndex {
         // Counting sort into the cells, then each cell's items by rank.
         let mut count = vec![0usize; self.nx * self.ny + 1];
         for t in bounds {
-            let (i0, i1) = (self.cell_x(t.lo[0].into()), self.cell_x(t.hi[0].into()));
-            let (j0, j1) = (self.cell_y(t.lo[1].into()), self.cell_y(t.hi[1].into()));
+            let (i0, i1, j0, j1) = self.cells_of(t);
             for j in j0..=j1 {
                 for i in i0..=i1 {
                     count[j * self.nx + i + 1] += 1;
@@ -1195,8 +1193,7 @@ impl MeshIndex {
         let mut fill = count.clone();
         let mut items = vec![0u32; count[count.len() - 1]];
         for (ti, t) in bounds.iter().enumerate() {
-            let (i0, i1) = (self.cell_x(t.lo[0].into()), self.cell_x(t.hi[0].into()));
-            let (j0, j1) = (self.cell_y(t.lo[1].into()), self.cell_y(t.hi[1].into()));
+            let (i0, i1, j0, j1) = self.cells_of(t);
             // ti < MAX_TRIANGLES = 2³⁰, so ti·4 + rank fits in a u32.
             let base = (ti as u32) << 2;
             for j in j0..=j1 {
@@ -1241,6 +1238,16 @@ impl MeshIndex {
     /// that of its first cell.
     fn block_corner(&self, bi: usize, bj: usize) -> [f64; 2] {
         self.cell_corner(bj * BLOCK * self.nx + bi * BLOCK)
+    }
+
+    /// The cells (i0, i1, j0, j1) a triangle's box spans, clamped to the grid.
+    fn cells_of(&self, t: &Bounds) -> (usize, usize, usize, usize) {
+        (
+            self.cell_x(t.lo[0].into()),
+            self.cell_x(t.hi[0].into()),
+            self.cell_y(t.lo[1].into()),
+            self.cell_y(t.hi[1].into()),
+        )
     }
 
     fn cell_x(&self, x: f64) -> usize {
