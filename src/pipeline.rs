@@ -774,10 +774,18 @@ pub fn section_view(
 }
 
 /// The finisher's drop-cutter index over the part's triangles (built at
-/// [`FINISH_MESH`]): cells of four mesh spacings.
-pub(crate) fn finish_index(tris: Vec<[[f64; 3]; 3]>) -> crate::toolpath::dropcutter::MeshIndex {
+/// [`FINISH_MESH`]): cells of four mesh spacings. A triangle the index would
+/// leave out is an error: the drops would not see that part of the surface.
+pub(crate) fn finish_index(
+    tris: Vec<[[f64; 3]; 3]>,
+) -> Result<crate::toolpath::dropcutter::MeshIndex, Internal> {
     let _stage = crate::count::enter(crate::count::Stage::FinishMesh);
-    crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * FINISH_MESH)
+    let total = tris.len();
+    let index = crate::toolpath::dropcutter::MeshIndex::new(tris, 4.0 * FINISH_MESH);
+    match index.skipped() {
+        0 => Ok(index),
+        left_out => Err(Internal::FinishMeshLeftOut { left_out, total }),
+    }
 }
 
 /// S2's mesh is built this fine (mm) for the finisher's drop-cutter: as fine
@@ -845,7 +853,7 @@ fn finish_program(
         || finish_index(up),
         || crate::finish::plan_passes(job, f, field, glyphs, grid, h),
     );
-    let done = crate::finish::finish(job, f, field, plan?, &index, walls)?;
+    let done = crate::finish::finish(job, f, field, plan?, &index?, walls)?;
     progress(Progress::Step);
     Ok(done)
 }
@@ -1135,6 +1143,36 @@ mod tests {
         assert!(
             m.ends_with("(this is a pfcam bug, please report it)"),
             "{m}"
+        );
+    }
+
+    /// The finisher refuses a mesh with triangles its index would leave out
+    /// (here one corner NaN, one infinite) rather than drop the cutter as if
+    /// that part of the surface were not there; a finite mesh passes.
+    #[test]
+    fn the_finishing_index_refuses_a_mesh_it_would_not_see_whole() {
+        let tri = |z: f64| [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, z]];
+        let good = vec![tri(0.0), tri(0.5), tri(1.0)];
+        let index = finish_index(good.clone()).expect("a finite mesh is indexed");
+        assert_eq!(index.len(), 3);
+        let mut bad = good;
+        bad.push(tri(f64::NAN));
+        bad.push(tri(f64::INFINITY));
+        let e = finish_index(bad).map(|_| ()).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Internal::FinishMeshLeftOut {
+                    left_out: 2,
+                    total: 5
+                }
+            ),
+            "{e:?}"
+        );
+        assert_eq!(
+            PipelineError::from(e).to_string(),
+            "internal error: 2 of the 5 triangles of the part's finishing mesh have a coordinate \
+             that is not finite (this is a pfcam bug, please report it)"
         );
     }
 }

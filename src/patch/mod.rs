@@ -133,7 +133,7 @@ fn finish_patch(
         .filter(|c| c.iter().any(|v| v[2] > z_floor + 1e-9))
         .map(crate::surface::triangle_area)
         .sum();
-    let index = crate::pipeline::finish_index(tris);
+    let index = crate::pipeline::finish_index(tris)?;
     // A patch's floor is only round it; a relief's base is also its own flat
     // top between the rectangle's edges and the solid's rim, which the
     // levels leave stepped: the ball finishes it too, so only below the base

@@ -25,6 +25,16 @@ pub enum Internal {
     /// A height field that the job's resolve built once fails to build again.
     #[error("the height field of a resolved job: {0}")]
     HeightField(#[source] HarmonicError),
+    /// The finisher's mesh of the part had triangles the drop-cutter's index
+    /// leaves out (a coordinate not finite): finishing without them could cut
+    /// into the part there.
+    #[error("{left_out} of the {total} triangles of the part's finishing mesh have a coordinate that is not finite")]
+    FinishMeshLeftOut {
+        /// Triangles left out.
+        left_out: usize,
+        /// Triangles in the mesh.
+        total: usize,
+    },
     /// The tube's part could not be meshed.
     #[error(transparent)]
     TubeMesh(#[from] TubeMeshError),

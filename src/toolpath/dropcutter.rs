@@ -1054,7 +1054,6 @@ pub struct MeshIndex {
     bnx: usize,
     blocks: Vec<Bounds>,
     block_planes: Vec<CellPlane>,
-    #[cfg(test)]
     skipped: usize,
 }
 
@@ -1066,9 +1065,9 @@ impl MeshIndex {
     /// [`MAX_ENTRIES_PER_TRIANGLE`]·n + [`MAX_CELLS`] entries. For drops a cell
     /// near the tool radius is a good choice. Triangles with a coordinate that
     /// is not finite, and any beyond the first [`MAX_TRIANGLES`], are left out
-    /// (the unit tests count them).
+    /// and counted ([`MeshIndex::skipped`]): a caller that must not lose
+    /// part of its surface refuses such an index.
     pub fn new(triangles: Vec<[[f64; 3]; 3]>, cell: f64) -> MeshIndex {
-        #[cfg(test)]
         let total = triangles.len();
         // In place: the caller's buffer becomes the index's corners.
         let mut tris = triangles;
@@ -1096,7 +1095,6 @@ impl MeshIndex {
             bnx: 0,
             blocks: Vec::new(),
             block_planes: Vec::new(),
-            #[cfg(test)]
             skipped: total - tris.len(),
         };
         if tris.is_empty() {
@@ -1219,8 +1217,8 @@ impl MeshIndex {
         self.tris.len()
     }
 
-    /// Triangles left out because a coordinate was not finite.
-    #[cfg(test)]
+    /// Triangles left out: a coordinate was not finite, or they came after
+    /// the first [`MAX_TRIANGLES`].
     pub(crate) fn skipped(&self) -> usize {
         self.skipped
     }

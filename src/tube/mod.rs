@@ -80,7 +80,7 @@ fn finish_tube(
     let s = mesh::tube_mesh(tube, job.stock.top, fine, stock).map_err(Internal::from)?;
     let tris = s.mesh.up_triangles();
     let area = crate::finish::wall_area(&tris);
-    let index = crate::pipeline::finish_index(tris);
+    let index = crate::pipeline::finish_index(tris)?;
     let contacts = ring_contacts::Rings::new(tube, tube.points(), f.radius())?;
     let part = rings::RingPart {
         tube,
