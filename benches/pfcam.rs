@@ -158,6 +158,46 @@ fn field_eval_fast(c: &mut Criterion) {
         g.bench_function(format!("{name}, N = {n}: u and grad u, warm"), |b| {
             b.iter(|| sum(black_box(f)))
         });
+        // A grid's rows (0.1 mm apart, as S2's mesh for the finisher): u one
+        // point at a time, and by `Field::values`, which sums the
+        // expansions of consecutive points in one box side by side (the
+        // same bits).
+        let rows: Vec<Vec<Vec2>> = (0..8)
+            .map(|j| {
+                let y = lo.y + (j as f64 + 0.5) * (hi.y - lo.y) / 8.0;
+                (0..512)
+                    .map(|i| Vec2::new(lo.x - 4.0 + 0.1 * i as f64, y))
+                    .collect()
+            })
+            .collect();
+        let grid_pairs = (n * rows.iter().map(Vec::len).sum::<usize>()) as u64;
+        g.throughput(Throughput::Elements(grid_pairs));
+        g.bench_function(
+            format!("{name}, N = {n}: u on grid rows, one at a time, warm"),
+            |b| {
+                b.iter(|| {
+                    rows.iter()
+                        .flatten()
+                        .map(|&p| black_box(f).value(p))
+                        .sum::<f64>()
+                })
+            },
+        );
+        g.bench_function(
+            format!("{name}, N = {n}: u on grid rows, Field::values, warm"),
+            |b| {
+                let mut out = vec![0.0; 512];
+                b.iter(|| {
+                    rows.iter()
+                        .map(|r| {
+                            black_box(f).values(r, &mut out);
+                            out.iter().sum::<f64>()
+                        })
+                        .sum::<f64>()
+                })
+            },
+        );
+        g.throughput(Throughput::Elements((n * points.len()) as u64));
         g.bench_function(format!("{name}, N = {n}: u and grad u, cold"), |b| {
             b.iter(|| sum(&black_box(f).direct().accelerated_around(lo, hi)))
         });

@@ -653,12 +653,11 @@ impl StockGrid {
         for (b, chunk) in values.chunks_mut(nx * BLOCK).enumerate() {
             chunk.par_chunks_mut(nx).enumerate().for_each(|(r, row)| {
                 let j = b * BLOCK + r;
-                for (i, v) in row.iter_mut().enumerate() {
-                    *v = if inside[j * nx + i] {
-                        1.0
-                    } else {
-                        sj.field.value(Vec2::new(xs[i], ys[j])).min(ONE_BELOW)
-                    };
+                let inside = &inside[j * nx..(j + 1) * nx];
+                sj.field
+                    .values_where(row, inside, |i| Vec2::new(xs[i], ys[j]));
+                for (v, &m) in row.iter_mut().zip(inside) {
+                    *v = if m { 1.0 } else { v.min(ONE_BELOW) };
                 }
             });
             progress(Progress::Step);

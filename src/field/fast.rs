@@ -29,6 +29,26 @@ pub const ABS_TOL: f64 = 1e-15;
 /// Largest expansion order (a box needing more evaluates directly).
 pub const MAX_ORDER: usize = 90;
 
+/// Points whose expansions [`Accel::sums_many`] evaluates side by side.
+pub const LANES: usize = 4;
+
+/// The raw sums at `p` in `cell` from the far part's F (`f`) and F′ (`df`)
+/// at p: Re F plus the near charges' c log|p − q|, and conj(F′) plus their
+/// c (p − q)/|p − q|².
+fn near_sums(cell: &Cell, charges: &[Vec2], coef: &[f64], p: Vec2, f: C, df: C) -> (f64, Vec2) {
+    let (mut s, mut gx, mut gy) = (f.re, df.re, -df.im);
+    for &i in &cell.near {
+        let (q, c) = (charges[i as usize], coef[i as usize]);
+        let d = p - q;
+        let r2 = d.norm2();
+        s += 0.5 * c * r2.ln();
+        let w = c / r2;
+        gx += w * d.x;
+        gy += w * d.y;
+    }
+    (s, Vec2::new(gx, gy))
+}
+
 /// A minimal complex number (only what the expansions need).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct C {
@@ -144,18 +164,49 @@ impl Accel {
             df = df.mul(t).add(f);
             f = f.mul(t).add(cell.a[j]);
         }
-        // Re F_far is the potential sum, conj(F′_far) the gradient sum.
-        let (mut s, mut gx, mut gy) = (f.re, df.re, -df.im);
-        for &i in &cell.near {
-            let (q, c) = (charges[i as usize], coef[i as usize]);
-            let d = p - q;
-            let r2 = d.norm2();
-            s += 0.5 * c * r2.ln();
-            let w = c / r2;
-            gx += w * d.x;
-            gy += w * d.y;
+        Some(near_sums(cell, charges, coef, p, f, df))
+    }
+
+    /// [`Accel::sums`] at each of `ps`, into `out` (one per point). Each
+    /// point gets the same operations in the same order, so the same bits;
+    /// where [`LANES`] consecutive points fall in one box their Horner chains
+    /// run interleaved, which a single point's chain, each step waiting on
+    /// the one before, cannot.
+    pub fn sums_many(
+        &self,
+        charges: &[Vec2],
+        coef: &[f64],
+        ps: &[Vec2],
+        out: &mut [Option<(f64, Vec2)>],
+    ) {
+        for (ps, out) in ps.chunks(LANES).zip(out.chunks_mut(LANES)) {
+            let leaf = self.leaf_of(ps[0]);
+            let same = ps.len() == LANES && ps.iter().all(|&p| self.leaf_of(p) == leaf);
+            let cell = match leaf {
+                Some((i, j)) if same => self.cell(self.levels.len() - 1, i, j, charges, coef),
+                _ => None,
+            };
+            let Some(cell) = cell else {
+                for (o, &p) in out.iter_mut().zip(ps) {
+                    *o = self.sums(charges, coef, p);
+                }
+                continue;
+            };
+            let t: [C; LANES] =
+                std::array::from_fn(|l| C::new(ps[l].x - cell.centre.x, ps[l].y - cell.centre.y));
+            let n = cell.a.len();
+            let (mut f, mut df) = ([cell.a[n - 1]; LANES], [C::default(); LANES]);
+            for j in (0..n - 1).rev() {
+                for l in 0..LANES {
+                    df[l] = df[l].mul(t[l]).add(f[l]);
+                    f[l] = f[l].mul(t[l]).add(cell.a[j]);
+                }
+            }
+            for l in 0..LANES {
+                crate::count::eval(cell.near.len(), n);
+                out[l] = Some(near_sums(cell, charges, coef, ps[l], f[l], df[l]));
+            }
         }
-        Some((s, Vec2::new(gx, gy)))
     }
 
     /// Box (i, j) of level `l`, built (with its ancestors) on first use.

@@ -134,10 +134,11 @@ impl Grid {
             .zip(inside.par_chunks(nx))
             .enumerate()
             .for_each(|(j, (row, mrow))| {
-                for (i, (v, &m)) in row.iter_mut().zip(mrow).enumerate() {
-                    let p = Vec2::new(lo.x + h * i as f64, lo.y + h * j as f64);
-                    *v = if m { 1.0 } else { field.value(p) };
+                for (v, &m) in row.iter_mut().zip(mrow) {
+                    *v = if m { 1.0 } else { 0.0 };
                 }
+                let at = |i: usize| Vec2::new(lo.x + h * i as f64, lo.y + h * j as f64);
+                field.values_where(row, mrow, at);
             });
         Grid {
             origin: lo,

@@ -367,6 +367,21 @@ fn local_expansions_match_the_direct_sums() {
             du = du.max((u1 - u0).abs());
             dg = dg.max((g1 - g0).norm());
         }
+        // `Field::values` gives `value`'s bits, on the random points (box
+        // by box apart) and on rows 0.05·h apart (four to a box, side by
+        // side), 1001 a row so the last run is short; direct fields too.
+        let mut rows = points.clone();
+        for k in 0..6 {
+            let y = lo.y + (hi.y - lo.y) * (k as f64 + 0.5) / 6.0;
+            rows.extend((0..1001).map(|i| Vec2::new(lo.x - pad.x + 0.05 * h * i as f64, y)));
+        }
+        for f in [&fast, &direct] {
+            let mut batch = vec![0.0; rows.len()];
+            f.values(&rows, &mut batch);
+            for (&p, v) in rows.iter().zip(&batch) {
+                assert_eq!(v.to_bits(), f.value(p).to_bits(), "{ch}: values at {p:?}");
+            }
+        }
         assert!(du <= 1e-12 * umax, "{ch}: |Δu| {du:e}, max |u| {umax}");
         assert!(dg <= 1e-12 * gmax, "{ch}: |Δ∇u| {dg:e}, max |∇u| {gmax}");
         eprintln!(
