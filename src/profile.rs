@@ -279,7 +279,7 @@ impl DepthProfile {
     }
 }
 
-/// Index i of the interval [xs[i], xs[i+1]] holding s.
+/// Index i of the interval `[xs[i], xs[i+1]]` holding s.
 fn segment(xs: &[f64], s: f64) -> usize {
     let n = xs.len();
     match xs.binary_search_by(|v| v.total_cmp(&s)) {

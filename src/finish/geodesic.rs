@@ -371,7 +371,7 @@ fn chunk_ranges(d: &[f64], nx: usize, ny: usize) -> (Vec<(f64, f64)>, usize) {
 }
 
 /// The segments of level `c` in one cell with corner values `v` (counter-
-/// clockwise) and edges `e` (e[m] joins corners m and m + 1): the first `n`
+/// clockwise) and edges `e` (`e[m]` joins corners m and m + 1): the first `n`
 /// of the pair returned.
 fn cell_segments(v: [f64; 4], c: f64, e: [usize; 4]) -> ([[usize; 2]; 2], usize) {
     let above = v.map(|x| x >= c);

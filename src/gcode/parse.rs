@@ -712,7 +712,7 @@ impl ModalState {
         }
     }
 
-    /// G43.1 Z<offset> sets a tool length offset and G49 clears it: the Z word
+    /// `G43.1 Z<offset>` sets a tool length offset and G49 clears it: the Z word
     /// is the offset, not a move, and the work Z position is no longer known.
     /// Whether the block has either.
     fn apply_tool_length(&mut self, b: &BlockWords) -> Result<bool, BlockError> {

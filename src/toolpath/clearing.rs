@@ -209,7 +209,7 @@ pub(crate) fn first_loop_pieces(
 /// whole loop when none is, nothing when all are, else the runs of the others
 /// (cyclically), each extended by one point at both ends (so that a ring
 /// clipped to the stock starts and ends where the tool is clear of it,
-/// [`clip_ring`](super::zlevel::clip_ring)).
+/// [`super::zlevel::clip_ring`]).
 pub(super) fn runs_between(l: &[Vec2], air: &[bool]) -> Vec<(Vec<Vec2>, bool)> {
     let n = air.len();
     if !air.iter().any(|&a| a) {

@@ -206,7 +206,7 @@ impl Dropper<'_> {
 }
 
 /// One ring at height `z` (relative): the tip over every contact
-/// ([`ring_contacts`]: the curve's samples, with a slot its sides and
+/// ([`super::ring_contacts`]: the curve's samples, with a slot its sides and
 /// corners), in the cutting direction (`None` where the normal or the drop
 /// is not defined), each with its contact's key, and the free-space
 /// direction at its start.

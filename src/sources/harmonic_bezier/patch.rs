@@ -7,7 +7,7 @@
 //!
 //! h(x, y) = Σ_{i=0}^{m} Σ_{j=0}^{n} P_ij B_i^m(y/Y) B_j^n(x/X),
 //!
-//! with P_{0,j} = row0[j], P_{m,j} = row1[j] and the inner P_ij from the
+//! with P_{0,j} = `row0[j]`, P_{m,j} = `row1[j]` and the inner P_ij from the
 //! mould. The patch is harmonic in the parameter plane, h_uu + h_vv = 0; in
 //! mm, h_yy Y² + h_xx X² = 0 (harmonic in (x, y) itself only when X = Y).
 //! Because Bézier nets have linear precision, the 3D points (jX/n, iY/m,
