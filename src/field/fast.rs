@@ -167,7 +167,8 @@ impl Accel {
         Some(near_sums(cell, charges, coef, p, f, df))
     }
 
-    /// [`Accel::sums`] at each of `ps`, into `out` (one per point). Each
+    /// [`Accel::sums`] at each of `ps`, into `out` (one per point; a longer
+    /// `out` keeps the rest, a shorter one takes the first points). Each
     /// point gets the same operations in the same order, so the same bits;
     /// where [`LANES`] consecutive points fall in one box their Horner chains
     /// run interleaved, which a single point's chain, each step waiting on
@@ -179,7 +180,8 @@ impl Accel {
         ps: &[Vec2],
         out: &mut [Option<(f64, Vec2)>],
     ) {
-        for (ps, out) in ps.chunks(LANES).zip(out.chunks_mut(LANES)) {
+        let n = ps.len().min(out.len());
+        for (ps, out) in ps[..n].chunks(LANES).zip(out[..n].chunks_mut(LANES)) {
             let leaf = self.leaf_of(ps[0]);
             let same = ps.len() == LANES && ps.iter().all(|&p| self.leaf_of(p) == leaf);
             let cell = match leaf {

@@ -212,7 +212,8 @@ impl Field {
         Vec2::new(-INV_2PI * self.gain * gx, -INV_2PI * self.gain * gy)
     }
 
-    /// u at each of `ps`, into `out`: [`Field::value`]'s bits, faster for
+    /// u at each of `ps`, into `out` (as far as the shorter of the two
+    /// goes): [`Field::value`]'s bits, faster for
     /// runs of nearby points (a grid's row): their expansions are summed side
     /// by side ([`super::fast::Accel::sums_many`]).
     pub fn values(&self, ps: &[Vec2], out: &mut [f64]) {
@@ -232,10 +233,11 @@ impl Field {
     }
 
     /// u at `at(i)` into `out[i]` for every i where `skip[i]` is false (a
-    /// row of a grid, without its points in the material); the others are
-    /// left as they are. The bits of [`Field::value`], by [`Field::values`].
+    /// row of a grid, without its points in the material); the others, and
+    /// any i past `skip`'s end, are left as they are. The bits of
+    /// [`Field::value`], by [`Field::values`].
     pub fn values_where(&self, out: &mut [f64], skip: &[bool], at: impl Fn(usize) -> Vec2) {
-        let (idx, ps): (Vec<usize>, Vec<Vec2>) = (0..out.len())
+        let (idx, ps): (Vec<usize>, Vec<Vec2>) = (0..out.len().min(skip.len()))
             .filter(|&i| !skip[i])
             .map(|i| (i, at(i)))
             .unzip();

@@ -381,6 +381,14 @@ fn local_expansions_match_the_direct_sums() {
             for (&p, v) in rows.iter().zip(&batch) {
                 assert_eq!(v.to_bits(), f.value(p).to_bits(), "{ch}: values at {p:?}");
             }
+            // Lengths that do not match fill what both cover, and no more.
+            let mut short = vec![-1.0; 7];
+            f.values(&rows[1000..1010], &mut short);
+            assert_eq!(short[6].to_bits(), f.value(rows[1006]).to_bits());
+            let mut long = vec![-1.0; 9];
+            f.values_where(&mut long, &[false; 6], |i| rows[1000 + i]);
+            assert_eq!(long[5].to_bits(), f.value(rows[1005]).to_bits());
+            assert_eq!(long[6..], [-1.0; 3]);
         }
         assert!(du <= 1e-12 * umax, "{ch}: |Δu| {du:e}, max |u| {umax}");
         assert!(dg <= 1e-12 * gmax, "{ch}: |Δ∇u| {dg:e}, max |∇u| {gmax}");
