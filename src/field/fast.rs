@@ -49,6 +49,21 @@ fn near_sums(cell: &Cell, charges: &[Vec2], coef: &[f64], p: Vec2, f: C, df: C) 
     (s, Vec2::new(gx, gy))
 }
 
+/// The far part's F and F′ at offsets `t` from a box's centre, by Horner's
+/// scheme on its coefficients `a`: the L chains interleaved, each lane the
+/// same operations in the same order as a chain on its own.
+fn horner<const L: usize>(a: &[C], t: [C; L]) -> ([C; L], [C; L]) {
+    let n = a.len();
+    let (mut f, mut df) = ([a[n - 1]; L], [C::default(); L]);
+    for j in (0..n - 1).rev() {
+        for l in 0..L {
+            df[l] = df[l].mul(t[l]).add(f[l]);
+            f[l] = f[l].mul(t[l]).add(a[j]);
+        }
+    }
+    (f, df)
+}
+
 /// A minimal complex number (only what the expansions need).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct C {
@@ -86,6 +101,13 @@ struct Cell {
     centre: Vec2,
     near: Vec<u32>,
     a: Vec<C>,
+}
+
+impl Cell {
+    /// z − z_B for the point `p`.
+    fn offset(&self, p: Vec2) -> C {
+        C::new(p.x - self.centre.x, p.y - self.centre.y)
+    }
 }
 
 /// One level of the hierarchy: boxes `scale` times the leaves' side.
@@ -156,14 +178,7 @@ impl Accel {
         let (i, j) = self.leaf_of(p)?;
         let cell = self.cell(self.levels.len() - 1, i, j, charges, coef)?;
         crate::count::eval(cell.near.len(), cell.a.len());
-        // Far part: Horner on a and on its derivative.
-        let t = C::new(p.x - cell.centre.x, p.y - cell.centre.y);
-        let n = cell.a.len();
-        let (mut f, mut df) = (cell.a[n - 1], C::default());
-        for j in (0..n - 1).rev() {
-            df = df.mul(t).add(f);
-            f = f.mul(t).add(cell.a[j]);
-        }
+        let ([f], [df]) = horner(&cell.a, [cell.offset(p)]);
         Some(near_sums(cell, charges, coef, p, f, df))
     }
 
@@ -194,18 +209,10 @@ impl Accel {
                 }
                 continue;
             };
-            let t: [C; LANES] =
-                std::array::from_fn(|l| C::new(ps[l].x - cell.centre.x, ps[l].y - cell.centre.y));
-            let n = cell.a.len();
-            let (mut f, mut df) = ([cell.a[n - 1]; LANES], [C::default(); LANES]);
-            for j in (0..n - 1).rev() {
-                for l in 0..LANES {
-                    df[l] = df[l].mul(t[l]).add(f[l]);
-                    f[l] = f[l].mul(t[l]).add(cell.a[j]);
-                }
-            }
+            let t: [C; LANES] = std::array::from_fn(|l| cell.offset(ps[l]));
+            let (f, df) = horner(&cell.a, t);
             for l in 0..LANES {
-                crate::count::eval(cell.near.len(), n);
+                crate::count::eval(cell.near.len(), cell.a.len());
                 out[l] = Some(near_sums(cell, charges, coef, ps[l], f[l], df[l]));
             }
         }

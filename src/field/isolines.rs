@@ -135,7 +135,9 @@ impl Grid {
             .enumerate()
             .for_each(|(j, (row, mrow))| {
                 for (v, &m) in row.iter_mut().zip(mrow) {
-                    *v = if m { 1.0 } else { 0.0 };
+                    if m {
+                        *v = 1.0;
+                    }
                 }
                 let at = |i: usize| Vec2::new(lo.x + h * i as f64, lo.y + h * j as f64);
                 field.values_where(row, mrow, at);
