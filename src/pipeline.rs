@@ -386,13 +386,20 @@ pub fn solve_shape(
     }
     let mut solved = solved;
     solved.solution.field = accelerate(&solved.solution.field, shape);
+    let mut label = shape
+        .regions
+        .iter()
+        .map(|r| r.name.clone())
+        .collect::<Vec<_>>()
+        .join(" ");
+    if solved.solution.moved > 0 {
+        label += &format!(
+            " ({} charges moved off the boundary's points)",
+            solved.solution.moved
+        );
+    }
     let report = SolveReport {
-        label: shape
-            .regions
-            .iter()
-            .map(|r| r.name.clone())
-            .collect::<Vec<_>>()
-            .join(" "),
+        label,
         n: solved.layout.n_total,
         m: solved.m,
         distance: solved.layout.distance,

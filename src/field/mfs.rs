@@ -50,6 +50,9 @@ pub struct Problem {
     /// Check points (between collocation points, and every corner) on which the
     /// max boundary error is measured; never used in the fit.
     pub checks: Vec<Condition>,
+    /// Charges the layout's guard moved off a collocation or check point
+    /// (`setup::MIN_SEPARATION`); 0 when the layout kept them apart itself.
+    pub moved: usize,
 }
 
 /// A solved potential field u(P) = gain · Σ cₙ k(P, Qₙ), optionally with
@@ -82,6 +85,9 @@ pub struct Solution {
     /// Whether the plain least-squares solution was used (condition below
     /// [`MAX_CONDITION`]); false for the truncated fallback.
     pub well_conditioned: bool,
+    /// Charges the layout's guard moved off a collocation or check point
+    /// ([`Problem::moved`]).
+    pub moved: usize,
 }
 
 impl Solution {
@@ -342,7 +348,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     }
     let field = Field::new(problem.charges.clone(), coef);
     let max_error = max_error(&field, &problem.checks);
-    if max_error.is_nan() {
+    if !max_error.is_finite() {
         return Err(FieldError::NotANumberAtCheck);
     }
     Ok(Solution {
@@ -350,6 +356,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
         max_error,
         condition,
         well_conditioned,
+        moved: problem.moved,
     })
 }
 

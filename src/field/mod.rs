@@ -378,7 +378,7 @@ pub enum FieldError {
     #[error("the MFS solve gave coefficients that are not numbers")]
     NonFiniteCoefficients,
     /// The solved field is NaN at a check point.
-    #[error("the field is not a number at a check point (a check point on a singularity?)")]
+    #[error("the field is not a finite number at a check point (a check point on a singularity?)")]
     NotANumberAtCheck,
     /// No candidate layout was tried, so none was solved.
     #[error("no layout could be solved")]

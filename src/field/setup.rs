@@ -67,6 +67,19 @@ pub const SINK_CHARGE_FACTOR: f64 = 0.25;
 /// (the tapered spacing of Gopal & Trefethen's lightning solvers, σ = 4 there).
 pub const CLUSTER_SIGMA: f64 = 4.0;
 
+/// The innermost corner charge stays at least this fraction of the cluster's
+/// depth from the corner: the tapered distances δ₁ = δ_max·exp(−σ(√n − 1))
+/// fall below a double's resolution of the corner's coordinates by n ≈ 90
+/// (DejaVu Serif "e" at N = 2 000 put a charge exactly on its corner, and the
+/// field was NaN there). [`cluster_cap`] is the largest n that keeps δ₁ above
+/// this; the charges past it go to the pseudo-boundary.
+pub const CLUSTER_FLOOR: f64 = 1e-10;
+
+/// No charge of the material is closer than this fraction of the outer
+/// radius to any collocation or check point ([`separate`] moves one that is,
+/// and the solve reports it): the kernel is −log 0 there.
+pub const MIN_SEPARATION: f64 = 1e-15;
+
 /// The generating boundary of a field: contours with the material on their left
 /// (outlines counter-clockwise, counters clockwise), u = `value` on each.
 #[derive(Clone, Debug)]
@@ -395,6 +408,7 @@ impl Prepared {
         let mut colloc_s = self.contour_charges(&mut pr, &shares, layout);
         self.corner_clusters(&mut pr, &mut colloc_s, n.pairs, n.single);
         self.check_points(&mut pr, &colloc_s, n.checks);
+        pr.moved = self.separate(&mut pr);
         // Circles: outer (u = 0) and sinks (u = 0).
         let outer = self.outer.then(|| {
             circle(
@@ -466,9 +480,9 @@ impl Prepared {
             0
         };
         let (pairs, single) = if layout.pairs && n_corner_each >= PAIR_MIN {
-            (n_corner_each / 2, 0)
+            ((n_corner_each / 2).min(cluster_cap()), 0)
         } else {
-            (0, n_corner_each)
+            (0, n_corner_each.min(cluster_cap()))
         };
         let n_corner_total = (2 * pairs + single) * self.corners.len();
         Ok(Counts {
@@ -637,6 +651,79 @@ impl Prepared {
     }
 }
 
+impl Prepared {
+    /// Move every charge closer than [`MIN_SEPARATION`] × R to a collocation
+    /// or check point away from it, into the material (a backstop: the
+    /// layout keeps them apart by construction, [`cluster_cap`]); returns how
+    /// many were moved.
+    fn separate(&self, pr: &mut Problem) -> usize {
+        let tau = MIN_SEPARATION * self.boundary.radius;
+        let points = PointSweep::new(pr.colloc.iter().chain(&pr.checks).map(|c| c.p));
+        let mut moved = 0;
+        for q in &mut pr.charges {
+            let Some(p) = points.within(*q, tau) else {
+                continue;
+            };
+            let away = (*q - p).normalized();
+            let dirs = std::iter::once(away).chain((0..16).map(|k| {
+                let a = TAU * k as f64 / 16.0;
+                Vec2::new(a.cos(), a.sin())
+            }));
+            for d in dirs.filter(|d| d.norm2() > 0.5) {
+                let cand = p + d * (4.0 * tau);
+                if self.in_material(cand) && points.within(cand, tau).is_none() {
+                    *q = cand;
+                    moved += 1;
+                    break;
+                }
+            }
+        }
+        moved
+    }
+}
+
+/// The least distance from a charge of `pr` to any of its collocation or
+/// check points, looked for within `reach` (infinity when none is closer).
+pub fn min_separation(pr: &Problem, reach: f64) -> f64 {
+    PointSweep::new(pr.colloc.iter().chain(&pr.checks).map(|c| c.p))
+        .min_distance(&pr.charges, reach)
+}
+
+/// Points sorted by x, for "is any within r of q" with r small.
+pub(crate) struct PointSweep {
+    pts: Vec<Vec2>,
+}
+
+impl PointSweep {
+    /// Index the points (non-finite ones are left out).
+    pub(crate) fn new(points: impl Iterator<Item = Vec2>) -> PointSweep {
+        let mut pts: Vec<Vec2> = points
+            .filter(|p| p.x.is_finite() && p.y.is_finite())
+            .collect();
+        pts.sort_by(|a, b| a.x.total_cmp(&b.x));
+        PointSweep { pts }
+    }
+
+    /// The nearest indexed point within `r` of `q`, if any.
+    pub(crate) fn within(&self, q: Vec2, r: f64) -> Option<Vec2> {
+        let start = self.pts.partition_point(|p| p.x < q.x - r);
+        self.pts[start..]
+            .iter()
+            .take_while(|p| p.x <= q.x + r)
+            .filter(|p| p.dist(q) <= r)
+            .min_by(|a, b| a.dist(q).total_cmp(&b.dist(q)))
+            .copied()
+    }
+
+    /// The least distance from any of `qs` to an indexed point, looked for
+    /// within `r` (infinity when none is that close).
+    pub(crate) fn min_distance(&self, qs: &[Vec2], r: f64) -> f64 {
+        qs.iter()
+            .filter_map(|&q| self.within(q, r).map(|p| p.dist(q)))
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
 /// How a layout's singularities are shared out (see `Prepared::counts`).
 struct Counts {
     /// Charges per sink.
@@ -687,6 +774,13 @@ fn cluster_distances(depth: f64, n: usize) -> Vec<f64> {
     (1..=n)
         .map(|j| depth * (-CLUSTER_SIGMA * (nn - (j as f64).sqrt())).exp())
         .collect()
+}
+
+/// The most tapered distances a corner cluster takes: the largest n with
+/// exp(−σ(√n − 1)) ≥ [`CLUSTER_FLOOR`] (45 at σ = 4, 1e-10).
+pub fn cluster_cap() -> usize {
+    let root = 1.0 + (1.0 / CLUSTER_FLOOR).ln() / CLUSTER_SIGMA;
+    (root * root).floor() as usize
 }
 
 /// `v` turned counter-clockwise by `angle` radians.

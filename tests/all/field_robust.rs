@@ -130,3 +130,98 @@ fn two_hundred_shapes_under_random_motions_never_refuse() {
     }
     eprintln!("worst error ratio after a motion: {worst_ratio:.3}");
 }
+
+/// The shape field's boundary of one character of a test font at 50 mm, set
+/// up as a job's (`pipeline::boundary_for` at the default tolerance's
+/// flattening).
+fn glyph_boundary(font: &str, ch: char) -> field::Boundary {
+    let path = crate::common::test_data(font);
+    let text = format!(
+        "[shape]\ntext = {:?}\nfont = {:?}\nheight = 50.0\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"profile\"\ndepth = 3.0\n",
+        ch.to_string(),
+        path.display().to_string()
+    );
+    let job = pfcam::job::parse_job(&text, "glyph", std::path::Path::new("."))
+        .unwrap_or_else(|e| panic!("{font} {ch}: {e}"));
+    let (shape, _) = pfcam::pipeline::job_shape(&job, &mut |_| {})
+        .unwrap_or_else(|e| panic!("{font} {ch}: {e}"));
+    boundary_for(&shape, job.operation.tolerance * 0.25)
+        .unwrap_or_else(|e| panic!("{font} {ch}: {e}"))
+}
+
+/// The paired layout a job solves with at N charges (d = 2h).
+fn paired(prep: &Prepared, n: usize) -> field::Layout {
+    field::Layout {
+        n_total: n,
+        distance: 2.0 * prep.perimeter() / n as f64,
+        corner_clusters: true,
+        corner_fraction: field::DEFAULT_CORNER_FRACTION,
+        pairs: true,
+    }
+}
+
+const DEJAVU: [&str; 3] = ["DejaVuSerif.ttf", "DejaVuSans.ttf", "DejaVuSans-Bold.ttf"];
+
+/// Issue 46: no charge lands on a collocation or check point, for any
+/// character A–Z a–z 0–9 of the three DejaVu faces at any N of the issue's
+/// list, by construction (the guard that would move one never has to). Before
+/// the corner clusters were capped (`setup::cluster_cap`), DejaVu Serif "e"
+/// at N = 2 000 had a charge exactly on its corner, and its field was NaN.
+#[test]
+fn dejavu_characters_keep_every_charge_off_their_points_at_every_n() {
+    use rayon::prelude::*;
+    let chars: Vec<char> = ('A'..='Z').chain('a'..='z').chain('0'..='9').collect();
+    let cases: Vec<(&str, char)> = DEJAVU
+        .iter()
+        .flat_map(|f| chars.iter().map(move |&c| (*f, c)))
+        .collect();
+    let worst = cases
+        .par_iter()
+        .map(|&(font, ch)| {
+            let b = glyph_boundary(font, ch);
+            let r = b.radius;
+            let prep = Prepared::new(b).unwrap_or_else(|e| panic!("{font} {ch}: {e}"));
+            let mut worst: f64 = f64::INFINITY;
+            for n in [200, 500, 1000, 2000, 4000, 6000] {
+                let pr = prep
+                    .problem(&paired(&prep, n))
+                    .unwrap_or_else(|e| panic!("{font} {ch} N {n}: {e}"));
+                assert_eq!(pr.moved, 0, "{font} {ch} N {n}: the guard moved charges");
+                let sep = field::setup::min_separation(&pr, 1e-9 * r) / r;
+                assert!(
+                    sep >= 10.0 * field::setup::MIN_SEPARATION,
+                    "{font} {ch} N {n}: a charge {sep:.1e} R from a point"
+                );
+                worst = worst.min(sep);
+            }
+            worst
+        })
+        .reduce(|| f64::INFINITY, f64::min);
+    eprintln!("closest charge to a point: {worst:.1e} R");
+}
+
+/// Issue 46: the DejaVu Serif characters whose fields were NaN at N = 2 000
+/// (B Q S a e g s) or written with "max boundary error inf" (G) solve to a
+/// finite error there. The figures are in docs/method.md §3a
+/// (`cargo run --release --example placement_scan -- tests/data/DejaVuSerif.ttf BQSaegsG 2000 solve`).
+#[test]
+fn curved_dejavu_serif_characters_solve_to_a_finite_error() {
+    use rayon::prelude::*;
+    let errors: Vec<(char, f64)> = "BQSaegsG"
+        .chars()
+        .collect::<Vec<_>>()
+        .par_iter()
+        .map(|&ch| {
+            let prep = Prepared::new(glyph_boundary("DejaVuSerif.ttf", ch)).unwrap();
+            let (sol, _) = field::solve_layout(&prep, &paired(&prep, 2000))
+                .unwrap_or_else(|e| panic!("{ch}: {e}"));
+            assert!(sol.max_error.is_finite(), "{ch}: {}", sol.max_error);
+            (ch, sol.max_error)
+        })
+        .collect();
+    for (ch, e) in &errors {
+        // B is the worst (its waist's notch, docs/method.md §3a): 3.3e-4.
+        assert!(*e < 1e-3, "{ch}: max boundary error {e:.2e}");
+    }
+    eprintln!("{errors:?}");
+}

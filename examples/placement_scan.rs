@@ -1,0 +1,114 @@
+//! Where the shape field's points sit, per character and N, in the paired
+//! layout a job uses: the least distance from a charge to a collocation or
+//! check point (relative to the outer radius R), the charges the guard had to
+//! move, and (with `solve`) the max boundary error.
+//! `cargo run --release --example placement_scan -- FONT.ttf CHARS N1,N2,... [solve]`
+use std::path::Path;
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let font = args
+        .next()
+        .expect("usage: placement_scan FONT CHARS NS [solve]");
+    let chars = args.next().expect("CHARS");
+    let ns: Vec<usize> = args
+        .next()
+        .expect("NS")
+        .split(',')
+        .map(|s| s.parse().expect("N"))
+        .collect();
+    let mode = args.next().unwrap_or_default();
+    let solve = mode == "solve" || mode == "worst";
+    let abs = std::fs::canonicalize(&font).expect("font file");
+    for c in chars.chars() {
+        let text = format!(
+            "[shape]\ntext = {:?}\nfont = {:?}\nheight = 50.0\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"profile\"\ndepth = 3.0\n",
+            c.to_string(),
+            abs.display().to_string()
+        );
+        let job = pfcam::job::parse_job(&text, "g", Path::new(".")).expect("job");
+        let (shape, _) = pfcam::pipeline::job_shape(&job, &mut |_| {}).expect("shape");
+        let tol = job.operation.tolerance * 0.25;
+        let b = pfcam::pipeline::boundary_for(&shape, tol).expect("boundary");
+        let r = b.radius;
+        let prep = pfcam::field::Prepared::new(b).expect("prepared");
+        for &n in &ns {
+            let h = prep.perimeter() / n as f64;
+            let lay = pfcam::field::Layout {
+                n_total: n,
+                distance: 2.0 * h,
+                corner_clusters: true,
+                corner_fraction: 0.4,
+                pairs: true,
+            };
+            let pr = match prep.problem(&lay) {
+                Ok(p) => p,
+                Err(e) => {
+                    println!("{c} N {n}: {e}");
+                    continue;
+                }
+            };
+            let sep = pfcam::field::setup::min_separation(&pr, 1e-6 * r) / r;
+            let e = if solve {
+                match pfcam::field::mfs::solve(&pr) {
+                    Ok(s) if mode == "worst" => {
+                        let mut errs: Vec<(f64, pfcam::geometry::Vec2)> = pr
+                            .checks
+                            .iter()
+                            .map(|c| ((s.field.value(c.p) - c.value).abs(), c.p))
+                            .collect();
+                        errs.sort_by(|a, b| b.0.total_cmp(&a.0));
+                        let mut out = format!("{:.2e}\n", s.max_error);
+                        for (e, p) in errs.iter().take(3) {
+                            out += &format!("    {e:.2e} at ({:.4}, {:.4})\n", p.x, p.y);
+                        }
+                        let w = errs[0].1;
+                        for (k, q) in pr.charges.iter().enumerate() {
+                            if q.dist(w) < 1.0 {
+                                out += &format!(
+                                    "      charge {k} at ({:.4}, {:.4}) dist {:.3e}\n",
+                                    q.x,
+                                    q.y,
+                                    q.dist(w)
+                                );
+                            }
+                        }
+                        for c in &prep.boundary.contours {
+                            let n = c.segments.len();
+                            for i in 0..n {
+                                let (a, b) = (&c.segments[i], &c.segments[(i + 1) % n]);
+                                if b.start().dist(w) < 0.6 {
+                                    let (ti, to) =
+                                        (a.eval(1.0) - a.eval(0.999), b.eval(0.001) - b.eval(0.0));
+                                    let turn = ti.cross(to).atan2(ti.dot(to));
+                                    out += &format!("      join ({:.4}, {:.4}) turn {turn:.3} in {a:?}\n       out {b:?}\n", b.start().x, b.start().y);
+                                }
+                            }
+                        }
+                        for poly in prep.polygons() {
+                            for v in poly {
+                                if v.dist(w) < 0.6 {
+                                    out += &format!("      vertex ({:.4}, {:.4})\n", v.x, v.y);
+                                }
+                            }
+                        }
+                        out
+                    }
+                    Ok(s) => format!(
+                        "{:.2e}{}",
+                        s.max_error,
+                        if s.well_conditioned {
+                            ""
+                        } else {
+                            " (fallback)"
+                        }
+                    ),
+                    Err(e) => format!("{e}"),
+                }
+            } else {
+                String::new()
+            };
+            println!("{c} N {n}: separation {sep:.1e} R, moved {}  {e}", pr.moved);
+        }
+    }
+}
