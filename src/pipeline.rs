@@ -408,6 +408,45 @@ pub fn solve_shape(
     Ok((solved, report, outer_radius))
 }
 
+/// The field of a shape of several regions (letters) solved letter by letter
+/// (`field::blocks`): each region's own N grown from `AUTO_N_PER_REGION` until
+/// its own error meets `target` (at most [`FIELD_N_MAX`] a letter), then the
+/// letters coupled inside the word's outer circle.
+pub fn solve_word(
+    shape: &Shape,
+    flat_tol: f64,
+    target: f64,
+    distance: Option<f64>,
+) -> Result<field::blocks::BlockSolved, PipelineError> {
+    let word = boundary_for(shape, flat_tol)?;
+    let letters = shape
+        .regions
+        .iter()
+        .map(|r| {
+            let mut contours = vec![r.outline.clone()];
+            contours.extend(r.counters.iter().cloned());
+            let mut is_counter = vec![false; contours.len()];
+            is_counter[1..].fill(true);
+            Prepared::new(Boundary::new(
+                contours,
+                is_counter,
+                word.centre,
+                word.radius,
+                flat_tol,
+            ))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let sinks = letters.iter().map(|p| p.sinks.len()).max().unwrap_or(0);
+    let n_start = AUTO_N_PER_REGION + sinks * field::setup::PAIRED_SINK_CHARGES;
+    let t = field::adaptive::Target {
+        max_error: target,
+        n_start,
+        n_max: FIELD_N_MAX.max(n_start),
+        distance,
+    };
+    Ok(field::blocks::solve_word(&letters, &t)?)
+}
+
 /// The shape's field with local expansions around its bounding box
 /// ([`field::Field::accelerated_around`]).
 fn accelerate(field: &field::Field, shape: &Shape) -> field::Field {

@@ -32,7 +32,7 @@ pub struct Target {
 }
 
 /// The paired layout for N charges.
-fn layout(prep: &Prepared, n_total: usize, distance: Option<f64>) -> Layout {
+pub(crate) fn layout(prep: &Prepared, n_total: usize, distance: Option<f64>) -> Layout {
     let h = prep.perimeter() / n_total as f64;
     Layout {
         n_total,
@@ -44,7 +44,7 @@ fn layout(prep: &Prepared, n_total: usize, distance: Option<f64>) -> Layout {
 }
 
 /// The Ns tried: n_start, n_start·1.5, … (rounded up), ending at n_max.
-fn sequence(target: &Target) -> Vec<usize> {
+pub(crate) fn sequence(target: &Target) -> Vec<usize> {
     let mut n = target.n_start.min(target.n_max);
     let mut ns = vec![n];
     while n < target.n_max {

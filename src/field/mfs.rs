@@ -284,11 +284,103 @@ impl Field {
 /// which makes the |Rᵢᵢ| ratio a fair condition estimate and keeps charges at very
 /// different distances on an equal footing.
 pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
-    let m = problem.colloc.len();
-    let n = problem.charges.len();
-    if n == 0 || m < n {
-        return Err(FieldError::TooFewCollocationPoints { m, n });
+    let points: Vec<Vec2> = problem.colloc.iter().map(|c| c.p).collect();
+    let rhs: Vec<f64> = problem.colloc.iter().map(|c| c.value).collect();
+    let (factor, coef) = Factor::new(&problem.charges, &points, &rhs)?;
+    let field = Field::new(problem.charges.clone(), coef);
+    let max_error = max_error(&field, &problem.checks);
+    if !max_error.is_finite() {
+        return Err(FieldError::NotANumberAtCheck);
     }
+    Ok(Solution {
+        field,
+        max_error,
+        condition: factor.condition,
+        well_conditioned: factor.well_conditioned,
+        moved: problem.moved,
+    })
+}
+
+/// The least-squares factorisation of the column-scaled kernel matrix of
+/// charges × points, kept for more right-hand sides (the letter blocks of
+/// `field::blocks` solve their own block many times).
+pub(crate) struct Factor {
+    kind: FactorKind,
+    scale: Vec<f64>,
+    /// The estimated condition number of the scaled system.
+    pub(crate) condition: f64,
+    /// Whether the plain least-squares solution is used.
+    pub(crate) well_conditioned: bool,
+}
+
+enum FactorKind {
+    Plain(faer::linalg::solvers::Qr<f64>),
+    Truncated(faer::linalg::solvers::ColPivQr<f64>, usize),
+}
+
+impl Factor {
+    /// Factor the kernel matrix and solve it for `rhs`: the plain QR when its
+    /// condition estimate is below [`MAX_CONDITION`] and its solution finite,
+    /// else the truncated column-pivoted QR. Returns the factor and the
+    /// coefficients.
+    pub(crate) fn new(
+        charges: &[Vec2],
+        points: &[Vec2],
+        rhs: &[f64],
+    ) -> Result<(Factor, Vec<f64>), FieldError> {
+        let (m, n) = (points.len(), charges.len());
+        if n == 0 || m < n {
+            return Err(FieldError::TooFewCollocationPoints { m, n });
+        }
+        let (a, scale) = scaled_matrix(charges, points);
+        // Sequential QR: the result must not depend on the thread count (same job,
+        // same G-code); pfcam parallelises over whole solves and loops instead.
+        faer::set_global_parallelism(faer::Par::Seq);
+        let qr = a.qr();
+        let condition = crate::num::triangular_condition(qr.thin_R());
+        let mut factor = Factor {
+            kind: FactorKind::Plain(qr),
+            scale,
+            condition,
+            well_conditioned: true,
+        };
+        if condition < MAX_CONDITION {
+            let coef = factor.solve(rhs);
+            if coef.iter().all(|c| c.is_finite()) {
+                return Ok((factor, coef));
+            }
+        }
+        let qr = a.col_piv_qr();
+        let (rank, cond) = truncated_rank(&qr);
+        factor.kind = FactorKind::Truncated(qr, rank);
+        factor.condition = cond;
+        factor.well_conditioned = false;
+        let coef = factor.solve(rhs);
+        if coef.iter().any(|c| !c.is_finite()) {
+            return Err(FieldError::NonFiniteCoefficients);
+        }
+        Ok((factor, coef))
+    }
+
+    /// The coefficients (in the charges' own scale) that fit `rhs` best.
+    pub(crate) fn solve(&self, rhs: &[f64]) -> Vec<f64> {
+        let rhs = Mat::<f64>::from_fn(rhs.len(), 1, |i, _| rhs[i]);
+        let x: Vec<f64> = match &self.kind {
+            FactorKind::Plain(qr) => {
+                let x = qr.solve_lstsq(&rhs);
+                (0..self.scale.len()).map(|j| x[(j, 0)]).collect()
+            }
+            FactorKind::Truncated(qr, rank) => truncated_apply(qr, *rank, rhs),
+        };
+        x.iter().zip(&self.scale).map(|(x, s)| x * s).collect()
+    }
+}
+
+/// The kernel matrix k(P_m, Q_n) with its columns scaled to unit norm, and
+/// the scales (0 for a non-finite or zero column, which is zeroed: a charge
+/// on a collocation point, left out by the truncated solve).
+fn scaled_matrix(charges: &[Vec2], points: &[Vec2]) -> (Mat<f64>, Vec<f64>) {
+    let (m, n) = (points.len(), charges.len());
     crate::count::pairs(m * n);
     // The kernel matrix column by column in parallel (each entry is the same
     // `kernel` call whichever thread makes it, so the matrix does not depend
@@ -297,11 +389,11 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     let cols = {
         use rayon::prelude::*;
         let mut cols = vec![0.0; m * n];
-        cols.par_chunks_mut(m)
-            .zip(problem.charges.par_iter())
+        cols.par_chunks_mut(m.max(1))
+            .zip(charges.par_iter())
             .for_each(|(col, &q)| {
-                for (v, c) in col.iter_mut().zip(&problem.colloc) {
-                    *v = kernel(c.p, q);
+                for (v, &p) in col.iter_mut().zip(points) {
+                    *v = kernel(p, q);
                 }
             });
         cols
@@ -311,8 +403,6 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     let mut scale = vec![0.0; n];
     for (j, s) in scale.iter_mut().enumerate() {
         let norm = a.col(j).norm_l2();
-        // A charge on a collocation point has an infinite column: it is
-        // zeroed, which sends the solve to the fallback that leaves it out.
         *s = if norm.is_finite() && norm > 0.0 {
             1.0 / norm
         } else {
@@ -323,56 +413,17 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
             a[(i, j)] = if sj > 0.0 { a[(i, j)] * sj } else { 0.0 };
         }
     }
-    // Sequential QR: the result must not depend on the thread count (same job,
-    // same G-code); pfcam parallelises over whole solves and loops instead.
-    faer::set_global_parallelism(faer::Par::Seq);
-    let qr = a.qr();
-    let condition = crate::num::triangular_condition(qr.thin_R());
-    let rhs = Mat::<f64>::from_fn(m, 1, |i, _| problem.colloc[i].value);
-    let plain = (condition < MAX_CONDITION)
-        .then(|| {
-            let x = qr.solve_lstsq(&rhs);
-            (0..n).map(|j| x[(j, 0)] * scale[j]).collect::<Vec<f64>>()
-        })
-        .filter(|c| c.iter().all(|c| c.is_finite()));
-    let well_conditioned = plain.is_some();
-    let (coef, condition) = match plain {
-        Some(c) => (c, condition),
-        None => {
-            let (x, _, cond) = truncated_lstsq(&a, rhs);
-            ((0..n).map(|j| x[j] * scale[j]).collect(), cond)
-        }
-    };
-    if coef.iter().any(|c| !c.is_finite()) {
-        return Err(FieldError::NonFiniteCoefficients);
-    }
-    let field = Field::new(problem.charges.clone(), coef);
-    let max_error = max_error(&field, &problem.checks);
-    if !max_error.is_finite() {
-        return Err(FieldError::NotANumberAtCheck);
-    }
-    Ok(Solution {
-        field,
-        max_error,
-        condition,
-        well_conditioned,
-        moved: problem.moved,
-    })
+    (a, scale)
 }
 
-/// The basic least-squares solution of `a` x ≈ `rhs` from a column-pivoted QR
-/// truncated at [`RANK_CUTOFF`]: x over the kept columns solves Rₖₖ xₖ = (Qᵀb)ₖ,
-/// the rest are 0. Returns x (in the original column order), the rank kept and
-/// |R₀₀| / |R_kk| over the kept columns.
-fn truncated_lstsq(a: &Mat<f64>, mut rhs: Mat<f64>) -> (Vec<f64>, usize, f64) {
-    use faer::dyn_stack::{MemBuffer, MemStack};
-    use faer::linalg::householder;
-    // Sequential QR: the result must not depend on the thread count (same job,
-    // same G-code); pfcam parallelises over whole solves and loops instead.
-    faer::set_global_parallelism(faer::Par::Seq);
-    let n = a.ncols();
-    let qr = a.col_piv_qr();
+/// The rank a column-pivoted QR keeps (|R_kk| above [`RANK_CUTOFF`] |R₀₀|)
+/// and |R₀₀| / |R_kk| over the kept columns.
+fn truncated_rank(qr: &faer::linalg::solvers::ColPivQr<f64>) -> (usize, f64) {
     let r = qr.R();
+    let n = r.ncols().min(r.nrows());
+    if n == 0 {
+        return (0, f64::INFINITY);
+    }
     let r00 = r[(0, 0)].abs();
     let rank = (0..n)
         .take_while(|&k| r[(k, k)].abs() > RANK_CUTOFF * r00 && r[(k, k)].is_finite())
@@ -382,6 +433,21 @@ fn truncated_lstsq(a: &Mat<f64>, mut rhs: Mat<f64>) -> (Vec<f64>, usize, f64) {
     } else {
         f64::INFINITY
     };
+    (rank, condition)
+}
+
+/// The basic least-squares solution from a column-pivoted QR truncated at
+/// `rank`: x over the kept columns solves Rₖₖ xₖ = (Qᵀb)ₖ, the rest are 0
+/// (in the original column order).
+fn truncated_apply(
+    qr: &faer::linalg::solvers::ColPivQr<f64>,
+    rank: usize,
+    mut rhs: Mat<f64>,
+) -> Vec<f64> {
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::linalg::householder;
+    let r = qr.R();
+    let n = r.ncols();
     let (basis, coeff) = (qr.Q_basis(), qr.Q_coeff());
     let mut buf =
         MemBuffer::new(
@@ -411,7 +477,17 @@ fn truncated_lstsq(a: &Mat<f64>, mut rhs: Mat<f64>) -> (Vec<f64>, usize, f64) {
     for (k, &col) in forward.iter().enumerate() {
         x[col] = y[k];
     }
-    (x, rank, condition)
+    x
+}
+
+/// The truncated solve of `a` x ≈ `rhs` ([`truncated_rank`],
+/// [`truncated_apply`]): x, the rank kept and the condition over it.
+#[cfg(test)]
+fn truncated_lstsq(a: &Mat<f64>, rhs: Mat<f64>) -> (Vec<f64>, usize, f64) {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let qr = a.col_piv_qr();
+    let (rank, condition) = truncated_rank(&qr);
+    (truncated_apply(&qr, rank, rhs), rank, condition)
 }
 
 /// max |u(P) − g(P)| over the given points, the field evaluated through local

@@ -1,6 +1,7 @@
 //! Potential fields by the method of fundamental solutions (the paper's Sections 2–4).
 
 pub mod adaptive;
+pub mod blocks;
 pub mod fast;
 pub mod inverse;
 pub mod isolines;

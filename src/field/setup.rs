@@ -743,7 +743,13 @@ struct Counts {
 /// A circle where u = 0 (the outer circle or a sink) of `radius` about
 /// `centre`: `n` charges on the concentric circle of `charge_radius`, 2n
 /// collocation points on it, `checks` check points between neighbours.
-fn circle(centre: Vec2, radius: f64, charge_radius: f64, n: usize, checks: usize) -> Problem {
+pub(crate) fn circle(
+    centre: Vec2,
+    radius: f64,
+    charge_radius: f64,
+    n: usize,
+    checks: usize,
+) -> Problem {
     let mut pr = Problem::default();
     for j in 0..n {
         let a = TAU * (j as f64 + 0.25) / n as f64;
