@@ -388,8 +388,33 @@ fn simulate_mould(c: &mut Criterion) {
     g.finish();
 }
 
+/// The field of a word solved letter by letter (`field::blocks`, issue 46):
+/// 1, 2, 4, 8 and 16 letters of DejaVu Sans at 50 mm, to 1e-5 (the 1e-6 of
+/// the issue's aim takes minutes a sample at 16 letters).
+fn field_words(c: &mut Criterion) {
+    let font = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/DejaVuSans.ttf");
+    let letters = "abcdefghijklmnop";
+    let mut g = c.benchmark_group("field_words");
+    g.sample_size(10);
+    for n in [1usize, 2, 4, 8, 16] {
+        let text = &letters[..n];
+        let toml = format!(
+            "[shape]\ntext = {text:?}\nfont = {font:?}\nheight = 50.0\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"profile\"\ndepth = 3.0\n"
+        );
+        let job = pfcam::job::parse_job(&toml, "word", std::path::Path::new(".")).unwrap();
+        let (shape, _) = pfcam::pipeline::job_shape(&job, &mut |_| {}).unwrap();
+        let tol = 0.25 * job.operation.tolerance;
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_function(format!("{n} letters of DejaVu Sans, 50 mm, to 1e-5"), |b| {
+            b.iter(|| pfcam::pipeline::solve_word(black_box(&shape), tol, 1e-5, None).unwrap())
+        });
+    }
+    g.finish();
+}
+
 criterion_group!(
     benches,
+    field_words,
     simulate_mould,
     letter_i_solve,
     field_eval,

@@ -36,7 +36,11 @@ fn main() {
             let h = prep.perimeter() / n as f64;
             let lay = pfcam::field::Layout {
                 n_total: n,
-                distance: 2.0 * h,
+                distance: std::env::var("DFAC")
+                    .ok()
+                    .and_then(|v| v.parse::<f64>().ok())
+                    .unwrap_or(2.0)
+                    * h,
                 corner_clusters: true,
                 corner_fraction: 0.4,
                 pairs: true,

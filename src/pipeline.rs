@@ -361,18 +361,22 @@ pub fn solve_shape(
         name: "solving the potential field".into(),
         total: 1,
     });
-    let prep = Prepared::new(boundary)?;
-    let n_start = AUTO_N_PER_REGION * shape.regions.len()
-        + field::setup::PAIRED_OUTER_CHARGES.0
-        + prep.sinks.len() * field::setup::PAIRED_SINK_CHARGES;
     let max_error = field_target(job);
-    let target = field::adaptive::Target {
-        max_error,
-        n_start: job.field.singularities.unwrap_or(n_start),
-        n_max: job.field.singularities.unwrap_or(FIELD_N_MAX.max(n_start)),
-        distance: job.field.pseudo_boundary,
+    let solved = if shape.regions.len() > 1 && job.field.singularities.is_none() {
+        word_solved(shape, flat_tol, max_error, job.field.pseudo_boundary)?
+    } else {
+        let prep = Prepared::new(boundary)?;
+        let n_start = AUTO_N_PER_REGION * shape.regions.len()
+            + field::setup::PAIRED_OUTER_CHARGES.0
+            + prep.sinks.len() * field::setup::PAIRED_SINK_CHARGES;
+        let target = field::adaptive::Target {
+            max_error,
+            n_start: job.field.singularities.unwrap_or(n_start),
+            n_max: job.field.singularities.unwrap_or(FIELD_N_MAX.max(n_start)),
+            distance: job.field.pseudo_boundary,
+        };
+        field::adaptive::solve_to(&prep, &target)?
     };
-    let solved = field::adaptive::solve_to(&prep, &target)?;
     progress(Progress::Step);
     let reached = solved.solution.max_error;
     if job.operation.kind != OperationKind::Profile && (reached > max_error || reached.is_nan()) {
@@ -445,6 +449,28 @@ pub fn solve_word(
         distance,
     };
     Ok(field::blocks::solve_word(&letters, &t)?)
+}
+
+/// [`solve_word`] as a [`field::Solved`]: N and M of the whole word, the
+/// distance the mean of the letters' own.
+fn word_solved(
+    shape: &Shape,
+    flat_tol: f64,
+    target: f64,
+    distance: Option<f64>,
+) -> Result<field::Solved, PipelineError> {
+    let w = solve_word(shape, flat_tol, target, distance)?;
+    let d = w.letters.iter().map(|l| l.distance).sum::<f64>() / w.letters.len().max(1) as f64;
+    Ok(field::Solved {
+        solution: w.solution,
+        layout: field::Layout {
+            n_total: w.n,
+            distance: d,
+            ..field::Layout::auto(w.n)
+        },
+        solves: w.letters.len(),
+        m: w.m,
+    })
 }
 
 /// The shape's field with local expansions around its bounding box

@@ -33,6 +33,10 @@ pub const FAR_RATIO: f64 = 0.5;
 /// Terms of a block's multipole expansion: FAR_RATIO^ORDER ≈ 9e-19.
 pub const ORDER: usize = 60;
 
+/// Most couplings of a word: the first, and rounds that grow the letters
+/// still over the target in the word.
+pub const REGROW_ROUNDS: usize = 3;
+
 /// Charges on the outer circle of a word (the paired layout's most).
 pub const RING_CHARGES: usize = super::setup::PAIRED_OUTER_CHARGES.1;
 
@@ -64,6 +68,9 @@ pub struct BlockSolved {
     pub sweeps: usize,
     /// Max residual at the collocation points after the coupling.
     pub residual: f64,
+    /// Couplings solved: 1, plus one per round that grew a letter over the
+    /// target in the word.
+    pub rounds: usize,
 }
 
 /// One block: its points, its factor, its current coefficients.
@@ -90,9 +97,9 @@ pub fn solve_word(
     let (centre, radius) = (first.boundary.centre, first.boundary.radius);
     let alone: Vec<(Block, f64, f64)> = letters
         .par_iter()
-        .map(|prep| letter_block(prep, target))
+        .map(|prep| letter_block(prep, target, 0))
         .collect::<Result<_, _>>()?;
-    let lone: Vec<(f64, f64)> = alone.iter().map(|(_, e, d)| (*e, *d)).collect();
+    let mut lone: Vec<(f64, f64)> = alone.iter().map(|(_, e, d)| (*e, *d)).collect();
     let mut blocks: Vec<Block> = alone.into_iter().map(|(b, _, _)| b).collect();
     let checks = super::setup::CHECKS_PER_INTERVAL.1;
     blocks.push(Block::new(super::setup::circle(
@@ -102,23 +109,57 @@ pub fn solve_word(
         RING_CHARGES,
         checks,
     ))?);
-    couple(blocks, target.max_error, &lone)
+    let mut rounds = 0;
+    loop {
+        let solved = couple(&mut blocks, target.max_error, &lone)?;
+        rounds += 1;
+        // A letter over the target in the word (the others' field is data
+        // it fits too) is grown past its N, and the word coupled again.
+        let grow: Vec<usize> = solved
+            .letters
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| l.in_word > target.max_error && l.n < target.n_max)
+            .map(|(i, _)| i)
+            .collect();
+        if grow.is_empty() || rounds >= REGROW_ROUNDS {
+            return Ok(BlockSolved { rounds, ..solved });
+        }
+        let grown: Vec<(usize, Block, f64, f64)> = grow
+            .par_iter()
+            .map(|&i| {
+                letter_block(&letters[i], target, blocks[i].problem.charges.len() + 1)
+                    .map(|(b, e, d)| (i, b, e, d))
+            })
+            .collect::<Result<_, _>>()?;
+        for (i, b, e, d) in grown {
+            blocks[i] = b;
+            lone[i] = (e, d);
+        }
+        for b in &mut blocks {
+            b.coef.iter_mut().for_each(|c| *c = 0.0);
+        }
+    }
 }
 
 /// A letter's block: N grown as [`adaptive::solve_to`] grows it (the paired
 /// layout at d = 2h unless the target fixes d), the letter alone (no outer
 /// circle), until its max error on its own check points meets the target;
-/// the block of the first N that does, else of the best. Returns the block,
+/// the block of the first N (from `from` on) that does, else of the best.
+/// Returns the block,
 /// that error and the pseudo-boundary distance.
 fn letter_block(
     prep: &Prepared,
     target: &adaptive::Target,
+    from: usize,
 ) -> Result<(Block, f64, f64), FieldError> {
     let mut prep = prep.clone();
     prep.outer = false;
     let mut best: Option<(Block, f64, f64)> = None;
     let mut last_err = None;
-    for n in adaptive::sequence(target) {
+    let ns = adaptive::sequence(target);
+    let first = ns.iter().position(|&n| n >= from).unwrap_or(ns.len() - 1);
+    for &n in &ns[first..] {
         let layout = adaptive::layout(&prep, n, target.distance);
         let block = prep.problem(&layout).and_then(Block::new);
         let block = match block {
@@ -307,11 +348,11 @@ fn spread(blocks: &[Block], cpl: &[Vec<Coupling>], k: usize, delta: &[f64], u: &
 /// Block Gauss–Seidel with the coarse step, to a residual at the collocation
 /// points well under the target; then the word's field and its max error.
 fn couple(
-    mut blocks: Vec<Block>,
+    blocks: &mut [Block],
     target: f64,
     lone: &[(f64, f64)],
 ) -> Result<BlockSolved, FieldError> {
-    let cpl = couplings(&blocks);
+    let cpl = couplings(blocks);
     let nb = blocks.len();
     let mut u: Vec<Vec<f64>> = blocks
         .iter()
@@ -321,7 +362,7 @@ fn couple(
     let mut v: Vec<Vec<Vec<f64>>> = vec![Vec::new(); nb];
     for (k, vk) in v.iter_mut().enumerate() {
         let mut w = u.iter().map(|x| vec![0.0; x.len()]).collect::<Vec<_>>();
-        spread(&blocks, &cpl, k, &blocks[k].unit.clone(), &mut w);
+        spread(blocks, &cpl, k, &blocks[k].unit.clone(), &mut w);
         *vk = w;
     }
     let coarse = coarse_factor(&v);
@@ -350,10 +391,10 @@ fn couple(
             let new = b.factor.solve(&rhs);
             let delta: Vec<f64> = new.iter().zip(&b.coef).map(|(n, o)| n - o).collect();
             blocks[k].coef = new;
-            spread(&blocks, &cpl, k, &delta, &mut u);
+            spread(blocks, &cpl, k, &delta, &mut u);
         }
         // The coarse step over every point.
-        let r: Vec<f64> = residuals(&blocks, &u).concat();
+        let r: Vec<f64> = residuals(blocks, &u).concat();
         let alpha = coarse.solve_lstsq_vec(&r);
         for (k, &a) in alpha.iter().enumerate() {
             let unit = blocks[k].unit.clone();
@@ -366,7 +407,7 @@ fn couple(
                 }
             }
         }
-        residual = residuals(&blocks, &u)
+        residual = residuals(blocks, &u)
             .iter()
             .flatten()
             .fold(0.0, |m: f64, x| m.max(x.abs()));
@@ -429,7 +470,7 @@ fn coarse_factor(v: &[Vec<Vec<f64>>]) -> Coarse {
 /// The word's field from the blocks' coefficients, its max error on every
 /// check point, and each letter's own.
 fn finish(
-    blocks: Vec<Block>,
+    blocks: &[Block],
     sweeps: usize,
     residual: f64,
     lone: &[(f64, f64)],
@@ -438,7 +479,7 @@ fn finish(
     let mut coef = Vec::new();
     let mut checks: Vec<Condition> = Vec::new();
     let (mut m, mut moved, mut condition, mut wc) = (0, 0, 0.0_f64, true);
-    for b in &blocks {
+    for b in blocks {
         charges.extend_from_slice(&b.problem.charges);
         coef.extend_from_slice(&b.coef);
         checks.extend_from_slice(&b.problem.checks);
@@ -479,5 +520,6 @@ fn finish(
         m,
         sweeps,
         residual,
+        rounds: 1,
     })
 }
