@@ -284,12 +284,9 @@ pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineEr
     let mut contours = Vec::new();
     let mut is_counter = Vec::new();
     for r in &shape.regions {
-        contours.push(r.outline.clone());
-        is_counter.push(false);
-        for c in &r.counters {
-            contours.push(c.clone());
-            is_counter.push(true);
-        }
+        let (c, k) = region_contours(r);
+        contours.extend(c);
+        is_counter.extend(k);
     }
     if contours.is_empty() {
         return Err(PipelineError::EmptyShape);
@@ -299,6 +296,14 @@ pub fn boundary_for(shape: &Shape, flat_tol: f64) -> Result<Boundary, PipelineEr
     Ok(Boundary::about_centroid(
         contours, is_counter, radius, flat_tol,
     ))
+}
+
+/// A region's contours, its outline first, and which of them are counters.
+fn region_contours(r: &crate::geometry::Region) -> (Vec<crate::geometry::Contour>, Vec<bool>) {
+    let mut contours = vec![r.outline.clone()];
+    contours.extend(r.counters.iter().cloned());
+    let is_counter = (0..contours.len()).map(|i| i > 0).collect();
+    (contours, is_counter)
 }
 
 /// The loosest max boundary error asked of a shape's field (a profile job, or a
@@ -427,10 +432,7 @@ pub fn solve_word(
         .regions
         .iter()
         .map(|r| {
-            let mut contours = vec![r.outline.clone()];
-            contours.extend(r.counters.iter().cloned());
-            let mut is_counter = vec![false; contours.len()];
-            is_counter[1..].fill(true);
+            let (contours, is_counter) = region_contours(r);
             Prepared::new(Boundary::new(
                 contours,
                 is_counter,

@@ -17,7 +17,7 @@
 //! max boundary error is measured on the whole word's check points (letters,
 //! sinks and the outer circle) with the summed field.
 
-use super::mfs::{Condition, Factor, Field, Problem, Solution};
+use super::mfs::{Factor, Field, Problem, Solution};
 use super::{adaptive, FieldError, Prepared};
 use crate::geometry::Vec2;
 use faer::Mat;
@@ -477,12 +477,10 @@ fn finish(
 ) -> Result<BlockSolved, FieldError> {
     let mut charges = Vec::new();
     let mut coef = Vec::new();
-    let mut checks: Vec<Condition> = Vec::new();
     let (mut m, mut moved, mut condition, mut wc) = (0, 0, 0.0_f64, true);
     for b in blocks {
         charges.extend_from_slice(&b.problem.charges);
         coef.extend_from_slice(&b.coef);
-        checks.extend_from_slice(&b.problem.checks);
         m += b.problem.colloc.len();
         moved += b.problem.moved;
         condition = condition.max(b.factor.condition);
@@ -493,17 +491,24 @@ fn finish(
     }
     let n = charges.len();
     let field = Field::new(charges, coef);
-    let max_error = super::mfs::max_error(&field, &checks);
+    // Each block's own max error (the letters', then the outer circle's);
+    // the word's is the largest.
+    let errors: Vec<f64> = blocks
+        .iter()
+        .map(|b| super::mfs::max_error(&field, &b.problem.checks))
+        .collect();
+    let max_error = errors.iter().copied().fold(0.0, crate::num::max_or_nan);
     if !max_error.is_finite() {
         return Err(FieldError::NotANumberAtCheck);
     }
-    let letters = blocks[..blocks.len() - 1]
+    let letters = blocks
         .iter()
+        .zip(&errors)
         .zip(lone)
-        .map(|(b, &(alone, distance))| LetterSolve {
+        .map(|((b, &in_word), &(alone, distance))| LetterSolve {
             n: b.problem.charges.len(),
             alone,
-            in_word: super::mfs::max_error(&field, &b.problem.checks),
+            in_word,
             distance,
         })
         .collect();

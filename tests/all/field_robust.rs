@@ -135,18 +135,8 @@ fn two_hundred_shapes_under_random_motions_never_refuse() {
 /// up as a job's (`pipeline::boundary_for` at the default tolerance's
 /// flattening).
 fn glyph_boundary(font: &str, ch: char) -> field::Boundary {
-    let path = crate::common::test_data(font);
-    let text = format!(
-        "[shape]\ntext = {:?}\nfont = {:?}\nheight = 50.0\n[tool]\ndiameter = 3.175\n[operation]\nkind = \"profile\"\ndepth = 3.0\n",
-        ch.to_string(),
-        path.display().to_string()
-    );
-    let job = pfcam::job::parse_job(&text, "glyph", std::path::Path::new("."))
-        .unwrap_or_else(|e| panic!("{font} {ch}: {e}"));
-    let (shape, _) = pfcam::pipeline::job_shape(&job, &mut |_| {})
-        .unwrap_or_else(|e| panic!("{font} {ch}: {e}"));
-    boundary_for(&shape, job.operation.tolerance * 0.25)
-        .unwrap_or_else(|e| panic!("{font} {ch}: {e}"))
+    let (shape, tol) = text_shape(font, &ch.to_string(), 50.0);
+    boundary_for(&shape, tol).unwrap_or_else(|e| panic!("{font} {ch}: {e}"))
 }
 
 /// The paired layout a job solves with at N charges (d = 2h).
