@@ -728,9 +728,9 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     let tol = job.operation.tolerance;
     let flat_tol = tol * FLATTEN_FRACTION;
     let profile = job.profile.as_ref().ok_or_else(no_profile)?;
-    let (solved, shape_report, outer_radius) = solve_shape(&shape, job, flat_tol, progress)?;
+    let (source, shape_report, outer_radius) =
+        solve_sections(&shape, job, profile, flat_tol, progress)?;
     set_stage(Stage::LevelGrid);
-    let source = mfs_sections(&shape, job, profile, solved)?;
     let cavity = job.operation.kind == OperationKind::Cavity;
     let lj = level_job(job, &source, cavity, outer_radius);
     let (planned, toolpath, min_clearance) = cut_levels(&lj, job, progress)?;
@@ -759,29 +759,58 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
     Ok(levels.output(solves, glyphs, shape, field))
 }
 
+/// A boss's or cavity's shape field ([`solve_shape`]) as the level
+/// planner's [`Sections`] source (`mfs_sections`), with what its error may do
+/// to the part in millimetres (`levels::accuracy`, docs/method.md §3c): the
+/// largest move of the surface S2 along its normal on the curves the program
+/// uses, named in the solve's report. Returns the sections, the solve's
+/// report and the outer radius.
+pub(crate) fn solve_sections(
+    shape: &Shape,
+    job: &Job,
+    profile: &crate::levels::DepthProfile,
+    flat_tol: f64,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<(MfsSections, SolveReport, f64), PipelineError> {
+    let (solved, mut report, outer_radius) = solve_shape(shape, job, flat_tol, progress)?;
+    let (sections, errors) = mfs_sections(shape, job, profile, solved)?;
+    let shift = crate::levels::accuracy::worst_shift(&sections, &errors);
+    report.label += &format!(
+        " (its error may move the surface by up to {:.5} mm)",
+        shift.mm
+    );
+    Ok((sections, report, outer_radius))
+}
+
 /// The shape's field as the level planner's [`Sections`] source: the
 /// glyphs flattened within [`FLATTEN_FRACTION`] of the tolerance, and the
-/// grid of u over them ([`MfsSections::new`]).
+/// grid of u over them ([`MfsSections::new`]); with the map of where the
+/// field errs on its check points.
 fn mfs_sections(
     shape: &Shape,
     job: &Job,
     profile: &crate::levels::DepthProfile,
     solved: field::Solved,
-) -> Result<MfsSections, PipelineError> {
+) -> Result<(MfsSections, crate::levels::accuracy::ErrorMap), PipelineError> {
     let tol = job.operation.tolerance;
     let glyphs: Vec<Vec<crate::geometry::Vec2>> = shape
         .contours()
         .map(|c| c.flatten(tol * FLATTEN_FRACTION))
         .collect();
-    MfsSections::new(MfsInput {
+    let errors = crate::levels::accuracy::ErrorMap::new(
+        &solved.solution.field,
+        &solved.solution.checks,
+        &glyphs,
+    );
+    let sections = MfsSections::new(MfsInput {
         figures: solved.figures(),
         field: solved.solution.field,
         glyphs,
         profile: profile.clone(),
         cavity: job.operation.kind == OperationKind::Cavity,
         tol,
-    })
-    .map_err(PipelineError::from)
+    })?;
+    Ok((sections, errors))
 }
 
 /// The part of a job as [`Sections`], for `pfcam sections`: a boss or
@@ -811,12 +840,9 @@ pub fn job_sections(
         let prism = PrismSections::new(contours, job.operation.depth);
         return Ok((Box::new(prism), solves));
     };
-    let (solved, report, _) = solve_shape(&shape, job, flat_tol, progress)?;
+    let (sections, report, _) = solve_sections(&shape, job, profile, flat_tol, progress)?;
     solves.push(report);
-    Ok((
-        Box::new(mfs_sections(&shape, job, profile, solved)?),
-        solves,
-    ))
+    Ok((Box::new(sections), solves))
 }
 
 /// The heights a job's part spans, relative to the stock top (what

@@ -257,6 +257,19 @@ impl DepthProfile {
         }
     }
 
+    /// φ'(s), mm per unit s: a central difference over a millionth of the
+    /// range, one-sided at its ends (so the top and bottom edges take the
+    /// wall's slope, not the flat's).
+    pub fn slope(&self, s: f64) -> f64 {
+        let (lo, hi) = self.s_range();
+        let h = 1e-6 * (hi - lo);
+        let (a, b) = ((s - h).max(lo), (s + h).min(hi));
+        if b <= a {
+            return 0.0;
+        }
+        (self.z(b) - self.z(a)) / (b - a)
+    }
+
     /// s(z), the inverse of φ on [s_bottom, s_top], by bisection to 1e-12 in s
     /// (φ is strictly increasing there, so the bracket always holds).
     pub fn s_at(&self, z: f64) -> f64 {
@@ -393,5 +406,41 @@ mod tests {
         assert!(e.to_string().contains("s must increase"), "{e}");
         let e = DepthProfile::from_points(&[[0.8, -6.0], [1.0, -1.0]], false).unwrap_err();
         assert!(e.to_string().contains("z = 0"), "{e}");
+    }
+
+    /// φ' against the power wall's closed form, n·depth·sⁿ⁻¹/(s1ⁿ(1 − a))
+    /// with a = (s2/s1)ⁿ, inside the range and at both ends (one-sided), and
+    /// against a coarser difference of φ for every kind.
+    #[test]
+    fn the_slope_is_the_derivative() {
+        let (s1, s2, n, depth) = (0.999_f64, 0.99_f64, 500.0_f64, 6.0);
+        let p = DepthProfile::Power {
+            s1,
+            s2,
+            exponent: n,
+            depth,
+        };
+        let a = (s2 / s1).powf(n);
+        for s in [s2, 0.993, 0.997, s1] {
+            let exact = n * depth * s.powf(n - 1.0) / (s1.powf(n) * (1.0 - a));
+            let got = p.slope(s);
+            assert!(
+                (got - exact).abs() < 1e-4 * exact,
+                "s {s}: {got} vs {exact}"
+            );
+        }
+        for p in all() {
+            let (lo, hi) = p.s_range();
+            for k in 1..10 {
+                let s = lo + (hi - lo) * k as f64 / 10.0;
+                let h = 1e-4 * (hi - lo);
+                let fd = (p.z(s + h) - p.z(s - h)) / (2.0 * h);
+                let got = p.slope(s);
+                assert!(
+                    (got - fd).abs() <= 1e-3 * fd.abs().max(1.0),
+                    "{p:?} at {s}: {got} vs {fd}"
+                );
+            }
+        }
     }
 }

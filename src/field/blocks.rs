@@ -501,6 +501,10 @@ fn finish(
     if !max_error.is_finite() {
         return Err(FieldError::NotANumberAtCheck);
     }
+    let checks = blocks
+        .iter()
+        .flat_map(|b| b.problem.checks.iter().copied())
+        .collect();
     let letters = blocks
         .iter()
         .zip(&errors)
@@ -519,6 +523,7 @@ fn finish(
             condition,
             well_conditioned: wc,
             moved,
+            checks,
         },
         letters,
         n,

@@ -88,6 +88,9 @@ pub struct Solution {
     /// Charges the layout's guard moved off a collocation or check point
     /// ([`Problem::moved`]).
     pub moved: usize,
+    /// The check points `max_error` was measured on (where the error is
+    /// mapped, `levels::accuracy`).
+    pub checks: Vec<Condition>,
 }
 
 impl Solution {
@@ -298,6 +301,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
         condition: factor.condition,
         well_conditioned: factor.well_conditioned,
         moved: problem.moved,
+        checks: problem.checks.clone(),
     })
 }
 

@@ -160,6 +160,14 @@ impl DistanceIndex {
         (d, q)
     }
 
+    /// Distance from `p` to the nearest edge and that edge's index (edges
+    /// are numbered polygon after polygon, each polygon's as
+    /// `ring::edges` gives them); `None` for an empty index.
+    pub(crate) fn nearest_edge(&self, p: Vec2) -> (f64, Option<usize>) {
+        let (d, _, e) = self.nearest_from(p, None);
+        (d, e.map(|e| e as usize))
+    }
+
     /// [`nearest`](Self::nearest) for a walk of nearby queries: `hint` holds
     /// the edge that answered the last one, which seeds the search's bound
     /// (most of the tree is then pruned at once), and is updated.

@@ -68,6 +68,11 @@ impl MfsSections {
         &self.field
     }
 
+    /// φ'(s), mm per unit s (the depth profile's slope).
+    pub(crate) fn slope(&self, s: f64) -> f64 {
+        self.profile.slope(s)
+    }
+
     /// The glyphs, flattened.
     pub(crate) fn glyphs(&self) -> &[Vec<Vec2>] {
         &self.glyphs

@@ -3,6 +3,7 @@
 //! sources. The depth profile φ(s) they follow is [`DepthProfile`] (from the
 //! crate's `profile` module, re-exported here).
 
+pub mod accuracy;
 pub(crate) mod height_field;
 pub(crate) mod mfs_sections;
 pub(crate) mod plan;

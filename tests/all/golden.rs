@@ -221,6 +221,11 @@ fn check_run_figures(name: &str, out: &pfcam::pipeline::RunOutput) -> bool {
             doc_figures::assert_figure(what, &stated, shape.max_error);
             let n = doc_figures::number_after(&readme, "README.md", "with N =");
             assert_eq!(n.parse().ok(), Some(shape.n), "{what}: N");
+            // §3c: the largest move of the surface, as the solve's label says.
+            let marker = "move the surface by up to";
+            let moved = doc_figures::number_after(&shape.label, "the solve's label", marker);
+            let stated = doc_figures::number_after(&method, "docs/method.md", marker);
+            assert_eq!(stated, moved, "docs/method.md §3c, mfs-sign's move");
             let stated = doc_figures::number_after(
                 &method,
                 "docs/method.md",
