@@ -765,7 +765,7 @@ fn run_levels(job: &Job, progress: &mut dyn FnMut(Progress)) -> Result<RunOutput
 /// largest move of the surface S2 along its normal on the curves the program
 /// uses, named in the solve's report. Returns the sections, the solve's
 /// report and the outer radius.
-pub(crate) fn solve_sections(
+fn solve_sections(
     shape: &Shape,
     job: &Job,
     profile: &crate::levels::DepthProfile,
@@ -798,8 +798,8 @@ fn mfs_sections(
         .map(|c| c.flatten(tol * FLATTEN_FRACTION))
         .collect();
     let errors = crate::levels::accuracy::ErrorMap::new(
-        &solved.solution.field,
         &solved.solution.checks,
+        &solved.solution.errors,
         &glyphs,
     );
     let sections = MfsSections::new(MfsInput {

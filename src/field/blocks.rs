@@ -493,11 +493,12 @@ fn finish(
     let field = Field::new(charges, coef);
     // Each block's own max error (the letters', then the outer circle's);
     // the word's is the largest.
-    let errors: Vec<f64> = blocks
+    let at_checks: Vec<Vec<f64>> = blocks
         .iter()
-        .map(|b| super::mfs::max_error(&field, &b.problem.checks))
+        .map(|b| super::mfs::check_errors(&field, &b.problem.checks))
         .collect();
-    let max_error = errors.iter().copied().fold(0.0, crate::num::max_or_nan);
+    let errors: Vec<f64> = at_checks.iter().map(|e| super::mfs::largest(e)).collect();
+    let max_error = super::mfs::largest(&errors);
     if !max_error.is_finite() {
         return Err(FieldError::NotANumberAtCheck);
     }
@@ -524,6 +525,7 @@ fn finish(
             well_conditioned: wc,
             moved,
             checks,
+            errors: at_checks.concat(),
         },
         letters,
         n,

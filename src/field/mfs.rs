@@ -88,9 +88,11 @@ pub struct Solution {
     /// Charges the layout's guard moved off a collocation or check point
     /// ([`Problem::moved`]).
     pub moved: usize,
-    /// The check points `max_error` was measured on (where the error is
-    /// mapped, `levels::accuracy`).
+    /// The check points `max_error` was measured on, and the error at each
+    /// (where the error is mapped, `levels::accuracy`).
     pub checks: Vec<Condition>,
+    /// |u − g| at each of `checks`.
+    pub errors: Vec<f64>,
 }
 
 impl Solution {
@@ -291,7 +293,8 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
     let rhs: Vec<f64> = problem.colloc.iter().map(|c| c.value).collect();
     let (factor, coef) = Factor::new(&problem.charges, &points, &rhs)?;
     let field = Field::new(problem.charges.clone(), coef);
-    let max_error = max_error(&field, &problem.checks);
+    let errors = check_errors(&field, &problem.checks);
+    let max_error = largest(&errors);
     if !max_error.is_finite() {
         return Err(FieldError::NotANumberAtCheck);
     }
@@ -302,6 +305,7 @@ pub fn solve(problem: &Problem) -> Result<Solution, FieldError> {
         well_conditioned: factor.well_conditioned,
         moved: problem.moved,
         checks: problem.checks.clone(),
+        errors,
     })
 }
 
@@ -500,6 +504,12 @@ fn truncated_lstsq(a: &Mat<f64>, rhs: Mat<f64>) -> (Vec<f64>, usize, f64) {
 /// measuring; the check points were most of the shape solves' kernel pairs
 /// (issue 13). Points outside the box are summed directly.
 pub fn max_error(field: &Field, checks: &[Condition]) -> f64 {
+    largest(&check_errors(field, checks))
+}
+
+/// |u(P) − g(P)| at each of the given points, evaluated as [`max_error`]
+/// says.
+pub fn check_errors(field: &Field, checks: &[Condition]) -> Vec<f64> {
     use rayon::prelude::*;
     let field = match dense_box(checks) {
         Some((lo, hi)) => field.accelerated_around(lo, hi),
@@ -509,7 +519,12 @@ pub fn max_error(field: &Field, checks: &[Condition]) -> f64 {
         .par_iter()
         .with_min_len(256)
         .map(|c| (field.value(c.p) - c.value).abs())
-        .reduce(|| 0.0, crate::num::max_or_nan)
+        .collect()
+}
+
+/// The largest of `errors`, NaN if one is.
+pub(crate) fn largest(errors: &[f64]) -> f64 {
+    errors.iter().copied().fold(0.0, crate::num::max_or_nan)
 }
 
 /// The box of the points within 4 times the median distance of the

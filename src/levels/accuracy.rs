@@ -5,9 +5,10 @@
 //! S2 = {z = φ(u)} by ε·φ'/√(1 + (φ'|∇u|)²) along its normal: the horizontal
 //! shift where the wall is steep (φ'|∇u| ≫ 1), the vertical φ'ε where it is
 //! flat. The second is what the part feels. The first alone is unbounded at
-//! u's saddles between letters (∇u = 0: 0.04 mm at mfs-sign's M–F saddle for
-//! ε = 2.4e-6, where the surface moves by φ'ε ≈ 0.0004 mm), where a level's
-//! curve pinches but the surface is nearly flat.
+//! u's saddles between letters (∇u = 0: 0.040 mm at mfs-sign's M–F saddle for
+//! ε = 2.37e-6, where the surface moves by at most φ'ε = 0.0018 mm, φ' being
+//! 770 mm there), where a level's curve pinches but the surface is nearly
+//! flat.
 //!
 //! ε is the bound everywhere, but far from where the boundary errs most it is
 //! pessimistic: e(p) is the boundary error averaged by harmonic measure seen
@@ -27,7 +28,7 @@
 
 use super::mfs_sections::MfsSections;
 use super::sections::Sections;
-use crate::field::{Condition, Field};
+use crate::field::Condition;
 use crate::geometry::{DistanceIndex, Vec2};
 use rayon::prelude::*;
 
@@ -79,13 +80,10 @@ impl CellMax {
 }
 
 impl ErrorMap {
-    /// The errors of `field` at `checks`, and the flattened `glyphs`.
-    pub(crate) fn new(field: &Field, checks: &[Condition], glyphs: &[Vec<Vec2>]) -> ErrorMap {
-        let errors: Vec<f64> = checks
-            .par_iter()
-            .map(|c| (field.value(c.p) - c.value).abs())
-            .collect();
-        let max = errors.iter().copied().fold(0.0, crate::num::max_or_nan);
+    /// The `errors` at `checks` (as the solve measured them,
+    /// `field::mfs::check_errors`), and the flattened `glyphs`.
+    pub(crate) fn new(checks: &[Condition], errors: &[f64], glyphs: &[Vec<Vec2>]) -> ErrorMap {
+        let max = crate::field::mfs::largest(errors);
         let grids = RADII
             .iter()
             .map(|&cell| {
@@ -93,7 +91,7 @@ impl ErrorMap {
                     cell,
                     cells: std::collections::HashMap::new(),
                 };
-                for (c, &e) in checks.iter().zip(&errors) {
+                for (c, &e) in checks.iter().zip(errors) {
                     let k = g.key(c.p);
                     let v = g.cells.entry(k).or_insert(0.0);
                     *v = crate::num::max_or_nan(*v, e);
@@ -271,7 +269,8 @@ mod tests {
             .chain(circle(100.0, 4000).iter())
             .map(|&p| Condition { p, value: 0.0 })
             .collect();
-        let map = ErrorMap::new(&e, &checks, &[glyph]);
+        let errors: Vec<f64> = checks.iter().map(|c| e.value(c.p).abs()).collect();
+        let map = ErrorMap::new(&checks, &errors, &[glyph]);
         let mut far_ratio = 0.0_f64;
         for r in [10.05, 10.2, 10.5, 11.0, 13.0, 20.0, 40.0] {
             for p in circle(r, 720) {
