@@ -3,6 +3,11 @@
 //! check point (relative to the outer radius R), the charges the guard had to
 //! move, and (with `solve`) the max boundary error.
 //! `cargo run --release --example placement_scan -- FONT.ttf CHARS N1,N2,... [solve]`
+//!
+//! With `refine` in place of `solve`, `N1,N2` are the refined layout's first
+//! uniform charges and its cap (`field::refine`, docs/method.md §3d): each
+//! character is refined to `TARGET` (default 1e-6) and its error, N, solves,
+//! time, clusters' pairs and contours' uniform charges are printed.
 use std::path::Path;
 
 fn main() {
@@ -32,6 +37,10 @@ fn main() {
         let b = pfcam::pipeline::boundary_for(&shape, tol).expect("boundary");
         let r = b.radius;
         let prep = pfcam::field::Prepared::new(b).expect("prepared");
+        if mode == "refine" {
+            refine(c, &prep, &ns);
+            continue;
+        }
         for &n in &ns {
             let h = prep.perimeter() / n as f64;
             let lay = pfcam::field::Layout {
@@ -114,5 +123,38 @@ fn main() {
             };
             println!("{c} N {n}: separation {sep:.1e} R, moved {}  {e}", pr.moved);
         }
+    }
+}
+
+/// The refined layout of one character (`refine` mode).
+fn refine(c: char, prep: &pfcam::field::Prepared, ns: &[usize]) {
+    let target: f64 = std::env::var("TARGET")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1e-6);
+    let cap = ns.get(1).copied().unwrap_or(4000);
+    let t0 = std::time::Instant::now();
+    let r = pfcam::field::refine::refine(prep, ns[0], target, cap, |pr| {
+        pfcam::field::mfs::solve(pr).map(|s| {
+            let e = s.errors.clone();
+            (s, e)
+        })
+    });
+    match r {
+        Ok(r) => println!(
+            "{c} refine: {:.2e} N {} solves {} {:.2} s{} pairs {:?} contour {:?}",
+            r.max_error,
+            r.problem.charges.len(),
+            r.solves,
+            t0.elapsed().as_secs_f64(),
+            if r.out.well_conditioned {
+                ""
+            } else {
+                " (fallback)"
+            },
+            r.refinement.pairs,
+            r.refinement.contour
+        ),
+        Err(e) => println!("{c} refine: {e}"),
     }
 }

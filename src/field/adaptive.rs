@@ -1,6 +1,7 @@
-//! A field to a required accuracy: the paired layout (`Layout::pairs`) with N
-//! grown geometrically until the max boundary error on the check points is at
-//! most the target.
+//! A field to a required accuracy: the refined layout (`field::refine`,
+//! charges added where the check points err) when N is free, or the paired
+//! layout (`Layout::pairs`) with N grown geometrically until the max boundary
+//! error on the check points is at most the target.
 //!
 //! With pairs at the corners the error hardly depends on the pseudo-boundary
 //! distance d between 1.5h and 4h (h = perimeter / N): on the paper's I, H, M
@@ -54,10 +55,43 @@ pub(crate) fn sequence(target: &Target) -> Vec<usize> {
     ns
 }
 
-/// Solve with N = n_start, n_start·1.5, … up to n_max, stopping at the first
-/// whose max boundary error is at most the target. Returns that solve, or the
-/// best one seen when none reaches it (the caller decides whether that is an
-/// error: `Solved::solution.max_error` is the figure reached).
+/// A field that meets `target.max_error`: the paired layout's sequence of
+/// Ns ([`solve_sequence`]), and when that misses the target with N and the
+/// distance free, the refined layout ([`solve_refined`]) if it does better.
+/// Returns the first solve that meets the target, or the best one seen when
+/// none does (the caller decides whether that is an error:
+/// `Solved::solution.max_error` is the figure reached).
+///
+/// The sequence comes first because every shipped job meets its target
+/// with it and its programs are the golden samples; the refined layout
+/// moved them (the paper's I as a power wall left 0.029 mm on its wall
+/// where the sequence's field leaves 0.017 mm, tests/all/finish.rs), which
+/// is to be understood before it goes first (docs/method.md §3d).
+pub fn solve_to(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> {
+    let seq = solve_sequence(prep, target);
+    let free = target.distance.is_none() && target.n_start < target.n_max;
+    if !free || matches!(&seq, Ok(s) if s.solution.max_error <= target.max_error) {
+        return seq;
+    }
+    match (seq, solve_refined(prep, target)) {
+        // The measured error decides (a refined solve is often past the
+        // condition estimate, which `Solution::better_than` ranks last).
+        (Ok(s), Ok(r)) => Ok(if r.solution.max_error < s.solution.max_error {
+            Solved {
+                solves: r.solves + s.solves,
+                ..r
+            }
+        } else {
+            s
+        }),
+        (Ok(s), Err(_)) => Ok(s),
+        (Err(_), r) => r,
+    }
+}
+
+/// The paired layout at N = n_start, n_start·1.5, … up to n_max, stopping at
+/// the first whose max boundary error meets the target (a fixed
+/// pseudo-boundary distance, or one N: `field.singularities`).
 ///
 /// The Ns are solved two at a time, side by side (each solve is sequential,
 /// so the two cores each take one): the larger of a pair is wasted when the
@@ -65,7 +99,7 @@ pub(crate) fn sequence(target: &Target) -> Vec<usize> {
 /// 1.5 (solve cost ∝ N³) falls from about 1.42 to 1.10 times its last solve.
 /// The results are taken in order, so the answer and the count of solves are
 /// those of solving one N after another.
-pub fn solve_to(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> {
+pub fn solve_sequence(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> {
     let mut best = BestSolve::default();
     let try_n = |n: usize| {
         let lay = layout(prep, n, target.distance);
@@ -97,6 +131,23 @@ pub fn solve_to(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> 
         }
     }
     best.into_result()
+}
+
+/// The refined layout ([`super::refine`]) from `target.n_start` uniform
+/// charges, grown where the boundary errs until the max error meets the
+/// target or the next layout would pass `target.n_max`.
+pub fn solve_refined(prep: &Prepared, target: &Target) -> Result<Solved, FieldError> {
+    let r = super::refine::refine(prep, target.n_start, target.max_error, target.n_max, |pr| {
+        let s = super::mfs::solve(pr)?;
+        let errors = s.errors.clone();
+        Ok((s, errors))
+    })?;
+    Ok(Solved {
+        layout: r.refinement.layout(prep),
+        m: r.problem.colloc.len(),
+        solves: r.solves,
+        solution: r.out,
+    })
 }
 
 #[cfg(test)]
@@ -148,7 +199,7 @@ mod tests {
         for &e in &errors {
             // One after another: the first N whose error is within e.
             let k = errors.iter().position(|&x| x <= e).unwrap();
-            let got = solve_to(
+            let got = solve_sequence(
                 &prep,
                 &Target {
                     max_error: e,
@@ -165,7 +216,7 @@ mod tests {
         met.dedup();
         assert!(met.len() >= 3, "targets met at {met:?} only ({errors:?})");
         // None met: the best one seen, after all four.
-        let none = solve_to(
+        let none = solve_sequence(
             &prep,
             &Target {
                 max_error: 0.0,

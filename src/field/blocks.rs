@@ -1,8 +1,8 @@
 //! A word's field letter by letter (issue 46): each letter (an outline with
 //! its counters and their sinks) is a block with its own charges, collocation
-//! and check points, its N grown on its own (`adaptive::solve_to` on the
-//! letter alone, inside the word's outer circle) until its own boundary error
-//! meets the target; the outer circle is one more block. The word's field is
+//! and check points, refined on its own (`field::refine` on the letter
+//! alone, without the outer circle) until its own boundary error meets the
+//! target; the outer circle is one more block. The word's field is
 //! the sum of the blocks' fields, coupled by block Gauss–Seidel over the
 //! blocks with a coarse step (FIELD-NOTES.md: without it the sweeps diverge,
 //! because a block's net charge moves every other block's boundary by about
@@ -36,6 +36,10 @@ pub const ORDER: usize = 60;
 /// Most couplings of a word: the first, and rounds that grow the letters
 /// still over the target in the word.
 pub const REGROW_ROUNDS: usize = 3;
+
+/// A letter regrown in the word aims, alone, at this fraction of what it
+/// would need for its error in the word to meet the target.
+pub const REGROW_MARGIN: f64 = 0.8;
 
 /// Charges on the outer circle of a word (the paired layout's most).
 pub const RING_CHARGES: usize = super::setup::PAIRED_OUTER_CHARGES.1;
@@ -97,7 +101,7 @@ pub fn solve_word(
     let (centre, radius) = (first.boundary.centre, first.boundary.radius);
     let alone: Vec<(Block, f64, f64)> = letters
         .par_iter()
-        .map(|prep| letter_block(prep, target, 0))
+        .map(|prep| letter_block(prep, target, 0, target.max_error))
         .collect::<Result<_, _>>()?;
     let mut lone: Vec<(f64, f64)> = alone.iter().map(|(_, e, d)| (*e, *d)).collect();
     let mut blocks: Vec<Block> = alone.into_iter().map(|(b, _, _)| b).collect();
@@ -128,8 +132,13 @@ pub fn solve_word(
         let grown: Vec<(usize, Block, f64, f64)> = grow
             .par_iter()
             .map(|&i| {
-                letter_block(&letters[i], target, blocks[i].problem.charges.len() + 1)
-                    .map(|(b, e, d)| (i, b, e, d))
+                // Alone, the letter is asked for as much less as the word
+                // added to its error.
+                let l = &solved.letters[i];
+                let aim = (REGROW_MARGIN * target.max_error * l.alone / l.in_word)
+                    .min(REGROW_MARGIN * l.alone);
+                let from = blocks[i].problem.charges.len() + 1;
+                letter_block(&letters[i], target, from, aim).map(|(b, e, d)| (i, b, e, d))
             })
             .collect::<Result<_, _>>()?;
         for (i, b, e, d) in grown {
@@ -142,13 +151,56 @@ pub fn solve_word(
     }
 }
 
-/// A letter's block: N grown as [`adaptive::solve_to`] grows it (the paired
-/// layout at d = 2h unless the target fixes d), the letter alone (no outer
-/// circle), until its max error on its own check points meets the target;
-/// the block of the first N (from `from` on) that does, else of the best.
-/// Returns the block,
-/// that error and the pseudo-boundary distance.
+/// A letter's block: the paired layout's sequence of Ns
+/// ([`letter_sequence`], from `from` on, to `target`), and when that misses
+/// the target, the letter refined where it errs ([`letter_refined`], to
+/// `aim`) if that does better. Returns the block, its error alone and its
+/// pseudo-boundary distance.
 fn letter_block(
+    prep: &Prepared,
+    target: &adaptive::Target,
+    from: usize,
+    aim: f64,
+) -> Result<(Block, f64, f64), FieldError> {
+    let seq = letter_sequence(prep, target, from);
+    if matches!(&seq, Ok((_, e, _)) if *e <= target.max_error) || target.distance.is_some() {
+        return seq;
+    }
+    match (seq, letter_refined(prep, target, aim)) {
+        (Ok(s), Ok(r)) => Ok(if r.1 < s.1 { r } else { s }),
+        (Ok(s), Err(_)) => Ok(s),
+        (Err(_), r) => r,
+    }
+}
+
+/// The letter alone (no outer circle) refined ([`super::refine::refine`],
+/// from `target.n_start` uniform charges, at most `target.n_max`) until its
+/// max error on its own check points is at most `aim`; the block of the
+/// first layout that is, else of the best, its error and its mean
+/// pseudo-boundary distance.
+fn letter_refined(
+    prep: &Prepared,
+    target: &adaptive::Target,
+    aim: f64,
+) -> Result<(Block, f64, f64), FieldError> {
+    let mut prep = prep.clone();
+    prep.outer = false;
+    let r = super::refine::refine(&prep, target.n_start, aim, target.n_max, |pr| {
+        let block = Block::new(pr.clone())?;
+        let field = Field::new(block.problem.charges.clone(), block.unit.clone());
+        let errors = super::mfs::check_errors(&field, &block.problem.checks);
+        Ok((block, errors))
+    })?;
+    let distance = r.refinement.layout(&prep).distance;
+    Ok((r.out, r.max_error, distance))
+}
+
+/// A letter's block: N grown as [`adaptive::solve_sequence`] grows it (the
+/// paired layout at d = 2h unless the target fixes d), the letter alone (no
+/// outer circle), until its max error on its own check points meets the
+/// target; the block of the first N (from `from` on) that does, else of the
+/// best. Returns the block, that error and the pseudo-boundary distance.
+fn letter_sequence(
     prep: &Prepared,
     target: &adaptive::Target,
     from: usize,

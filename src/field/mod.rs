@@ -8,6 +8,7 @@ pub mod isolines;
 pub(crate) mod level;
 mod march;
 pub mod mfs;
+pub mod refine;
 pub mod section;
 pub mod setup;
 

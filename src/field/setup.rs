@@ -20,6 +20,15 @@ pub const SINGULAR_TURN: f64 = 0.15;
 /// eight charges, stays well under the errors we aim for.
 pub const OUTER_CHARGE_FACTOR: f64 = 3.0;
 
+/// Turning angle (radians) to the right above which a join is a notch of the
+/// void (a concave corner of the material, the void's wedge narrower than
+/// π − 0.5): the refined layout ([`Refinement`]) clusters charges at it too.
+/// The field is smooth in the wedge, u − 1 ~ r^(π/α) with π/α > 1, but its
+/// continuation into the material branches at the tip, and uniform charges
+/// sit too far from it: DejaVu Serif "B" at 50 mm and N = 2 000 erred 3.3e-4
+/// without notch clusters and 5.9e-6 with them (docs/method.md §3d).
+pub const NOTCH_TURN: f64 = 0.5;
+
 /// Number of singularities on the outer circle (u = 0 there). The field at radius R
 /// is a monopole plus multipoles decaying like (glyph size / R)^k, so few suffice.
 pub const OUTER_CHARGES: usize = 8;
@@ -75,10 +84,25 @@ pub const CLUSTER_SIGMA: f64 = 4.0;
 /// this; the charges past it go to the pseudo-boundary.
 pub const CLUSTER_FLOOR: f64 = 1e-10;
 
+/// The innermost charge of a refined layout's cluster stays at least this
+/// fraction of the cluster's depth from its corner (at most a few mm, so
+/// some 1e-11 mm: a thousand times a double's resolution of coordinates of
+/// a few hundred mm). Past [`refined_cap`] pairs a cluster fills the range
+/// more densely instead of reaching deeper (`floored_distances`). A convex
+/// corner needs it: u − 1 ~ r^(π/α) with π/α near 1/2 at an acute material
+/// corner, so a field good to 1e-6 must follow it to about 1e-11 of its
+/// scale (DejaVu Sans "A" at its feet stopped at 2.5e-6 with 45 pairs down
+/// to 1e-10, docs/method.md §3d).
+pub const REFINED_FLOOR: f64 = 1e-12;
+
 /// No charge of the material is closer than this fraction of the outer
 /// radius to any collocation or check point ([`separate`] moves one that is,
 /// and the solve reports it): the kernel is −log 0 there.
 pub const MIN_SEPARATION: f64 = 1e-15;
+
+/// Charges of a refined layout closer than this fraction of the outer radius
+/// are one ([`Prepared::drop_coincident`] keeps the first).
+pub const COINCIDENT: f64 = 1e-9;
 
 /// The generating boundary of a field: contours with the material on their left
 /// (outlines counter-clockwise, counters clockwise), u = `value` on each.
@@ -180,6 +204,9 @@ pub struct Prepared {
     lengths: Vec<f64>,
     /// Convex corners of the material.
     corners: Vec<Corner>,
+    /// The refined layout's clusters: the convex corners, then the notches
+    /// of the void (concave material corners past [`NOTCH_TURN`]).
+    refined: Vec<Corner>,
     /// All corners (for check points and charges at corners): (contour, arc
     /// length, tangent in, tangent out).
     all_corners: Vec<(usize, f64, Vec2, Vec2)>,
@@ -274,10 +301,26 @@ impl Prepared {
         let index = DistanceIndex::new(&polys);
         let lengths: Vec<f64> = boundary.contours.iter().map(Contour::length).collect();
         let mut corners = Vec::new();
+        let mut notches = Vec::new();
         let mut all_corners = Vec::new();
         for (ci, c) in boundary.contours.iter().enumerate() {
             for k in c.corners(CORNER_TURN) {
                 all_corners.push((ci, k.s, k.t_in, k.t_out));
+                if k.turn < -NOTCH_TURN {
+                    // The material's bisector points away from the void's wedge.
+                    let b = (k.t_in - k.t_out).normalized();
+                    if b.norm2() > 0.5 {
+                        let depth = ray_cast(&polys, k.p, b, 1e-9 * boundary.radius);
+                        notches.push(Corner {
+                            ci,
+                            s: k.s,
+                            p: k.p,
+                            bisector: b,
+                            depth: 0.5 * depth.min(lengths[ci] / 4.0),
+                            half_wedge: 0.5 * (std::f64::consts::PI - k.turn),
+                        });
+                    }
+                }
                 if k.turn > SINGULAR_TURN {
                     let b = (k.t_out - k.t_in).normalized();
                     let b = if b.norm2() > 0.5 { b } else { k.t_in.perp() };
@@ -293,25 +336,12 @@ impl Prepared {
                 }
             }
         }
-        // Two clusters whose bisectors cross within both their depths (the two
-        // ends of a thin bar: a rectangle's corners meet on its mid-line) would
-        // share a charge and make the system singular: stop both short of it.
-        for i in 0..corners.len() {
-            for j in 0..i {
-                let (pi, bi) = (corners[i].p, corners[i].bisector);
-                let (pj, bj) = (corners[j].p, corners[j].bisector);
-                let den = bi.cross(bj);
-                if den.abs() < 1e-12 {
-                    continue;
-                }
-                let ti = (pj - pi).cross(bj) / den;
-                let tj = (pj - pi).cross(bi) / den;
-                if ti > 0.0 && tj > 0.0 && ti <= corners[i].depth && tj <= corners[j].depth {
-                    corners[i].depth = corners[i].depth.min(0.8 * ti);
-                    corners[j].depth = corners[j].depth.min(0.8 * tj);
-                }
-            }
-        }
+        stop_crossing(&mut corners);
+        // The refined layout's clusters: the convex corners, then the notches,
+        // kept short of each other's bisectors as one set.
+        let mut refined = corners.clone();
+        refined.append(&mut notches);
+        stop_crossing(&mut refined);
         let mut sinks = Vec::new();
         for (ci, poly) in polys.iter().enumerate() {
             if boundary.is_counter[ci] {
@@ -324,6 +354,7 @@ impl Prepared {
             index,
             lengths,
             corners,
+            refined,
             all_corners,
             sinks,
             outer: true,
@@ -401,43 +432,111 @@ impl Prepared {
 
     /// The problem for a layout, its points kept apart by role.
     pub fn groups(&self, layout: &Layout) -> Result<Groups, FieldError> {
-        let b = &self.boundary;
         let n = self.counts(layout)?;
         let mut pr = Problem::default();
         let shares = self.shares(n.pb);
-        let mut colloc_s = self.contour_charges(&mut pr, &shares, layout);
+        let distances = vec![layout.distance; shares.len()];
+        let mut colloc_s = self.contour_charges(&mut pr, &shares, &distances, layout.pairs);
         self.corner_clusters(&mut pr, &mut colloc_s, n.pairs, n.single);
         self.check_points(&mut pr, &colloc_s, n.checks);
         pr.moved = self.separate(&mut pr);
         // Circles: outer (u = 0) and sinks (u = 0).
-        let outer = self.outer.then(|| {
-            circle(
-                b.centre,
-                b.radius,
-                b.radius * OUTER_CHARGE_FACTOR,
-                n.outer,
-                n.checks,
-            )
-        });
-        let sinks = self
-            .sinks
-            .iter()
-            .map(|sink| {
-                let g = circle(
-                    sink.centre,
-                    sink.radius,
-                    sink.radius * SINK_CHARGE_FACTOR,
-                    n.sink_charges,
-                    n.checks,
-                );
-                (*sink, g)
-            })
-            .collect();
+        let (outer, sinks) = self.circles(n.outer, n.sink_charges, n.checks);
         Ok(Groups {
             material: pr,
             outer,
             sinks,
         })
+    }
+
+    /// The problem of a refined layout ([`super::refine`]), its points kept
+    /// apart by role: `r.contour[ci]` uniform charges on contour ci at
+    /// [`super::adaptive::DISTANCE_PER_SPACING`] times their own spacing,
+    /// `r.pairs[k]` pairs at the k-th of [`Prepared::refined_corners`], the
+    /// paired layout's outer ring (when the problem has one) and sinks.
+    /// Also returns the contour of each of the material's check points.
+    pub(crate) fn groups_refined(&self, r: &super::refine::Refinement) -> (Groups, Vec<usize>) {
+        let mut pr = Problem::default();
+        let distances: Vec<f64> = self
+            .lengths
+            .iter()
+            .zip(&r.contour)
+            .map(|(l, &n)| super::adaptive::DISTANCE_PER_SPACING * l / n.max(1) as f64)
+            .collect();
+        let mut colloc_s = self.contour_charges(&mut pr, &r.contour, &distances, true);
+        for (k, &n) in self.refined.iter().zip(&r.pairs) {
+            let deltas = floored_distances(k.depth, n, REFINED_FLOOR);
+            self.cluster(k, &deltas, &mut pr, &mut colloc_s, true);
+        }
+        let checks = CHECKS_PER_INTERVAL.1;
+        self.check_points(&mut pr, &colloc_s, checks);
+        // check_points' order: each contour's intervals, then every corner.
+        let owner: Vec<usize> = colloc_s
+            .iter()
+            .enumerate()
+            .flat_map(|(ci, ss)| std::iter::repeat_n(ci, ss.len() * checks))
+            .chain(self.all_corners.iter().map(|k| k.0))
+            .collect();
+        debug_assert_eq!(owner.len(), pr.checks.len());
+        pr.moved = self.separate(&mut pr);
+        self.drop_coincident(&mut pr);
+        let (outer, sinks) = self.circles(r.outer, r.sink, checks);
+        (
+            Groups {
+                material: pr,
+                outer,
+                sinks,
+            },
+            owner,
+        )
+    }
+
+    /// The outer circle (when the problem has one and `outer` > 0 charges)
+    /// and every sink (`sink` charges each), `checks` check points between
+    /// neighbouring collocation points.
+    #[allow(clippy::type_complexity)]
+    fn circles(
+        &self,
+        outer: usize,
+        sink: usize,
+        checks: usize,
+    ) -> (Option<Problem>, Vec<(Sink, Problem)>) {
+        let b = &self.boundary;
+        let ring = (self.outer && outer > 0).then(|| {
+            circle(
+                b.centre,
+                b.radius,
+                b.radius * OUTER_CHARGE_FACTOR,
+                outer,
+                checks,
+            )
+        });
+        let sinks = self
+            .sinks
+            .iter()
+            .map(|s| {
+                let g = circle(
+                    s.centre,
+                    s.radius,
+                    s.radius * SINK_CHARGE_FACTOR,
+                    sink,
+                    checks,
+                );
+                (*s, g)
+            })
+            .collect();
+        (ring, sinks)
+    }
+
+    /// The refined layout's clusters: (contour, corner point), the convex
+    /// corners first, then the notches.
+    pub(crate) fn refined_corners(&self) -> impl Iterator<Item = (usize, Vec2)> + '_ {
+        self.refined.iter().map(|k| (k.ci, k.p))
+    }
+
+    /// The glyph contours' lengths.
+    pub(crate) fn lengths(&self) -> &[f64] {
+        &self.lengths
     }
 
     /// How `layout.n_total` singularities are shared out: the outer circle's
@@ -524,14 +623,15 @@ impl Prepared {
         shares
     }
 
-    /// Uniform charges and collocation on every contour (`shares[ci]` charges,
-    /// twice as many collocation points between them); returns each contour's
-    /// collocation arc lengths.
+    /// Uniform charges and collocation on every contour (`shares[ci]` charges
+    /// at `distances[ci]` inside the material, twice as many collocation
+    /// points between them); returns each contour's collocation arc lengths.
     fn contour_charges(
         &self,
         pr: &mut Problem,
         shares: &[usize],
-        layout: &Layout,
+        distances: &[f64],
+        pairs: bool,
     ) -> Vec<Vec<f64>> {
         let b = &self.boundary;
         let mut colloc_s: Vec<Vec<f64>> = vec![Vec::new(); b.contours.len()];
@@ -553,7 +653,7 @@ impl Prepared {
                     }
                 }
                 pr.charges
-                    .push(self.inward_charge(&s, layout.distance, layout.pairs));
+                    .push(self.inward_charge(&s, distances[ci], pairs));
             }
             let cum = c.cumulative_lengths();
             for j in 0..2 * nc {
@@ -584,32 +684,45 @@ impl Prepared {
             return;
         }
         for k in &self.corners {
-            let c = &self.boundary.contours[k.ci];
-            let cum = c.cumulative_lengths();
             let deltas = cluster_distances(k.depth, n_pairs.max(n_single));
-            let angle = PAIR_ANGLE.min(0.5 * k.half_wedge);
-            for (j, &delta) in deltas.iter().enumerate() {
-                let outer = deltas.get(j + 1).copied().unwrap_or(2.0 * delta);
-                let pair = [delta, (delta * outer).sqrt()];
-                let alongs: &[f64] = if n_pairs > 0 {
-                    for side in [-1.0, 1.0] {
-                        pr.charges
-                            .push(k.p + rotate(k.bisector, side * angle) * delta);
-                    }
-                    &pair
-                } else {
-                    pr.charges.push(k.p + k.bisector * delta);
-                    &pair[..1]
-                };
-                for &along in alongs {
-                    for side in [-1.0, 1.0] {
-                        let s = (k.s + side * along).rem_euclid(self.lengths[k.ci]);
-                        pr.colloc.push(Condition {
-                            p: c.sample_at(&cum, s).p,
-                            value: 1.0,
-                        });
-                        colloc_s[k.ci].push(s);
-                    }
+            self.cluster(k, &deltas, pr, colloc_s, n_pairs > 0);
+        }
+    }
+
+    /// One corner's cluster at the distances `deltas` (see
+    /// [`Prepared::corner_clusters`]), in pairs or on the bisector.
+    fn cluster(
+        &self,
+        k: &Corner,
+        deltas: &[f64],
+        pr: &mut Problem,
+        colloc_s: &mut [Vec<f64>],
+        pairs: bool,
+    ) {
+        let c = &self.boundary.contours[k.ci];
+        let cum = c.cumulative_lengths();
+        let angle = PAIR_ANGLE.min(0.5 * k.half_wedge);
+        for (j, &delta) in deltas.iter().enumerate() {
+            let outer = deltas.get(j + 1).copied().unwrap_or(2.0 * delta);
+            let pair = [delta, (delta * outer).sqrt()];
+            let alongs: &[f64] = if pairs {
+                for side in [-1.0, 1.0] {
+                    pr.charges
+                        .push(k.p + rotate(k.bisector, side * angle) * delta);
+                }
+                &pair
+            } else {
+                pr.charges.push(k.p + k.bisector * delta);
+                &pair[..1]
+            };
+            for &along in alongs {
+                for side in [-1.0, 1.0] {
+                    let s = (k.s + side * along).rem_euclid(self.lengths[k.ci]);
+                    pr.colloc.push(Condition {
+                        p: c.sample_at(&cum, s).p,
+                        value: 1.0,
+                    });
+                    colloc_s[k.ci].push(s);
                 }
             }
         }
@@ -679,6 +792,31 @@ impl Prepared {
             }
         }
         moved
+    }
+}
+
+impl Prepared {
+    /// Drop every charge within [`COINCIDENT`] × R of an earlier one: its
+    /// column would repeat the other's, and R of the QR would have a zero on
+    /// its diagonal (DejaVu Serif "E" at 50 mm: two uniform charges pulled
+    /// back onto the same point where the material is thin).
+    fn drop_coincident(&self, pr: &mut Problem) {
+        let tau = COINCIDENT * self.boundary.radius;
+        let mut kept: Vec<Vec2> = Vec::with_capacity(pr.charges.len());
+        let mut sweep = std::collections::BTreeMap::<i64, Vec<Vec2>>::new();
+        let cell = |p: Vec2| (p.x / tau).floor() as i64;
+        for &q in &pr.charges {
+            let c = cell(q);
+            let near = (c - 1..=c + 1)
+                .filter_map(|k| sweep.get(&k))
+                .flatten()
+                .any(|p| p.dist(q) <= tau);
+            if !near {
+                kept.push(q);
+                sweep.entry(c).or_default().push(q);
+            }
+        }
+        pr.charges = kept;
     }
 }
 
@@ -773,12 +911,56 @@ pub(crate) fn circle(
     pr
 }
 
+/// Two clusters whose bisectors cross within both their depths (the two ends
+/// of a thin bar: a rectangle's corners meet on its mid-line) would share a
+/// charge and make the system singular: stop both short of it.
+fn stop_crossing(corners: &mut [Corner]) {
+    for i in 0..corners.len() {
+        for j in 0..i {
+            let (pi, bi) = (corners[i].p, corners[i].bisector);
+            let (pj, bj) = (corners[j].p, corners[j].bisector);
+            let den = bi.cross(bj);
+            if den.abs() < 1e-12 {
+                continue;
+            }
+            let ti = (pj - pi).cross(bj) / den;
+            let tj = (pj - pi).cross(bi) / den;
+            if ti > 0.0 && tj > 0.0 && ti <= corners[i].depth && tj <= corners[j].depth {
+                corners[i].depth = corners[i].depth.min(0.8 * ti);
+                corners[j].depth = corners[j].depth.min(0.8 * tj);
+            }
+        }
+    }
+}
+
 /// Tapered exponential distances δⱼ = δ_max·exp(−σ(√n − √j)), j = 1..n, from
 /// the corner out (Gopal and Trefethen's spacing).
 fn cluster_distances(depth: f64, n: usize) -> Vec<f64> {
     let nn = (n as f64).sqrt();
     (1..=n)
         .map(|j| depth * (-CLUSTER_SIGMA * (nn - (j as f64).sqrt())).exp())
+        .collect()
+}
+
+/// The pairs of a refined cluster whose innermost charge first reaches
+/// [`REFINED_FLOOR`] at σ = [`CLUSTER_SIGMA`] (62).
+pub fn refined_cap() -> usize {
+    let root = 1.0 + (1.0 / REFINED_FLOOR).ln() / CLUSTER_SIGMA;
+    (root * root).floor() as usize
+}
+
+/// As [`cluster_distances`], with σ lowered where need be so that the
+/// innermost distance is at least `floor` of the depth: more charges then
+/// fill the same range more densely instead of reaching deeper.
+fn floored_distances(depth: f64, n: usize, floor: f64) -> Vec<f64> {
+    let nn = (n as f64).sqrt();
+    let sigma = if nn > 1.0 {
+        CLUSTER_SIGMA.min((1.0 / floor).ln() / (nn - 1.0))
+    } else {
+        CLUSTER_SIGMA
+    };
+    (1..=n)
+        .map(|j| depth * (-sigma * (nn - (j as f64).sqrt())).exp())
         .collect()
 }
 
