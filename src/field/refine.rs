@@ -63,9 +63,6 @@ pub struct Refinement {
     pub outer: usize,
     /// Charges in each sink.
     pub sink: usize,
-    /// The max boundary error aimed at (it sets how near its corner a
-    /// cluster reaches, `Prepared::groups_refined`).
-    pub target: f64,
 }
 
 /// A refined solve: what the caller's solve made of the best layout, its
@@ -87,7 +84,7 @@ impl Refinement {
     /// The first layout: `n_uniform` uniform charges shared by length (at
     /// least [`MIN_CONTOUR`] a contour), [`START_PAIRS`] at every cluster,
     /// the paired layout's largest outer ring.
-    pub fn initial(prep: &Prepared, n_uniform: usize, target: f64) -> Refinement {
+    pub fn initial(prep: &Prepared, n_uniform: usize) -> Refinement {
         let total: f64 = prep.lengths().iter().sum();
         let contour = prep
             .lengths()
@@ -107,7 +104,6 @@ impl Refinement {
                 0
             },
             sink: PAIRED_SINK_CHARGES,
-            target,
         }
     }
 
@@ -211,7 +207,7 @@ pub fn refine<T>(
     n_max: usize,
     solve: impl Fn(&Problem) -> Result<(T, Vec<f64>), FieldError>,
 ) -> Result<Refined<T>, FieldError> {
-    let mut r = Refinement::initial(prep, n_uniform, target);
+    let mut r = Refinement::initial(prep, n_uniform);
     let mut best: Option<Refined<T>> = None;
     let mut last_err = None;
     let mut solves = 0;
@@ -231,8 +227,6 @@ pub fn refine<T>(
             last_err = Some(FieldError::NotANumberAtCheck);
             break;
         }
-        let checks = material_checks(&groups, &owner, &errors);
-        let next = r.grown(prep, &checks, &sink_errors(&groups, &errors), target);
         if best.as_ref().is_none_or(|b| max_error < b.max_error) {
             best = Some(Refined {
                 out,
@@ -245,7 +239,8 @@ pub fn refine<T>(
         if max_error <= target {
             break;
         }
-        match next {
+        let checks = material_checks(&groups, &owner, &errors);
+        match r.grown(prep, &checks, &sink_errors(&groups, &errors), target) {
             Some(n) if n.total(prep) <= n_max => r = n,
             _ => break,
         }

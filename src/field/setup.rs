@@ -306,33 +306,28 @@ impl Prepared {
         for (ci, c) in boundary.contours.iter().enumerate() {
             for k in c.corners(CORNER_TURN) {
                 all_corners.push((ci, k.s, k.t_in, k.t_out));
+                // A cluster on the corner's bisector into the material,
+                // half the way across the material along it.
+                let cluster = |b: Vec2| Corner {
+                    ci,
+                    s: k.s,
+                    p: k.p,
+                    bisector: b,
+                    depth: 0.5
+                        * ray_cast(&polys, k.p, b, 1e-9 * boundary.radius).min(lengths[ci] / 4.0),
+                    half_wedge: 0.5 * (std::f64::consts::PI - k.turn),
+                };
                 if k.turn < -NOTCH_TURN {
                     // The material's bisector points away from the void's wedge.
                     let b = (k.t_in - k.t_out).normalized();
                     if b.norm2() > 0.5 {
-                        let depth = ray_cast(&polys, k.p, b, 1e-9 * boundary.radius);
-                        notches.push(Corner {
-                            ci,
-                            s: k.s,
-                            p: k.p,
-                            bisector: b,
-                            depth: 0.5 * depth.min(lengths[ci] / 4.0),
-                            half_wedge: 0.5 * (std::f64::consts::PI - k.turn),
-                        });
+                        notches.push(cluster(b));
                     }
                 }
                 if k.turn > SINGULAR_TURN {
                     let b = (k.t_out - k.t_in).normalized();
                     let b = if b.norm2() > 0.5 { b } else { k.t_in.perp() };
-                    let depth = ray_cast(&polys, k.p, b, 1e-9 * boundary.radius);
-                    corners.push(Corner {
-                        ci,
-                        s: k.s,
-                        p: k.p,
-                        bisector: b,
-                        depth: 0.5 * depth.min(lengths[ci] / 4.0),
-                        half_wedge: 0.5 * (std::f64::consts::PI - k.turn),
-                    });
+                    corners.push(cluster(b));
                 }
             }
         }
