@@ -13,8 +13,9 @@ const INV_2PI: f64 = 1.0 / std::f64::consts::TAU;
 /// Householder QR of the column-scaled matrix, a lower bound of the true one)
 /// up to which the plain least-squares solution is used. Past it (or with a
 /// non-finite column: a charge on a collocation point) the solve does not
-/// refuse: it falls back to a rank-revealing QR truncated at [`RANK_CUTOFF`]
-/// and marks the solution as not well-conditioned, which the distance and
+/// refuse: it falls back to the ridge QR ([`RIDGE_PER_ROW`]), then to a
+/// rank-revealing QR truncated at [`RANK_CUTOFF`], and marks the solution
+/// as not well-conditioned, which the distance and
 /// layout searches take only when nothing better is found. The measured
 /// boundary error on the check points is the guard, never this estimate.
 pub const MAX_CONDITION: f64 = 1e15;
@@ -324,13 +325,17 @@ pub(crate) struct Factor {
 enum FactorKind {
     Plain(faer::linalg::solvers::Qr<f64>),
     Truncated(faer::linalg::solvers::ColPivQr<f64>, usize),
+    /// The QR of the kernel matrix over λI ([`ridge`]), and the kernel
+    /// matrix's row count (the right-hand side is padded with zeros).
+    Ridge(faer::linalg::solvers::Qr<f64>, usize),
 }
 
 impl Factor {
     /// Factor the kernel matrix and solve it for `rhs`: the plain QR when its
     /// condition estimate is below [`MAX_CONDITION`] and its solution finite,
-    /// else the truncated column-pivoted QR. Returns the factor and the
-    /// coefficients.
+    /// else the ridge QR ([`ridge`]), and only if that too gives a
+    /// non-finite solution, the truncated column-pivoted QR. Returns the
+    /// factor and the coefficients.
     pub(crate) fn new(
         charges: &[Vec2],
         points: &[Vec2],
@@ -346,23 +351,35 @@ impl Factor {
         faer::set_global_parallelism(faer::Par::Seq);
         let qr = a.qr();
         let condition = crate::num::triangular_condition(qr.thin_R());
-        let mut factor = Factor {
-            kind: FactorKind::Plain(qr),
-            scale,
-            condition,
-            well_conditioned: true,
-        };
         if condition < MAX_CONDITION {
+            let factor = Factor {
+                kind: FactorKind::Plain(qr),
+                scale: scale.clone(),
+                condition,
+                well_conditioned: true,
+            };
             let coef = factor.solve(rhs);
             if coef.iter().all(|c| c.is_finite()) {
                 return Ok((factor, coef));
             }
+        } else {
+            drop(qr);
+        }
+        let (qr, condition) = ridge(&a);
+        let mut factor = Factor {
+            kind: FactorKind::Ridge(qr, m),
+            scale,
+            condition,
+            well_conditioned: false,
+        };
+        let coef = factor.solve(rhs);
+        if coef.iter().all(|c| c.is_finite()) {
+            return Ok((factor, coef));
         }
         let qr = a.col_piv_qr();
         let (rank, cond) = truncated_rank(&qr);
         factor.kind = FactorKind::Truncated(qr, rank);
         factor.condition = cond;
-        factor.well_conditioned = false;
         let coef = factor.solve(rhs);
         if coef.iter().any(|c| !c.is_finite()) {
             return Err(FieldError::NonFiniteCoefficients);
@@ -379,9 +396,48 @@ impl Factor {
                 (0..self.scale.len()).map(|j| x[(j, 0)]).collect()
             }
             FactorKind::Truncated(qr, rank) => truncated_apply(qr, *rank, rhs),
+            FactorKind::Ridge(qr, m) => {
+                let n = self.scale.len();
+                let padded =
+                    Mat::<f64>::from_fn(m + n, 1, |i, _| if i < *m { rhs[(i, 0)] } else { 0.0 });
+                let x = qr.solve_lstsq(&padded);
+                (0..n).map(|j| x[(j, 0)]).collect()
+            }
         };
         x.iter().zip(&self.scale).map(|(x, s)| x * s).collect()
     }
+}
+
+/// Ridge factor: λ over the machine epsilon per row of the augmented
+/// matrix (see [`ridge`]).
+pub const RIDGE_PER_ROW: f64 = 128.0;
+
+/// The Householder QR of the column-scaled kernel matrix `a` (M × N) stacked
+/// on λI, λ = [`RIDGE_PER_ROW`]·(M + N)·ε: the least-squares solution of
+/// min ‖a x − b‖² + λ²‖x‖², Tikhonov's regularisation. faer's QR does not
+/// advance its row past a column whose remainder falls under 16·(M + N)·ε
+/// of its norm, so the R of an ill-conditioned MFS matrix (a cluster's
+/// deepest charges, a sink's ring) has exact zeros on its diagonal and the
+/// plain solution is not a number; the λ rows keep every remainder above
+/// that threshold. λ ≈ 9e-11 at M + N = 3 137 (DejaVu Serif "e" at 50 mm);
+/// 3e-11 and 1e-10 reach the same errors on B H P R a e x (docs/method.md
+/// §3d), in a third to a half of the column-pivoted QR's time. Returns the
+/// factor and its condition estimate.
+fn ridge(a: &Mat<f64>) -> (faer::linalg::solvers::Qr<f64>, f64) {
+    let (m, n) = (a.nrows(), a.ncols());
+    let lambda = RIDGE_PER_ROW * (m + n) as f64 * f64::EPSILON;
+    let aug = Mat::<f64>::from_fn(m + n, n, |i, j| {
+        if i < m {
+            a[(i, j)]
+        } else if i - m == j {
+            lambda
+        } else {
+            0.0
+        }
+    });
+    let qr = aug.qr();
+    let cond = crate::num::triangular_condition(qr.thin_R());
+    (qr, cond)
 }
 
 /// The kernel matrix k(P_m, Q_n) with its columns scaled to unit norm, and
@@ -567,6 +623,47 @@ mod tests {
             state ^= state << 17;
             (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         })
+    }
+
+    /// A repeated charge makes two equal columns: faer's plain QR then has
+    /// an exact zero on R's diagonal and no finite solution, and the ridge
+    /// QR takes over. Its field meets u = 1 on the circle of radius 2, at
+    /// points between the collocation points, within 1e-8, and agrees with
+    /// the solve that has each charge once within 1e-8 between the ring of
+    /// 40 charges (radius 1.2) and the boundary. (On the unit circle the
+    /// ring's logarithms sum to about 0, and u = 1 is out of reach.)
+    #[test]
+    fn the_ridge_qr_solves_a_repeated_charge() {
+        let tau = std::f64::consts::TAU;
+        let on = |r: f64, a: f64| Vec2::new(3.0 + r * a.cos(), -2.0 + r * a.sin());
+        let once: Vec<Vec2> = (0..40).map(|k| on(1.2, tau * k as f64 / 40.0)).collect();
+        let mut twice = once.clone();
+        twice.insert(7, once[7]);
+        let points: Vec<Vec2> = (0..160).map(|k| on(2.0, tau * k as f64 / 160.0)).collect();
+        let rhs = vec![1.0; points.len()];
+        let (f1, c1) = Factor::new(&once, &points, &rhs).expect("distinct charges");
+        assert!(f1.well_conditioned, "the distinct charges need no fallback");
+        let (f2, c2) = Factor::new(&twice, &points, &rhs).expect("a repeated charge");
+        assert!(
+            !f2.well_conditioned,
+            "a repeated charge is past the estimate"
+        );
+        assert!(
+            matches!(f2.kind, FactorKind::Ridge(..)),
+            "the ridge QR solved it"
+        );
+        let u1 = Field::new(once, c1);
+        let u2 = Field::new(twice, c2);
+        for k in 0..500 {
+            let p = on(2.0, tau * (k as f64 + 0.37) / 500.0);
+            assert!(
+                (u2.value(p) - 1.0).abs() < 1e-8,
+                "u = {} at {p:?}",
+                u2.value(p)
+            );
+            let q = on(1.6 + 0.38 * (k % 7) as f64 / 7.0, tau * k as f64 / 500.0);
+            assert!((u2.value(q) - u1.value(q)).abs() < 1e-8, "at {q:?}");
+        }
     }
 
     /// The max error through local expansions equals the direct sums' to
