@@ -157,4 +157,62 @@ fn refine(c: char, prep: &pfcam::field::Prepared, ns: &[usize]) {
         ),
         Err(e) => println!("{c} refine: {e}"),
     }
+    if std::env::var("WORST").is_ok() {
+        if let Ok(r) = pfcam::field::refine::refine(prep, ns[0], target, cap, |pr| {
+            pfcam::field::mfs::solve(pr).map(|s| {
+                let e = s.errors.clone();
+                (s, e)
+            })
+        }) {
+            worst(prep, &r.problem, &r.out.errors, &r.out.field);
+        }
+    }
+}
+
+/// The worst check points, each with its nearest sharp vertex of the
+/// flattened outline (turn > 0.3 rad) and the nearest charge.
+fn worst(
+    prep: &pfcam::field::Prepared,
+    pr: &pfcam::field::mfs::Problem,
+    errors: &[f64],
+    field: &pfcam::field::mfs::Field,
+) {
+    let mut sharp = Vec::new();
+    for poly in prep.polygons() {
+        let n = poly.len();
+        for i in 0..n {
+            let (a, b, c) = (poly[(i + n - 1) % n], poly[i], poly[(i + 1) % n]);
+            let (u, v) = ((b - a).normalized(), (c - b).normalized());
+            let turn = u.cross(v).atan2(u.dot(v));
+            if turn.abs() > 0.3 {
+                sharp.push((b, turn));
+            }
+        }
+    }
+    let mut idx: Vec<usize> = (0..errors.len()).collect();
+    idx.sort_by(|&a, &b| errors[b].total_cmp(&errors[a]));
+    for &i in idx.iter().take(10) {
+        let p = pr.checks[i].p;
+        let (v, t) = sharp
+            .iter()
+            .min_by(|a, b| a.0.dist(p).total_cmp(&b.0.dist(p)))
+            .copied()
+            .unwrap_or((p, 0.0));
+        let q = pr
+            .charges
+            .iter()
+            .min_by(|a, b| a.dist(p).total_cmp(&b.dist(p)))
+            .copied()
+            .unwrap();
+        let cp = pr
+            .colloc
+            .iter()
+            .map(|c| c.p.dist(p))
+            .fold(f64::INFINITY, f64::min);
+        let g = field.value_grad(p).1.norm();
+        println!(
+            "  {:.2e} at ({:.3}, {:.3}): sharp vertex {:.3e} mm away, turn {:.2}; nearest charge {:.3e} mm, nearest colloc {:.3e} mm; |grad u| {:.3e} /mm, e/|grad u| {:.2e} mm",
+            errors[i], p.x, p.y, v.dist(p), t, q.dist(p), cp, g, errors[i] / g
+        );
+    }
 }
