@@ -352,7 +352,7 @@ pub(crate) const PROFILE_MESSAGE: &str =
     "operation.kind = \"profile\" has no modelled surface; use a boss or cavity job";
 
 /// The surface of a boss or cavity job: the shape and its field exactly as
-/// `pfcam run` builds them (`pipeline::job_shape`, `pipeline::solve_shape`), the
+/// `pfcam run` builds them (`pipeline::job_shape`, `pipeline::solve_sections`), the
 /// stock as the level planner computes it, then [`build`].
 pub fn job_surface(
     job: &Job,
@@ -365,9 +365,11 @@ pub fn job_surface(
     let profile = job.profile.as_ref().ok_or(SurfaceError::NoProfile)?;
     let (shape, _) = pipeline::job_shape(job, progress)?;
     let flat_tol = job.operation.tolerance * FLATTEN_FRACTION;
-    let (solved, _, _) = pipeline::solve_shape(&shape, job, flat_tol, progress)?;
+    // As `pfcam run` decides it: a field that misses its target is refused
+    // only when its error would move the surface past tolerance/10.
+    let (sections, _, _, _) = pipeline::solve_sections(&shape, job, profile, flat_tol, progress)?;
     let glyphs: Vec<Vec<Vec2>> = shape.contours().map(|c| c.flatten(flat_tol)).collect();
-    let field = solved.solution.field;
+    let field = sections.field().clone();
     let sj = SurfaceJob {
         field: &field,
         glyphs: &glyphs,

@@ -22,9 +22,12 @@
 //! ([`ErrorMap::bound`]).
 //!
 //! The pipeline names the largest move in the shape solve's report
-//! (`pipeline::solve_sections`). The rule, refusing a job whose
-//! surface would move by more than a tenth of `operation.tolerance`, is not
-//! enforced yet: docs/method.md §3c says what it would cost the shipped jobs.
+//! (`pipeline::solve_sections`). A field that misses its target in u is
+//! refused only when this move passes a tenth of `operation.tolerance`
+//! (`pipeline::SHIFT_FRACTION`). The other half of the rule, solving
+//! again when a field that meets its target still moves the surface past
+//! that, is not enforced: docs/method.md §3c says what it would cost the
+//! shipped jobs.
 
 use super::mfs_sections::MfsSections;
 use super::sections::Sections;
