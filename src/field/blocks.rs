@@ -86,6 +86,8 @@ struct Block {
     coef: Vec<f64>,
     centre: Vec2,
     rho: f64,
+    /// Whether the block is the letter's refined layout ([`letter_refined`]).
+    refined: bool,
 }
 
 /// Solve each letter alone to `target` (its own charges, collocation and
@@ -138,7 +140,14 @@ pub fn solve_word(
                 let aim = (REGROW_MARGIN * target.max_error * l.alone / l.in_word)
                     .min(REGROW_MARGIN * l.alone);
                 let from = blocks[i].problem.charges.len() + 1;
-                letter_block(&letters[i], target, from, aim).map(|(b, e, d)| (i, b, e, d))
+                // A letter whose sequence of N already missed is refined
+                // again at once, not sent through the sequence a second time.
+                let grown = if blocks[i].refined && target.distance.is_none() {
+                    letter_refined(&letters[i], target, aim)
+                } else {
+                    letter_block(&letters[i], target, from, aim)
+                };
+                grown.map(|(b, e, d)| (i, b, e, d))
             })
             .collect::<Result<_, _>>()?;
         for (i, b, e, d) in grown {
@@ -192,7 +201,9 @@ fn letter_refined(
         Ok((block, errors))
     })?;
     let distance = r.refinement.layout(&prep).distance;
-    Ok((r.out, r.max_error, distance))
+    let mut block = r.out;
+    block.refined = true;
+    Ok((block, r.max_error, distance))
 }
 
 /// A letter's block: N grown as [`adaptive::solve_sequence`] grows it (the
@@ -262,6 +273,7 @@ impl Block {
             unit,
             centre,
             rho,
+            refined: false,
         })
     }
 }
