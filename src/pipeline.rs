@@ -814,7 +814,12 @@ pub(crate) fn solve_sections(
 ) -> Result<(MfsSections, SolveReport, f64, Option<String>), PipelineError> {
     let (solved, mut report, outer_radius, missed) =
         solve_shape_field(shape, job, flat_tol, progress)?;
-    let (sections, errors) = mfs_sections(shape, job, profile, solved)?;
+    // A missed field that cannot even be made into sections is refused for
+    // what it missed, as before the rule.
+    let (sections, errors) = match mfs_sections(shape, job, profile, solved) {
+        Ok(x) => x,
+        Err(e) => return Err(missed.map_or(e, PipelineError::TopEdge)),
+    };
     let shift = crate::levels::accuracy::worst_shift(&sections, &errors);
     report.label += &format!(
         " (its error may move the surface by up to {:.5} mm)",
