@@ -141,31 +141,26 @@ fn refine(c: char, prep: &pfcam::field::Prepared, ns: &[usize]) {
         })
     });
     match r {
-        Ok(r) => println!(
-            "{c} refine: {:.2e} N {} solves {} {:.2} s{} pairs {:?} contour {:?}",
-            r.max_error,
-            r.problem.charges.len(),
-            r.solves,
-            t0.elapsed().as_secs_f64(),
-            if r.out.well_conditioned {
-                ""
-            } else {
-                " (fallback)"
-            },
-            r.refinement.pairs,
-            r.refinement.contour
-        ),
-        Err(e) => println!("{c} refine: {e}"),
-    }
-    if std::env::var("WORST").is_ok() {
-        if let Ok(r) = pfcam::field::refine::refine(prep, ns[0], target, cap, |pr| {
-            pfcam::field::mfs::solve(pr).map(|s| {
-                let e = s.errors.clone();
-                (s, e)
-            })
-        }) {
-            worst(prep, &r.problem, &r.out.errors, &r.out.field);
+        Ok(r) => {
+            println!(
+                "{c} refine: {:.2e} N {} solves {} {:.2} s{} pairs {:?} contour {:?}",
+                r.max_error,
+                r.problem.charges.len(),
+                r.solves,
+                t0.elapsed().as_secs_f64(),
+                if r.out.well_conditioned {
+                    ""
+                } else {
+                    " (fallback)"
+                },
+                r.refinement.pairs,
+                r.refinement.contour
+            );
+            if std::env::var("WORST").is_ok() {
+                worst(prep, &r.problem, &r.out.errors, &r.out.field);
+            }
         }
+        Err(e) => println!("{c} refine: {e}"),
     }
 }
 

@@ -422,7 +422,7 @@ fn solve_shape_field(
         fixed_n: job.field.singularities.is_some(),
         shift: None,
     });
-    if let Some(t) = missed.filter(|_| !reached.is_finite()) {
+    if let (Some(t), false) = (missed, reached.is_finite()) {
         return Err(PipelineError::TopEdge(t));
     }
     let mut solved = solved;

@@ -931,9 +931,14 @@ fn stop_crossing(corners: &mut [Corner]) {
 /// Tapered exponential distances δⱼ = δ_max·exp(−σ(√n − √j)), j = 1..n, from
 /// the corner out (Gopal and Trefethen's spacing).
 fn cluster_distances(depth: f64, n: usize) -> Vec<f64> {
+    tapered(depth, n, CLUSTER_SIGMA)
+}
+
+/// δⱼ = `depth`·exp(−σ(√n − √j)), j = 1..n.
+fn tapered(depth: f64, n: usize, sigma: f64) -> Vec<f64> {
     let nn = (n as f64).sqrt();
     (1..=n)
-        .map(|j| depth * (-CLUSTER_SIGMA * (nn - (j as f64).sqrt())).exp())
+        .map(|j| depth * (-sigma * (nn - (j as f64).sqrt())).exp())
         .collect()
 }
 
@@ -954,9 +959,7 @@ fn floored_distances(depth: f64, n: usize, floor: f64) -> Vec<f64> {
     } else {
         CLUSTER_SIGMA
     };
-    (1..=n)
-        .map(|j| depth * (-sigma * (nn - (j as f64).sqrt())).exp())
-        .collect()
+    tapered(depth, n, sigma)
 }
 
 /// The most tapered distances a corner cluster takes: the largest n with
